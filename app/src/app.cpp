@@ -1,0 +1,295 @@
+// The application (see app.h). A frame, top to bottom:
+//   poll hot reload -> camera and light into the frame uniforms -> technique.renderShadows()
+//   -> host main pass with the technique's shadowTerm() -> present -> (UI) -> swap
+#include "util/strings.h"
+#include "app.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <GLFW/glfw3.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "ui/ui.h"
+#include "util/log.h"
+#include "util/paths.h"
+
+namespace shadowlab {
+
+LightInfo lightFromScene(const SceneLight& light) {
+    LightInfo info{};
+    info.type = light.type;
+    info.position = light.position;
+    info.direction = glm::normalize(light.direction);
+    info.color = light.color;
+    info.size = light.size;
+    info.spotOuterAngle = light.spotOuterAngle;
+    info.spotInnerAngle = light.spotInnerAngle;
+    return info;
+}
+
+App::~App() {
+    // GL objects go while the context still exists.
+    if (techniques_) techniques_->unloadAll();
+    techniques_.reset();
+    renderer_.reset();
+    timer_.reset();
+    shaders_.reset();
+    backend_.reset();
+}
+
+bool App::init(const AppOptions& options, bool windowed, std::string& error, bool& badInput) {
+    badInput = false;
+    options_ = options;
+    // The scene first: a bad scene file is the user's error and needs no GL to report.
+    try {
+        scene_ = std::make_unique<Scene>(shadowlab::loadScene(options.scene.empty() ? defaultSceneName() : options.scene,
+                                                             options.sceneParameters));
+    } catch (const SceneError& e) {
+        error = e.what();
+        badInput = true;
+        return false;
+    }
+    const BackendKind kind = windowed ? BackendKind::Glfw : options.backend.value_or(BackendKind::Egl);
+    backend_ = createBackend(kind, options.size, "shadowlab", options.visibleWindow, error);
+    if (!backend_) return false;
+    if (!initGl(backend_->loader(), false, error)) {
+        error = std::string(backendName(kind)) + " backend: " + error;
+        return false;
+    }
+    logInfo("OpenGL " + glVersionString() + " | " + glRendererString() + " | " + backend_->description());
+    shaders_ = std::make_unique<ShaderLibrary>();
+    timer_ = std::make_unique<GpuTimer>();
+    renderer_ = std::make_unique<Renderer>(*shaders_);
+    if (!renderer_->init(error)) return false;
+    const glm::ivec2 size = windowed ? backend_->framebufferSize() : options.size;
+    if (!renderer_->resize(size, options.msaaSamples, error)) return false;
+    renderer_->setScene(*scene_);
+    camera_.reset(scene_->camera);
+    light_ = lightFromScene(scene_->light);
+    applyLightOverrides();
+    techniques_ = std::make_unique<TechniqueManager>(HostContext{*renderer_, *shaders_, *timer_, backend_->loader()}, pluginDir());
+    techniques_->scan();
+    if (techniques_->techniques().empty()) {
+        error = "no technique plugins found in " + pluginDir().string();
+        return false;
+    }
+    return true;
+}
+
+void App::applyLightOverrides() {
+    if (options_.lightDirection && glm::length(*options_.lightDirection) > 0.0f) {
+        light_.direction = glm::normalize(*options_.lightDirection);
+    }
+    if (options_.lightSize) {
+        light_.size = light_.type == LightType::Directional ? glm::radians(*options_.lightSize) : *options_.lightSize;
+    }
+}
+
+bool App::loadScene(const std::string& nameOrPath, const std::map<std::string, double>& parameters, std::string& error) {
+    try {
+        auto scene = std::make_unique<Scene>(shadowlab::loadScene(nameOrPath, parameters));
+        // Techniques keep screen- and scene-dependent resources; they rebuild on next use.
+        scene_ = std::move(scene);
+        renderer_->setScene(*scene_);
+        camera_.reset(scene_->camera);
+        light_ = lightFromScene(scene_->light);
+        applyLightOverrides();
+        return true;
+    } catch (const SceneError& e) {
+        error = e.what();   // the current scene stays loaded
+        return false;
+    }
+}
+
+std::string App::firstTechnique() const {
+    const auto& all = techniques_->techniques();
+    return all.empty() ? std::string() : all.front().id;
+}
+
+bool App::applyAssignments(const std::vector<std::string>& assignments, const std::string& technique, std::string& error) {
+    for (const std::string& text : assignments) {
+        const auto assignment = parseAssignment(text, error);
+        if (!assignment) return false;
+        const std::string target = assignment->technique.empty() ? technique : assignment->technique;
+        const TechniqueInfo* info = techniques_->find(target);
+        if (!info) {
+            error = "--set " + text + ": no technique '" + target + "'";
+            return false;
+        }
+        if (!params_.set(*info, assignment->param, assignment->value, error)) {
+            error = "--set " + text + ": " + error;
+            return false;
+        }
+    }
+    return true;
+}
+
+bool App::renderFrame(const std::string& technique, std::string& error) {
+    const auto cpuStart = std::chrono::steady_clock::now();
+    shaders_->pollForChanges();
+    techniques_->pollForChanges(params_);
+    LoadedTechnique* loaded = techniques_->get(technique, error);
+    if (!loaded) return false;
+    const std::vector<double>& values = params_.values(loaded->info());
+    const ParamValues params(values.data(), uint32_t(values.size()));
+
+    timer_->beginFrame();
+    renderer_->setView(camera_.info(renderer_->size()), light_);
+    loaded->technique().renderShadows(params);
+    timer_->begin("main");
+    renderer_->mainPass(loaded->mainProgram(), [&](GLuint program) { loaded->technique().bindMainPass(program, params); });
+    timer_->end();
+    timer_->endFrame();
+    lastCpuFrameMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
+    return true;
+}
+
+bool App::presentView(const std::string& technique, const ViewSelection& view, GLuint framebuffer, glm::ivec2 viewport,
+                      std::string& error) {
+    const bool toDisplay = framebuffer == ~0u;
+    const GLuint fbo = toDisplay ? renderer_->displayFramebuffer() : framebuffer;
+    const glm::ivec2 size = toDisplay ? renderer_->size() : viewport;
+    switch (view.kind) {
+    case ViewSelection::Kind::Lit:
+        renderer_->present(PresentMode::Lit, renderer_->target(MainTarget::Color), fbo, size);
+        return true;
+    case ViewSelection::Kind::Visibility:
+        renderer_->present(PresentMode::Visibility, renderer_->target(MainTarget::Visibility), fbo, size);
+        return true;
+    case ViewSelection::Kind::DebugImage: {
+        LoadedTechnique* loaded = techniques_->get(technique, error);
+        if (!loaded) return false;
+        std::string names;
+        for (const DebugImage& image : loaded->host().debugImages()) {
+            if (image.name == view.debugImage) {
+                const PresentMode mode = image.kind == DebugImageKind::Depth    ? PresentMode::Depth
+                                         : image.kind == DebugImageKind::Moments ? PresentMode::Moments
+                                                                                 : PresentMode::Color;
+                renderer_->present(mode, image.texture, fbo, size);
+                return true;
+            }
+            appendListItem(names, image.name);
+        }
+        error = "technique '" + technique + "' has no debug image '" + view.debugImage +
+                "' (views: lit, visibility" + (names.empty() ? "" : ", " + names) + ")";
+        return false;
+    }
+    }
+    return false;
+}
+
+bool App::measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error) {
+    for (int i = 0; i < warmupFrames; ++i)
+        if (!renderFrame(technique, error)) return false;
+    timer_->drain();
+    timer_->clearHistory();
+    std::vector<double> cpu;
+    cpu.reserve(size_t(frames));
+    for (int i = 0; i < frames; ++i) {
+        if (!renderFrame(technique, error)) return false;
+        cpu.push_back(lastCpuFrameMs_);
+    }
+    timer_->drain();
+    out = {};
+    for (const auto& [pass, samples] : timer_->history()) out.gpuMs[pass] = summarize(samples);
+    out.cpuMs = summarize(cpu);
+    LoadedTechnique* loaded = techniques_->get(technique, error);
+    out.gpuBytes = loaded ? loaded->host().gpuBytes() : 0;
+    out.frames = frames;
+    return true;
+}
+
+int App::runInteractive(const std::string& initialTechnique, int smokeFrames, const std::string& screenshot) {
+    GLFWwindow* window = backend_->window();
+    Ui ui;
+    if (!ui.init(window)) {
+        logError("could not initialise the user interface");
+        return 1;
+    }
+    UiState state;
+    state.technique = initialTechnique.empty() ? firstTechnique() : initialTechnique;
+    state.msaaSamples = renderer_->msaaSamples();
+    int frame = 0;
+    auto last = std::chrono::steady_clock::now();
+    glm::dvec2 lastMouse{0.0};
+    glfwGetCursorPos(window, &lastMouse.x, &lastMouse.y);
+    const auto& all = techniques_->techniques();
+    int exitCode = 0;
+
+    while (!backend_->shouldClose()) {
+        backend_->pollEvents();
+        const auto now = std::chrono::steady_clock::now();
+        const float seconds = std::chrono::duration<float>(now - last).count();
+        last = now;
+
+        // Camera input, unless the UI has the mouse or keyboard.
+        glm::dvec2 mouse;
+        glfwGetCursorPos(window, &mouse.x, &mouse.y);
+        const glm::vec2 delta = glm::vec2(mouse - lastMouse);
+        lastMouse = mouse;
+        if (!ui.wantsMouse()) {
+            if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) camera_.look(delta);
+            if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS) camera_.pan(delta);
+            if (state.scroll != 0.0f) camera_.zoom(state.scroll);
+        }
+        state.scroll = 0.0f;
+        if (!ui.wantsKeyboard() && camera_.mode() == CameraController::Mode::Fly) {
+            glm::vec3 move(0.0f);
+            if (glfwGetKey(window, GLFW_KEY_W) == GLFW_PRESS) move.z += 1;
+            if (glfwGetKey(window, GLFW_KEY_S) == GLFW_PRESS) move.z -= 1;
+            if (glfwGetKey(window, GLFW_KEY_D) == GLFW_PRESS) move.x += 1;
+            if (glfwGetKey(window, GLFW_KEY_A) == GLFW_PRESS) move.x -= 1;
+            if (glfwGetKey(window, GLFW_KEY_E) == GLFW_PRESS) move.y += 1;
+            if (glfwGetKey(window, GLFW_KEY_Q) == GLFW_PRESS) move.y -= 1;
+            camera_.fly(move, seconds);
+        }
+
+        if (smokeFrames > 0 && !all.empty()) {
+            // Smoke test: cycle through every technique and every view while drawing the UI.
+            const int perTechnique = std::max(1, smokeFrames / int(all.size()));
+            state.technique = all[size_t(std::min(frame / perTechnique, int(all.size()) - 1))].id;
+            state.view.kind = (frame / 7) % 2 ? ViewSelection::Kind::Visibility : ViewSelection::Kind::Lit;
+        }
+
+        const glm::ivec2 fb = backend_->framebufferSize();
+        std::string error;
+        if (fb.x > 0 && fb.y > 0) {
+            if (!renderer_->resize(fb, state.msaaSamples, error)) logError(error);
+            if (!renderFrame(state.technique, error)) {
+                state.frameError = error;
+            } else {
+                state.frameError.clear();
+                if (!presentView(state.technique, state.view, 0, fb, error)) {
+                    state.view = {};
+                    state.frameError = error;
+                }
+            }
+        }
+        ui.draw(*this, state, seconds);
+        if (state.screenshotRequested || (smokeFrames > 0 && frame + 1 == smokeFrames && !screenshot.empty())) {
+            const std::string file = state.screenshotRequested ? state.nextScreenshotName() : screenshot;
+            Image image{fb.x, fb.y, 4, std::vector<uint8_t>(size_t(fb.x) * size_t(fb.y) * 4)};
+            glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+            glReadBuffer(GL_BACK);
+            glPixelStorei(GL_PACK_ALIGNMENT, 1);
+            glReadPixels(0, 0, fb.x, fb.y, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
+            for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;
+            if (writePng(file, image, error)) {
+                logInfo("screenshot saved: " + file);
+            } else {
+                logError(error);
+                if (smokeFrames > 0) exitCode = 1;
+            }
+            state.screenshotRequested = false;
+        }
+        backend_->swapBuffers();
+        ++frame;
+        if (smokeFrames > 0 && frame >= smokeFrames) break;
+        if (state.quitRequested) break;
+    }
+    ui.shutdown();
+    return exitCode;
+}
+
+} // namespace shadowlab

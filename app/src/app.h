@@ -1,0 +1,105 @@
+// The application: one GL context, one scene, the techniques found in the plugin folder, and the
+// frame that ties them together. main.cpp turns command lines into calls on this class.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "backend/backend.h"
+#include "camera.h"
+#include "plugin/params.h"
+#include "plugin/technique_runtime.h"
+#include "render/gpu_timer.h"
+#include "render/renderer.h"
+#include "render/shader_library.h"
+#include "scene/scene.h"
+#include "util/image.h"
+#include "util/stats.h"
+
+namespace shadowlab {
+
+struct AppOptions {
+    std::string scene;                                  // built-in name or path; empty = default
+    std::map<std::string, double> sceneParameters;      // --scene-param count=500
+    std::optional<BackendKind> backend;                 // empty = default for this machine
+    glm::ivec2 size{1280, 720};
+    int msaaSamples = 0;
+    std::optional<glm::vec3> lightDirection;            // overrides the scene's (travel direction)
+    std::optional<float> lightSize;                     // scene units (degrees for directional)
+    bool visibleWindow = true;
+};
+
+// Which image a frame shows: the lit scene, the shadow term, or one of the technique's debug images.
+struct ViewSelection {
+    enum class Kind { Lit, Visibility, DebugImage } kind = Kind::Lit;
+    std::string debugImage;
+};
+
+struct Measurement {
+    std::map<std::string, TimingSummary> gpuMs;   // per pass, plus "frame"
+    TimingSummary cpuMs;                          // host CPU time per frame (submission)
+    size_t gpuBytes = 0;
+    int frames = 0;
+};
+
+class App {
+public:
+    App() = default;
+    ~App();
+    App(const App&) = delete;
+    App& operator=(const App&) = delete;
+
+    // Creates the context, loads GL, scans plugins, loads the scene. Sets `badInput` when the
+    // failure is the user's input (scene file), so callers can exit with 2 rather than 1.
+    bool init(const AppOptions& options, bool windowed, std::string& error, bool& badInput);
+    bool loadScene(const std::string& nameOrPath, const std::map<std::string, double>& parameters, std::string& error);
+
+    // "--set key=value" for `technique` (keys may also name another technique: "pcf.kernel=5").
+    bool applyAssignments(const std::vector<std::string>& assignments, const std::string& technique, std::string& error);
+
+    // One frame of `technique` into the main targets; timers advance.
+    bool renderFrame(const std::string& technique, std::string& error);
+    // Shows `view` of the last frame in the display texture (or the window when framebuffer = 0).
+    bool presentView(const std::string& technique, const ViewSelection& view, GLuint framebuffer, glm::ivec2 viewport,
+                     std::string& error);
+    Image readDisplay() { return renderer_->readDisplay(); }
+    // Warm-up frames, then `frames` timed frames; waits for the GPU only at the end.
+    bool measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error);
+    // Interactive window; smokeFrames > 0 runs that many frames cycling techniques, then saves
+    // `screenshot` (if given) and returns.
+    int runInteractive(const std::string& technique, int smokeFrames, const std::string& screenshot);
+
+    GlBackend& backend() { return *backend_; }
+    Renderer& renderer() { return *renderer_; }
+    ShaderLibrary& shaders() { return *shaders_; }
+    TechniqueManager& techniques() { return *techniques_; }
+    ParamStore& params() { return params_; }
+    GpuTimer& timer() { return *timer_; }
+    const Scene& scene() const { return *scene_; }
+    LightInfo& light() { return light_; }
+    CameraController& camera() { return camera_; }
+    std::string firstTechnique() const;
+    double lastCpuFrameMs() const { return lastCpuFrameMs_; }
+
+private:
+    void applyLightOverrides();
+
+    AppOptions options_;
+    std::unique_ptr<GlBackend> backend_;
+    std::unique_ptr<ShaderLibrary> shaders_;
+    std::unique_ptr<GpuTimer> timer_;
+    std::unique_ptr<Renderer> renderer_;
+    std::unique_ptr<TechniqueManager> techniques_;
+    std::unique_ptr<Scene> scene_;
+    ParamStore params_;
+    LightInfo light_{};
+    CameraController camera_;
+    double lastCpuFrameMs_ = 0.0;
+};
+
+LightInfo lightFromScene(const SceneLight& light);
+
+} // namespace shadowlab

@@ -1,0 +1,81 @@
+// Orbit and fly cameras (see camera.h). Orbit keeps the target fixed and moves on a sphere; fly
+// moves the eye and turns the view.
+#include "camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace shadowlab {
+
+void CameraController::reset(const SceneCamera& camera) {
+    target_ = camera.target;
+    position_ = camera.position;
+    const glm::vec3 toEye = camera.position - camera.target;
+    distance_ = std::max(glm::length(toEye), 1e-3f);
+    const glm::vec3 dir = -toEye / distance_;
+    yaw_ = std::atan2(dir.x, -dir.z);
+    pitch_ = std::asin(std::clamp(dir.y, -1.0f, 1.0f));
+    fovY_ = camera.fovY;
+    near_ = camera.nearPlane;
+    far_ = camera.farPlane;
+}
+
+glm::vec3 CameraController::forward() const {
+    return {std::sin(yaw_) * std::cos(pitch_), std::sin(pitch_), -std::cos(yaw_) * std::cos(pitch_)};
+}
+
+CameraInfo CameraController::info(glm::ivec2 viewport) const {
+    CameraInfo c{};
+    c.position = mode_ == Mode::Orbit ? target_ - forward() * distance_ : position_;
+    const glm::vec3 lookAt = mode_ == Mode::Orbit ? target_ : position_ + forward();
+    c.view = glm::lookAt(c.position, lookAt, glm::vec3(0, 1, 0));
+    const float aspect = float(std::max(viewport.x, 1)) / float(std::max(viewport.y, 1));
+    c.projection = glm::perspective(fovY_, aspect, near_, far_);
+    c.viewProjection = c.projection * c.view;
+    c.nearPlane = near_;
+    c.farPlane = far_;
+    c.viewport = viewport;
+    return c;
+}
+
+void CameraController::setMode(Mode mode) {
+    if (mode == mode_) return;
+    if (mode == Mode::Fly) {
+        position_ = target_ - forward() * distance_;
+    } else {
+        target_ = position_ + forward() * distance_;
+    }
+    mode_ = mode;
+}
+
+void CameraController::orbit(glm::vec2 d) {
+    yaw_ += d.x * 0.005f;
+    pitch_ = std::clamp(pitch_ - d.y * 0.005f, -1.5f, 1.5f);
+}
+
+void CameraController::pan(glm::vec2 d) {
+    const glm::vec3 right = glm::normalize(glm::cross(forward(), glm::vec3(0, 1, 0)));
+    const glm::vec3 up = glm::cross(right, forward());
+    const float scale = distance_ * 0.0015f;
+    target_ += (-right * d.x + up * d.y) * scale;
+}
+
+void CameraController::zoom(float wheel) { distance_ = std::clamp(distance_ * std::pow(0.9f, wheel), 0.05f, far_); }
+
+void CameraController::fly(glm::vec3 move, float seconds) {
+    const glm::vec3 right = glm::normalize(glm::cross(forward(), glm::vec3(0, 1, 0)));
+    position_ += (right * move.x + glm::vec3(0, 1, 0) * move.y + forward() * move.z) * flySpeed * seconds;
+}
+
+void CameraController::look(glm::vec2 d) {
+    if (mode_ == Mode::Fly) {
+        yaw_ += d.x * 0.003f;
+        pitch_ = std::clamp(pitch_ - d.y * 0.003f, -1.5f, 1.5f);
+    } else {
+        orbit(d);
+    }
+}
+
+} // namespace shadowlab

@@ -1,0 +1,39 @@
+// Orbit and fly cameras for the interactive view; both start from the scene's camera.
+#pragma once
+
+#include "scene/scene.h"
+#include "shadowlab/technique.h"
+
+namespace shadowlab {
+
+class CameraController {
+public:
+    enum class Mode { Orbit, Fly };
+
+    void reset(const SceneCamera& camera);
+    CameraInfo info(glm::ivec2 viewport) const;
+
+    // Input, in pixels of mouse motion and seconds.
+    void orbit(glm::vec2 mouseDelta);
+    void pan(glm::vec2 mouseDelta);
+    void zoom(float wheel);
+    void fly(glm::vec3 localMove, float seconds);   // x right, y up, z forward
+    void look(glm::vec2 mouseDelta);
+
+    // Switching keeps the current view: fly starts at the orbit eye, orbit around a point ahead.
+    void setMode(Mode mode);
+    Mode mode() const { return mode_; }
+    float flySpeed = 3.0f;
+
+private:
+    glm::vec3 forward() const;
+    Mode mode_ = Mode::Orbit;
+    glm::vec3 target_{0.0f};
+    glm::vec3 position_{0.0f, 2.0f, 5.0f};
+    float yaw_ = 0.0f;      // radians around +y
+    float pitch_ = 0.0f;    // radians, positive looks up
+    float distance_ = 5.0f;
+    float fovY_ = 0.785f, near_ = 0.1f, far_ = 100.0f;
+};
+
+} // namespace shadowlab

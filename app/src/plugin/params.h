@@ -1,0 +1,73 @@
+// Technique descriptors copied out of the plugin library (so they outlive a hot-reload unload),
+// and the host's store of parameter values: the one place the GUI, --set, sweeps and hot reload
+// read and write them.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shadowlab/technique.h"
+
+namespace shadowlab {
+
+struct ParamSpec {
+    std::string id;
+    std::string label;
+    ParamType type = ParamType::Float;
+    double minValue = 0.0;
+    double maxValue = 1.0;
+    double defaultValue = 0.0;
+    std::string unit;
+    std::string help;
+    std::vector<std::string> enumLabels;
+};
+
+struct TechniqueInfo {
+    std::string id;
+    std::string displayName;
+    std::string category;
+    std::string explanation;
+    std::string shadowGlsl;
+    std::vector<ParamSpec> params;
+    std::filesystem::path library;    // the .so it came from (empty for host-provided entries)
+
+    const ParamSpec* findParam(const std::string& paramId) const;
+    int paramIndex(const std::string& paramId) const;
+};
+
+TechniqueInfo copyDescriptor(const TechniqueDesc& desc, const std::filesystem::path& library);
+// A descriptor the host can trust: ids unique and non-empty, min <= default <= max, enum labels
+// present for enums. Returns an error naming the offending parameter, or "".
+std::string validateDescriptor(const TechniqueInfo& info);
+
+// Parses `text` for `spec`: numbers for Float/Int (Int must be integral), true/false/on/off/1/0
+// for Bool, a label or an index for Enum. Range is checked. Errors name the parameter.
+std::optional<double> parseParamValue(const ParamSpec& spec, const std::string& text, std::string& error);
+std::string formatParamValue(const ParamSpec& spec, double value);
+
+// "--set key=value": key is "param" (the technique in use) or "technique.param".
+struct ParamAssignment {
+    std::string technique;   // empty: the technique in use
+    std::string param;
+    std::string value;
+};
+std::optional<ParamAssignment> parseAssignment(const std::string& text, std::string& error);
+
+class ParamStore {
+public:
+    // Values of `info`'s parameters in descriptor order; defaults on first use.
+    std::vector<double>& values(const TechniqueInfo& info);
+    // Sets one parameter from text; on error the stored value is unchanged.
+    bool set(const TechniqueInfo& info, const std::string& paramId, const std::string& valueText, std::string& error);
+    void resetToDefaults(const TechniqueInfo& info);
+    // After a hot reload: keep values by parameter id, defaults for new ids, clamp to new ranges.
+    void remap(const TechniqueInfo& before, const TechniqueInfo& after);
+
+private:
+    std::map<std::string, std::vector<double>> values_;
+};
+
+} // namespace shadowlab

@@ -1,0 +1,51 @@
+// One loaded plugin library. Loading copies the .so to a fresh temporary name first, so that a
+// rebuilt library at the same path is really loaded again (the dynamic loader would otherwise
+// hand back the cached image; cr.h does the same), then checks the ABI version before calling
+// anything else in it.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "plugin/params.h"
+#include "shadowlab/technique.h"
+
+namespace shadowlab {
+
+class PluginLibrary {
+public:
+    // Returns nullptr and an error naming the file and the problem (missing entry symbol, ABI
+    // version mismatch, invalid descriptor, dlopen failure).
+    static std::unique_ptr<PluginLibrary> open(const std::filesystem::path& file, std::string& error);
+    ~PluginLibrary();
+    PluginLibrary(const PluginLibrary&) = delete;
+    PluginLibrary& operator=(const PluginLibrary&) = delete;
+
+    const PluginEntry& entry() const { return *entry_; }
+    const TechniqueInfo& info() const { return info_; }
+    const std::filesystem::path& file() const { return file_; }
+    std::filesystem::file_time_type fileTime() const { return fileTime_; }
+    uintmax_t fileSize() const { return fileSize_; }
+
+private:
+    PluginLibrary() = default;
+    void* handle_ = nullptr;
+    const PluginEntry* entry_ = nullptr;
+    TechniqueInfo info_;
+    std::filesystem::path file_;
+    std::filesystem::path loadedCopy_;
+    std::filesystem::file_time_type fileTime_{};
+    uintmax_t fileSize_ = 0;
+};
+
+struct PluginScan {
+    std::vector<TechniqueInfo> techniques;   // sorted by category order, then id
+    std::vector<std::string> errors;         // one line per skipped library
+};
+
+// Opens every *.so in `dir` to read its descriptor (no GL involved) and closes it again.
+PluginScan scanPlugins(const std::filesystem::path& dir);
+
+} // namespace shadowlab

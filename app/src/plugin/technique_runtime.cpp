@@ -1,0 +1,276 @@
+// Running techniques (see technique_runtime.h).
+#include "util/strings.h"
+#include "plugin/technique_runtime.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "render/light_space.h"
+#include "util/log.h"
+#include "util/paths.h"
+
+namespace shadowlab {
+
+size_t textureBytes(const TextureDesc& desc) {
+    const size_t texel = bytesPerTexel(desc.internalFormat);
+    size_t total = 0;
+    int w = std::max(desc.width, 1), h = std::max(desc.height, 1), d = std::max(desc.depth, 1);
+    const bool mipsShrinkDepth = desc.target == GL_TEXTURE_3D;
+    for (int level = 0; level < std::max(desc.levels, 1); ++level) {
+        total += size_t(w) * size_t(h) * size_t(d) * texel;
+        w = std::max(w / 2, 1);
+        h = std::max(h / 2, 1);
+        if (mipsShrinkDepth) d = std::max(d / 2, 1);
+    }
+    return total;
+}
+
+PluginHost::PluginHost(HostContext context, const TechniqueInfo& info) : context_(context), techniqueId_(info.id) {}
+
+PluginHost::~PluginHost() { releaseAll(); }
+
+void PluginHost::log(LogLevel level, const char* message) { logMessage(level, techniqueId_ + ": " + message); }
+
+LightSpace PluginHost::fitLightSpace(DrawSet set) const {
+    return shadowlab::fitLightSpace(context_.renderer.light(), context_.renderer.bounds(set));
+}
+
+ProgramId PluginHost::buildProgram(const ProgramDesc& desc, std::string& error) {
+    ShaderRequest request;
+    request.vertexFile = desc.vertexFile ? desc.vertexFile : "";
+    request.fragmentFile = desc.fragmentFile ? desc.fragmentFile : "";
+    request.defines = desc.defines ? desc.defines : "";
+    request.searchPaths = {pluginSourceDir(techniqueId_), sharedShaderDir()};
+    request.label = techniqueId_ + ": " + request.vertexFile + (request.fragmentFile.empty() ? "" : " + " + request.fragmentFile);
+    const ProgramId id = context_.shaders.build(request, error);
+    if (id) programs_.push_back(id);
+    return id;
+}
+
+uint32_t PluginHost::createTexture(const TextureDesc& desc) {
+    GLuint name = 0;
+    glCreateTextures(desc.target, 1, &name);
+    const int levels = std::max(desc.levels, 1);
+    switch (desc.target) {
+    case GL_TEXTURE_2D_ARRAY:
+    case GL_TEXTURE_3D:
+        glTextureStorage3D(name, levels, desc.internalFormat, desc.width, desc.height, std::max(desc.depth, 1));
+        break;
+    case GL_TEXTURE_1D:
+        glTextureStorage1D(name, levels, desc.internalFormat, desc.width);
+        break;
+    default:
+        glTextureStorage2D(name, levels, desc.internalFormat, desc.width, desc.height);
+        break;
+    }
+    const std::string label = techniqueId_ + ": " + (desc.label ? desc.label : "texture");
+    glObjectLabel(GL_TEXTURE, name, GLsizei(label.size()), label.c_str());
+    textures_[name] = {label, textureBytes(desc)};
+    return name;
+}
+
+void PluginHost::destroyTexture(uint32_t texture) {
+    if (textures_.erase(texture)) glDeleteTextures(1, &texture);
+    std::erase_if(debugImages_, [&](const DebugImage& image) { return image.texture == texture; });
+}
+
+uint32_t PluginHost::createBuffer(size_t bytes, const void* data, uint32_t storageFlags, const char* label) {
+    GLuint name = 0;
+    glCreateBuffers(1, &name);
+    glNamedBufferStorage(name, GLsizeiptr(bytes), data, storageFlags);
+    const std::string text = techniqueId_ + ": " + (label ? label : "buffer");
+    glObjectLabel(GL_BUFFER, name, GLsizei(text.size()), text.c_str());
+    buffers_[name] = {text, bytes};
+    return name;
+}
+
+void PluginHost::destroyBuffer(uint32_t buffer) {
+    if (buffers_.erase(buffer)) glDeleteBuffers(1, &buffer);
+}
+
+uint32_t PluginHost::createFramebuffer(const char* label) {
+    GLuint name = 0;
+    glCreateFramebuffers(1, &name);
+    const std::string text = techniqueId_ + ": " + (label ? label : "framebuffer");
+    glObjectLabel(GL_FRAMEBUFFER, name, GLsizei(text.size()), text.c_str());
+    framebuffers_[name] = text;
+    return name;
+}
+
+void PluginHost::destroyFramebuffer(uint32_t framebuffer) {
+    if (framebuffers_.erase(framebuffer)) glDeleteFramebuffers(1, &framebuffer);
+}
+
+bool PluginHost::checkFramebuffer(uint32_t framebuffer, const char* what) {
+    const GLenum status = glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
+    if (status == GL_FRAMEBUFFER_COMPLETE) return true;
+    logError(techniqueId_ + ": framebuffer '" + (what ? what : "?") + "' is " + framebufferStatusName(status));
+    return false;
+}
+
+void PluginHost::registerDebugImage(const char* name, uint32_t texture, DebugImageKind kind) {
+    const std::string key = name ? name : "image";
+    for (auto& image : debugImages_)
+        if (image.name == key) {
+            image.texture = texture;
+            image.kind = kind;
+            return;
+        }
+    debugImages_.push_back({key, texture, kind});
+}
+
+size_t PluginHost::gpuBytes() const {
+    size_t total = 0;
+    for (const auto& [name, allocation] : textures_) total += allocation.bytes;
+    for (const auto& [name, allocation] : buffers_) total += allocation.bytes;
+    return total;
+}
+
+int PluginHost::releaseAll() {
+    const int leftovers = int(textures_.size() + buffers_.size() + framebuffers_.size());
+    if (leftovers > 0)
+        logWarning(techniqueId_ + ": " + std::to_string(leftovers) +
+                   " GL object(s) still alive after shutdown(); released by the host");
+    for (auto& [name, allocation] : textures_) glDeleteTextures(1, &name);
+    for (auto& [name, allocation] : buffers_) glDeleteBuffers(1, &name);
+    for (auto& [name, label] : framebuffers_) glDeleteFramebuffers(1, &name);
+    for (ProgramId id : programs_) context_.shaders.release(id);
+    textures_.clear();
+    buffers_.clear();
+    framebuffers_.clear();
+    programs_.clear();
+    debugImages_.clear();
+    return leftovers;
+}
+
+std::unique_ptr<LoadedTechnique> LoadedTechnique::load(const std::filesystem::path& file, HostContext context,
+                                                       std::string& error) {
+    auto loaded = std::unique_ptr<LoadedTechnique>(new LoadedTechnique());
+    loaded->library_ = PluginLibrary::open(file, error);
+    if (!loaded->library_) return nullptr;
+    const TechniqueInfo& info = loaded->library_->info();
+    loaded->shaders_ = &context.shaders;
+    loaded->host_ = std::make_unique<PluginHost>(context, info);
+
+    ShaderRequest main;
+    main.vertexFile = "main.vert";
+    main.fragmentFile = "main.frag";
+    main.searchPaths = {sharedShaderDir()};
+    main.aliases["technique_shadow.glsl"] = pluginSourceDir(info.id) / info.shadowGlsl;
+    main.label = info.id + ": main pass";
+    std::string shaderError;
+    loaded->mainProgram_ = context.shaders.build(main, shaderError);
+    if (!loaded->mainProgram_) {
+        error = file.string() + ": main pass with " + info.shadowGlsl + " failed to build: " + shaderError;
+        return nullptr;
+    }
+
+    loaded->technique_ = loaded->library_->entry().create();
+    if (!loaded->technique_) {
+        error = file.string() + ": create() returned nothing";
+        return nullptr;
+    }
+    std::string initError;
+    if (!loaded->technique_->init(*loaded->host_, initError)) {
+        error = file.string() + ": init failed: " + (initError.empty() ? "no reason given" : initError);
+        return nullptr;   // the destructor shuts down and releases what init created
+    }
+    return loaded;
+}
+
+LoadedTechnique::~LoadedTechnique() {
+    // Order matters: the technique's code lives in the library, so it goes last.
+    if (technique_) {
+        technique_->shutdown();
+        library_->entry().destroy(technique_);
+    }
+    if (host_) host_->releaseAll();
+    host_.reset();
+    if (mainProgram_ && shaders_) shaders_->release(mainProgram_);
+    library_.reset();
+}
+
+GLuint LoadedTechnique::mainProgram() const { return shaders_->program(mainProgram_); }
+
+TechniqueManager::TechniqueManager(HostContext context, std::filesystem::path pluginDir)
+    : context_(context), pluginDir_(std::move(pluginDir)) {}
+
+void TechniqueManager::scan() {
+    PluginScan scan = scanPlugins(pluginDir_);
+    techniques_ = std::move(scan.techniques);
+    scanErrors_ = std::move(scan.errors);
+    for (const auto& error : scanErrors_) logWarning("skipped plugin: " + error);
+}
+
+const TechniqueInfo* TechniqueManager::find(const std::string& id) const {
+    for (const auto& t : techniques_)
+        if (t.id == id) return &t;
+    return nullptr;
+}
+
+LoadedTechnique* TechniqueManager::get(const std::string& id, std::string& error) {
+    if (auto it = loaded_.find(id); it != loaded_.end()) return it->second.get();
+    const TechniqueInfo* info = find(id);
+    if (!info) {
+        std::string known;
+        for (const auto& t : techniques_) appendListItem(known, t.id);
+        error = "no technique '" + id + "' (available: " + known + ")";
+        return nullptr;
+    }
+    auto loaded = LoadedTechnique::load(info->library, context_, error);
+    if (!loaded) return nullptr;
+    auto* raw = loaded.get();
+    loaded_[id] = std::move(loaded);
+    return raw;
+}
+
+std::vector<LoadedTechnique*> TechniqueManager::loadedTechniques() {
+    std::vector<LoadedTechnique*> out;
+    for (auto& [id, t] : loaded_) out.push_back(t.get());
+    return out;
+}
+
+std::vector<std::string> TechniqueManager::pollForChanges(ParamStore& params, std::chrono::milliseconds interval) {
+    std::vector<std::string> reloaded;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - lastPoll_ < interval) return reloaded;
+    lastPoll_ = now;
+    for (auto& [id, loaded] : loaded_) {
+        const auto& file = loaded->library().file();
+        std::error_code ec;
+        const auto time = std::filesystem::last_write_time(file, ec);
+        const auto size = ec ? 0 : std::filesystem::file_size(file, ec);
+        if (ec || (time == loaded->library().fileTime() && size == loaded->library().fileSize())) {
+            pending_.erase(id);
+            continue;
+        }
+        if (auto failed = failed_.find(id); failed != failed_.end() && failed->second.time == time && failed->second.size == size)
+            continue;   // this version already failed; wait for the next build
+        // The linker may still be writing: reload only once two polls agree on time and size.
+        auto pending = pending_.find(id);
+        if (pending == pending_.end() || pending->second.time != time || pending->second.size != size) {
+            pending_[id] = {time, size};
+            continue;
+        }
+        pending_.erase(id);
+        std::string error;
+        auto fresh = LoadedTechnique::load(file, context_, error);
+        if (!fresh) {
+            failed_[id] = {time, size};
+            lastReloadError_ = error;
+            logError("hot reload failed, keeping the running version: " + error);
+            continue;
+        }
+        failed_.erase(id);
+        lastReloadError_.clear();
+        params.remap(loaded->info(), fresh->info());
+        for (auto& t : techniques_)
+            if (t.id == id) t = fresh->info();
+        loaded = std::move(fresh);   // the old instance shuts down and unloads here
+        logInfo("hot reload: " + id + " reloaded from " + file.string());
+        reloaded.push_back(id);
+    }
+    return reloaded;
+}
+
+} // namespace shadowlab

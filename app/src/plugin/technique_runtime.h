@@ -1,0 +1,143 @@
+// Running techniques: the host-services table each one gets (with GPU memory accounting and
+// clean-up of whatever it leaves behind), lazy loading, and hot reload of rebuilt libraries.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "plugin/params.h"
+#include "plugin/plugin_library.h"
+#include "render/gpu_timer.h"
+#include "render/renderer.h"
+#include "render/shader_library.h"
+
+namespace shadowlab {
+
+struct HostContext {
+    Renderer& renderer;
+    ShaderLibrary& shaders;
+    GpuTimer& timer;
+    GlLoader glLoader;
+};
+
+struct DebugImage {
+    std::string name;
+    GLuint texture;
+    DebugImageKind kind;
+};
+
+struct TrackedAllocation {
+    std::string label;
+    size_t bytes;
+};
+
+class PluginHost final : public IHost {
+public:
+    PluginHost(HostContext context, const TechniqueInfo& info);
+    ~PluginHost();
+    PluginHost(const PluginHost&) = delete;
+    PluginHost& operator=(const PluginHost&) = delete;
+
+    GlLoader glLoader() const override { return context_.glLoader; }
+    void log(LogLevel level, const char* message) override;
+    const CameraInfo& camera() const override { return context_.renderer.camera(); }
+    const LightInfo& light() const override { return context_.renderer.light(); }
+    Bounds sceneBounds(DrawSet set) const override { return context_.renderer.bounds(set); }
+    LightSpace fitLightSpace(DrawSet set) const override;
+    uint32_t objectCount() const override { return context_.renderer.objectCount(); }
+    ObjectInfo objectInfo(uint32_t index) const override { return context_.renderer.objectInfo(index); }
+    void drawScene(DrawSet set, uint32_t glProgram) override { context_.renderer.drawScene(set, glProgram); }
+    void drawObject(uint32_t index, uint32_t glProgram) override { context_.renderer.drawObject(index, glProgram); }
+    void drawFullscreenTriangle() override { context_.renderer.drawFullscreenTriangle(); }
+    ProgramId buildProgram(const ProgramDesc& desc, std::string& error) override;
+    uint32_t glProgram(ProgramId id) const override { return context_.shaders.program(id); }
+    void beginGpuPass(const char* name) override { context_.timer.begin(name); }
+    void endGpuPass() override { context_.timer.end(); }
+    uint32_t createTexture(const TextureDesc& desc) override;
+    void destroyTexture(uint32_t texture) override;
+    uint32_t createBuffer(size_t bytes, const void* data, uint32_t storageFlags, const char* label) override;
+    void destroyBuffer(uint32_t buffer) override;
+    uint32_t createFramebuffer(const char* label) override;
+    void destroyFramebuffer(uint32_t framebuffer) override;
+    bool checkFramebuffer(uint32_t framebuffer, const char* what) override;
+    void registerDebugImage(const char* name, uint32_t texture, DebugImageKind kind) override;
+
+    size_t gpuBytes() const;
+    const std::map<GLuint, TrackedAllocation>& textures() const { return textures_; }
+    const std::vector<DebugImage>& debugImages() const { return debugImages_; }
+    // Deletes every tracked object and program still alive; returns how many were left over.
+    int releaseAll();
+
+private:
+    HostContext context_;
+    std::string techniqueId_;
+    std::map<GLuint, TrackedAllocation> textures_, buffers_;
+    std::map<GLuint, std::string> framebuffers_;
+    std::vector<ProgramId> programs_;
+    std::vector<DebugImage> debugImages_;
+};
+
+// Size in bytes of a texture described by `desc`, every mip level included.
+size_t textureBytes(const TextureDesc& desc);
+
+class LoadedTechnique {
+public:
+    static std::unique_ptr<LoadedTechnique> load(const std::filesystem::path& file, HostContext context,
+                                                 std::string& error);
+    ~LoadedTechnique();
+    LoadedTechnique(const LoadedTechnique&) = delete;
+    LoadedTechnique& operator=(const LoadedTechnique&) = delete;
+
+    const TechniqueInfo& info() const { return library_->info(); }
+    IShadowTechnique& technique() { return *technique_; }
+    PluginHost& host() { return *host_; }
+    GLuint mainProgram() const;
+    const PluginLibrary& library() const { return *library_; }
+
+private:
+    LoadedTechnique() = default;
+    std::unique_ptr<PluginLibrary> library_;
+    std::unique_ptr<PluginHost> host_;
+    IShadowTechnique* technique_ = nullptr;
+    ProgramId mainProgram_ = 0;
+    ShaderLibrary* shaders_ = nullptr;
+};
+
+class TechniqueManager {
+public:
+    TechniqueManager(HostContext context, std::filesystem::path pluginDir);
+    void scan();
+    const std::vector<TechniqueInfo>& techniques() const { return techniques_; }
+    const std::vector<std::string>& scanErrors() const { return scanErrors_; }
+    const TechniqueInfo* find(const std::string& id) const;
+    // Loads on first use (GL current); nullptr and an error when it cannot.
+    LoadedTechnique* get(const std::string& id, std::string& error);
+    // Hot reload: a library rebuilt on disk replaces the loaded one in place (values kept by
+    // parameter id); a failed load or init keeps the old one. Returns ids reloaded this call.
+    std::vector<std::string> pollForChanges(ParamStore& params,
+                                            std::chrono::milliseconds interval = std::chrono::milliseconds(100));
+    const std::string& lastReloadError() const { return lastReloadError_; }
+    void unloadAll() { loaded_.clear(); }
+    std::vector<LoadedTechnique*> loadedTechniques();
+
+private:
+    struct Pending {
+        std::filesystem::file_time_type time;
+        uintmax_t size;
+    };
+    HostContext context_;
+    std::filesystem::path pluginDir_;
+    std::vector<TechniqueInfo> techniques_;
+    std::vector<std::string> scanErrors_;
+    std::map<std::string, std::unique_ptr<LoadedTechnique>> loaded_;
+    std::map<std::string, Pending> pending_;          // changed on disk, waiting to settle
+    std::map<std::string, Pending> failed_;           // last version that failed to load
+    std::chrono::steady_clock::time_point lastPoll_{};
+    std::string lastReloadError_;
+};
+
+} // namespace shadowlab

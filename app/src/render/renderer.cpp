@@ -1,0 +1,367 @@
+// Host passes (see renderer.h).
+#include "render/renderer.h"
+
+#include <algorithm>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "render/light_space.h"
+#include "util/paths.h"
+
+namespace shadowlab {
+namespace {
+
+// std140 mirror of the Frame block in shaders/common.glsl.
+struct FrameUniforms {
+    glm::mat4 view, projection, viewProjection, invViewProjection;
+    glm::mat4 lightView, lightProjection, lightViewProjection;
+    glm::vec4 cameraPosition, lightPosition, lightDirection, lightColor, lightSpot, ambient, viewport;
+};
+
+GlTexture makeTexture(GLenum format, glm::ivec2 size, int samples, const char* label) {
+    GLuint name = 0;
+    if (samples > 0) {
+        glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &name);
+        glTextureStorage2DMultisample(name, samples, format, size.x, size.y, GL_TRUE);
+    } else {
+        glCreateTextures(GL_TEXTURE_2D, 1, &name);
+        glTextureStorage2D(name, 1, format, size.x, size.y);
+        glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(name, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    glObjectLabel(GL_TEXTURE, name, -1, label);
+    return GlTexture(name);
+}
+
+bool attachMainTargets(GLuint fbo, GLuint color, GLuint visibility, GLuint position, GLuint normal, GLuint depth,
+                       const char* what, std::string& error) {
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, visibility, 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT2, position, 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT3, normal, 0);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_STENCIL_ATTACHMENT, depth, 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(fbo, 4, buffers);
+    const GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        error = std::string(what) + " framebuffer is " + framebufferStatusName(status);
+        return false;
+    }
+    return true;
+}
+
+} // namespace
+
+bool Renderer::init(std::string& error) {
+    GLuint name = 0;
+    glCreateBuffers(1, &name);
+    frameUniforms_.reset(name);
+    glNamedBufferStorage(name, sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glCreateVertexArrays(1, &name);
+    emptyVao_.reset(name);
+    glCreateSamplers(1, &name);
+    presentSampler_.reset(name);
+    // Compare mode off so depth maps (often set up for sampler2DShadow) can be viewed.
+    glSamplerParameteri(name, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    glSamplerParameteri(name, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(name, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(name, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+
+    ShaderRequest present;
+    present.vertexFile = "fullscreen.vert";
+    present.fragmentFile = "present.frag";
+    present.searchPaths = {sharedShaderDir()};
+    present.label = "host present";
+    presentProgram_ = shaders_.build(present, error);
+    return presentProgram_ != 0;
+}
+
+void Renderer::setScene(const Scene& scene) {
+    scene_ = &scene;
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    meshRanges_.clear();
+    for (const Mesh& mesh : scene.meshes) {
+        meshRanges_.push_back({uint32_t(indices.size()), uint32_t(mesh.indices.size()), int32_t(vertices.size())});
+        vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+        indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+    }
+    GLuint name = 0;
+    glCreateBuffers(1, &name);
+    vertexBuffer_.reset(name);
+    glNamedBufferStorage(name, GLsizeiptr(std::max<size_t>(1, vertices.size() * sizeof(Vertex))),
+                         vertices.empty() ? nullptr : vertices.data(), 0);
+    glCreateBuffers(1, &name);
+    indexBuffer_.reset(name);
+    glNamedBufferStorage(name, GLsizeiptr(std::max<size_t>(1, indices.size() * sizeof(uint32_t))),
+                         indices.empty() ? nullptr : indices.data(), 0);
+    glCreateVertexArrays(1, &name);
+    sceneVao_.reset(name);
+    glVertexArrayVertexBuffer(name, 0, vertexBuffer_.get(), 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(name, indexBuffer_.get());
+    glEnableVertexArrayAttrib(name, 0);
+    glEnableVertexArrayAttrib(name, 1);
+    glEnableVertexArrayAttrib(name, 2);
+    glVertexArrayAttribFormat(name, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, position));
+    glVertexArrayAttribFormat(name, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, normal));
+    glVertexArrayAttribFormat(name, 2, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
+    for (GLuint attribute = 0; attribute < 3; ++attribute) glVertexArrayAttribBinding(name, attribute, 0);
+
+    objectDraws_.clear();
+    opaqueObjects_.clear();
+    translucentObjects_.clear();
+    for (uint32_t i = 0; i < scene.objects.size(); ++i) {
+        const SceneObject& object = scene.objects[i];
+        objectDraws_.push_back({object.transform, glm::transpose(glm::inverse(glm::mat3(object.transform))),
+                                object.mesh, object.material});
+        (scene.materials[object.material].translucent() ? translucentObjects_ : opaqueObjects_).push_back(i);
+    }
+    translucentOrder_.reserve(translucentObjects_.size());
+}
+
+bool Renderer::resize(glm::ivec2 size, int msaaSamples, std::string& error) {
+    size = glm::max(size, glm::ivec2(1));
+    if (size == size_ && msaaSamples == msaaSamples_ && mainFbo_) return true;
+    size_ = size;
+    msaaSamples_ = msaaSamples;
+    color_ = makeTexture(GL_RGBA16F, size, 0, "main colour (linear)");
+    visibility_ = makeTexture(GL_RGBA16F, size, 0, "main visibility");
+    position_ = makeTexture(GL_RGBA32F, size, 0, "main world position");
+    normal_ = makeTexture(GL_RGBA16F, size, 0, "main world normal");
+    depth_ = makeTexture(GL_DEPTH24_STENCIL8, size, 0, "main depth");
+    GLuint name = 0;
+    glCreateFramebuffers(1, &name);
+    mainFbo_.reset(name);
+    if (!attachMainTargets(name, color_.get(), visibility_.get(), position_.get(), normal_.get(), depth_.get(),
+                           "main", error))
+        return false;
+    msFbo_.reset();
+    msColor_.reset();
+    msVisibility_.reset();
+    msPosition_.reset();
+    msNormal_.reset();
+    msDepth_.reset();
+    if (msaaSamples > 0) {
+        msColor_ = makeTexture(GL_RGBA16F, size, msaaSamples, "main colour MSAA");
+        msVisibility_ = makeTexture(GL_RGBA16F, size, msaaSamples, "main visibility MSAA");
+        msPosition_ = makeTexture(GL_RGBA32F, size, msaaSamples, "main position MSAA");
+        msNormal_ = makeTexture(GL_RGBA16F, size, msaaSamples, "main normal MSAA");
+        msDepth_ = makeTexture(GL_DEPTH24_STENCIL8, size, msaaSamples, "main depth MSAA");
+        glCreateFramebuffers(1, &name);
+        msFbo_.reset(name);
+        if (!attachMainTargets(name, msColor_.get(), msVisibility_.get(), msPosition_.get(), msNormal_.get(),
+                               msDepth_.get(), "main MSAA", error))
+            return false;
+    }
+    displayColor_ = makeTexture(GL_RGBA8, size, 0, "display");
+    glCreateFramebuffers(1, &name);
+    displayFbo_.reset(name);
+    glNamedFramebufferTexture(name, GL_COLOR_ATTACHMENT0, displayColor_.get(), 0);
+    const GLenum status = glCheckNamedFramebufferStatus(name, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        error = "display framebuffer is " + framebufferStatusName(status);
+        return false;
+    }
+    return true;
+}
+
+void Renderer::setView(const CameraInfo& camera, const LightInfo& light) {
+    camera_ = camera;
+    camera_.viewport = size_;
+    light_ = light;
+    defaultLightSpace_ = fitLightSpace(light_, bounds(DrawSet::All));
+    FrameUniforms u{};
+    u.view = camera_.view;
+    u.projection = camera_.projection;
+    u.viewProjection = camera_.viewProjection;
+    u.invViewProjection = glm::inverse(camera_.viewProjection);
+    u.lightView = defaultLightSpace_.view;
+    u.lightProjection = defaultLightSpace_.projection;
+    u.lightViewProjection = defaultLightSpace_.viewProjection;
+    u.cameraPosition = glm::vec4(camera_.position, 1.0f);
+    u.lightPosition = glm::vec4(light_.position, float(static_cast<uint32_t>(light_.type)));
+    u.lightDirection = glm::vec4(glm::normalize(light_.direction), light_.size);
+    u.lightColor = glm::vec4(light_.color, 1.0f);
+    u.lightSpot = glm::vec4(std::cos(light_.spotOuterAngle), std::cos(light_.spotInnerAngle),
+                            defaultLightSpace_.nearPlane, defaultLightSpace_.farPlane);
+    u.ambient = glm::vec4(scene_ ? scene_->ambient : glm::vec3(0.0f), 1.0f);
+    u.viewport = glm::vec4(float(size_.x), float(size_.y), 1.0f / float(size_.x), 1.0f / float(size_.y));
+    glNamedBufferSubData(frameUniforms_.get(), 0, sizeof(u), &u);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUniforms_.get());
+}
+
+Bounds Renderer::bounds(DrawSet set) const {
+    return scene_ ? scene_->worldBounds(set) : Bounds{glm::vec3(-1.0f), glm::vec3(1.0f)};
+}
+
+uint32_t Renderer::objectCount() const { return scene_ ? uint32_t(scene_->objects.size()) : 0u; }
+
+ObjectInfo Renderer::objectInfo(uint32_t index) const {
+    if (!scene_ || index >= scene_->objects.size()) return {};
+    const SceneObject& o = scene_->objects[index];
+    return {o.castsShadow, o.receivesShadow, scene_->materials[o.material].translucent(), o.isPlane, o.plane};
+}
+
+void Renderer::setObjectUniforms(const ObjectDraw& draw) {
+    const Material& m = scene_->materials[draw.material];
+    glUniformMatrix4fv(0, 1, GL_FALSE, glm::value_ptr(draw.model));
+    glUniformMatrix3fv(1, 1, GL_FALSE, glm::value_ptr(draw.normalMatrix));
+    glUniform4f(2, m.baseColor.r, m.baseColor.g, m.baseColor.b, m.alpha);
+    glUniform4f(3, m.transmission.r, m.transmission.g, m.transmission.b, 1.0f);
+    glUniform4f(4, m.specular.r, m.specular.g, m.specular.b, m.shininess);
+}
+
+void Renderer::drawObject(uint32_t index, GLuint program) {
+    if (!scene_ || index >= objectDraws_.size()) return;
+    glUseProgram(program);
+    glBindVertexArray(sceneVao_.get());
+    const ObjectDraw& draw = objectDraws_[index];
+    setObjectUniforms(draw);
+    const MeshRange& range = meshRanges_[draw.mesh];
+    glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(range.indexCount), GL_UNSIGNED_INT,
+                             reinterpret_cast<const void*>(uintptr_t(range.firstIndex) * sizeof(uint32_t)),
+                             range.baseVertex);
+}
+
+void Renderer::drawScene(DrawSet set, GLuint program) {
+    if (!scene_) return;
+    glUseProgram(program);
+    glBindVertexArray(sceneVao_.get());
+    for (uint32_t i = 0; i < objectDraws_.size(); ++i) {
+        if (!scene_->inSet(scene_->objects[i], set)) continue;
+        const ObjectDraw& draw = objectDraws_[i];
+        setObjectUniforms(draw);
+        const MeshRange& range = meshRanges_[draw.mesh];
+        glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(range.indexCount), GL_UNSIGNED_INT,
+                                 reinterpret_cast<const void*>(uintptr_t(range.firstIndex) * sizeof(uint32_t)),
+                                 range.baseVertex);
+    }
+}
+
+void Renderer::drawFullscreenTriangle() {
+    glBindVertexArray(emptyVao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void Renderer::beginMainPass(GLuint program) {
+    const GLuint fbo = msaaSamples_ > 0 ? msFbo_.get() : mainFbo_.get();
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, size_.x, size_.y);
+    glDisable(GL_FRAMEBUFFER_SRGB);   // colour stays linear; the present pass encodes
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisable(GL_CULL_FACE);          // planes are single-sided quads seen from both sides
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    const glm::vec3 bg = scene_ ? scene_->background : glm::vec3(0.0f);
+    const float background[4] = {bg.r, bg.g, bg.b, 1.0f};
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, background);
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 1, zero);
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 2, zero);
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 3, zero);
+    glClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUniforms_.get());
+    glUseProgram(program);
+}
+
+void Renderer::drawMainPassObjects(GLuint program) {
+    if (!scene_) return;
+    glBindVertexArray(sceneVao_.get());
+    for (uint32_t i : opaqueObjects_) drawObject(i, program);
+    if (translucentObjects_.empty()) return;
+    // Translucent surfaces: blended colour, back to front, without touching the G-buffer or
+    // depth, so accuracy is measured on the opaque surface behind them.
+    translucentOrder_.clear();
+    for (uint32_t i : translucentObjects_) {
+        const glm::vec3 center = glm::vec3(objectDraws_[i].model[3]);
+        translucentOrder_.push_back({glm::length(center - camera_.position), i});
+    }
+    std::sort(translucentOrder_.begin(), translucentOrder_.end(), [](auto& a, auto& b) { return a.first > b.first; });
+    glDepthMask(GL_FALSE);
+    glEnablei(GL_BLEND, 0);
+    glBlendFunci(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    for (GLuint attachment = 1; attachment < 4; ++attachment) glColorMaski(attachment, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    for (const auto& entry : translucentOrder_) drawObject(entry.second, program);
+    for (GLuint attachment = 1; attachment < 4; ++attachment) glColorMaski(attachment, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisablei(GL_BLEND, 0);
+    glDepthMask(GL_TRUE);
+}
+
+void Renderer::endMainPass() {
+    if (msaaSamples_ <= 0) return;
+    // Resolve each attachment; float targets average their samples (edges of the G-buffer are
+    // therefore approximate with MSAA: accuracy runs use MSAA off).
+    for (int attachment = 0; attachment < 4; ++attachment) {
+        glNamedFramebufferReadBuffer(msFbo_.get(), GL_COLOR_ATTACHMENT0 + GLenum(attachment));
+        const GLenum draw = GL_COLOR_ATTACHMENT0 + GLenum(attachment);
+        glNamedFramebufferDrawBuffers(mainFbo_.get(), 1, &draw);
+        glBlitNamedFramebuffer(msFbo_.get(), mainFbo_.get(), 0, 0, size_.x, size_.y, 0, 0, size_.x, size_.y,
+                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(mainFbo_.get(), 4, buffers);
+}
+
+GLuint Renderer::target(MainTarget which) const {
+    switch (which) {
+    case MainTarget::Color: return color_.get();
+    case MainTarget::Visibility: return visibility_.get();
+    case MainTarget::Position: return position_.get();
+    case MainTarget::Normal: return normal_.get();
+    }
+    return 0;
+}
+
+void Renderer::present(PresentMode mode, GLuint texture, GLuint framebuffer, glm::ivec2 viewport, glm::vec2 range) {
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glViewport(0, 0, viewport.x, viewport.y);
+    glDisable(GL_FRAMEBUFFER_SRGB);   // present.frag encodes sRGB itself
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glUseProgram(shaders_.program(presentProgram_));
+    glUniform1i(0, static_cast<int>(mode));
+    glUniform2f(1, range.x, range.y);
+    glBindTextureUnit(0, texture);
+    glBindSampler(0, presentSampler_.get());
+    drawFullscreenTriangle();
+    glBindSampler(0, 0);
+}
+
+void Renderer::presentToDisplay(PresentMode mode, GLuint texture, glm::vec2 range) {
+    present(mode, texture, displayFbo_.get(), size_, range);
+}
+
+Image Renderer::readDisplay() const {
+    Image image;
+    image.width = size_.x;
+    image.height = size_.y;
+    image.channels = 4;
+    image.pixels.resize(size_t(size_.x) * size_t(size_.y) * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(displayColor_.get(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(image.pixels.size()), image.pixels.data());
+    return image;
+}
+
+std::vector<glm::vec4> Renderer::readTarget(MainTarget which) const {
+    std::vector<glm::vec4> pixels(size_t(size_.x) * size_t(size_.y));
+    glGetTextureImage(target(which), 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(glm::vec4)), pixels.data());
+    return pixels;
+}
+
+void Renderer::uploadDisplay(const Image& image) {
+    if (image.width != size_.x || image.height != size_.y || image.channels != 4) return;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(displayColor_.get(), 0, 0, 0, size_.x, size_.y, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
+}
+
+} // namespace shadowlab

@@ -1,0 +1,43 @@
+// The classroom panel (Dear ImGui): technique picker, the parameter panel generated from the
+// technique's descriptor, light and camera controls, per-pass GPU timings, memory, debug images,
+// screenshots and the log, including hot-reload errors.
+#pragma once
+
+#include <string>
+
+#include "app.h"
+
+struct GLFWwindow;
+
+namespace shadowlab {
+
+struct UiState {
+    std::string technique;
+    ViewSelection view;
+    int msaaSamples = 0;
+    float scroll = 0.0f;              // mouse wheel since last frame
+    bool screenshotRequested = false;
+    bool quitRequested = false;
+    std::string frameError;
+    int screenshotCounter = 0;
+    std::string nextScreenshotName();
+};
+
+class Ui {
+public:
+    bool init(GLFWwindow* window);
+    void shutdown();
+    // Builds and renders the UI over the current framebuffer.
+    void draw(App& app, UiState& state, float frameSeconds);
+    bool wantsMouse() const;
+    bool wantsKeyboard() const;
+
+private:
+    bool initialised_ = false;
+    GLFWwindow* window_ = nullptr;
+    float smoothedFrameMs_ = 0.0f;
+    std::string sceneInput_;
+    std::string sceneError_;
+};
+
+} // namespace shadowlab

@@ -1,0 +1,24 @@
+// Planar shadows, pass 2: a caster flattened onto the receiver plane (seed 000 eq. 3.3,
+// generalised: M = dot(P, L) I - L P^T, see planar_projection.h).
+#include "common.glsl"
+
+layout(location = 0) in vec3 inPosition;
+layout(location = 16) uniform mat4 uPlanarProjection;
+layout(location = 17) uniform vec4 uPlane;        // (n, d), n towards the light
+layout(location = 18) uniform vec4 uLight;        // homogeneous: w = 1 point/spot, 0 directional
+layout(location = 19) uniform int uClipAntiShadow;
+
+out float gl_ClipDistance[2];
+
+void main() {
+    vec4 world = uModel * vec4(inPosition, 1.0);
+    float heightAbovePlane = dot(uPlane, world);
+    float lightHeight = dot(uPlane, uLight);
+    // Parts below the receiver cast nothing onto its lit side.
+    gl_ClipDistance[0] = heightAbovePlane;
+    // Parts at or above a point light's height would project through the light (the divide by
+    // lightHeight - heightAbovePlane flips sign): the anti-shadow of seed 000 Fig. 3.3.
+    bool local = uLight.w != 0.0;
+    gl_ClipDistance[1] = (local && uClipAntiShadow != 0) ? (lightHeight - heightAbovePlane) - 1e-4 * abs(lightHeight) : 1.0;
+    gl_Position = uViewProjection * (uPlanarProjection * world);
+}

@@ -1,0 +1,56 @@
+// Shared by every program: the host's per-frame uniform block and per-object uniforms.
+// Locations 0-15 and texture units 0-3 belong to the host; techniques use 16+ and 4+.
+#ifndef SHADOWLAB_COMMON_GLSL
+#define SHADOWLAB_COMMON_GLSL
+
+layout(std140, binding = 0) uniform Frame {
+    mat4 uView;
+    mat4 uProjection;
+    mat4 uViewProjection;
+    mat4 uInvViewProjection;
+    mat4 uLightView;            // host default light space, fitted around all objects
+    mat4 uLightProjection;
+    mat4 uLightViewProjection;
+    vec4 uCameraPosition;       // xyz
+    vec4 uLightPosition;        // xyz, w = type (0 directional, 1 spot, 2 point)
+    vec4 uLightDirection;       // xyz travel direction, w = size (radius or angular radius)
+    vec4 uLightColor;           // rgb
+    vec4 uLightSpot;            // cos(outer), cos(inner), light near, light far
+    vec4 uAmbient;              // rgb
+    vec4 uViewport;             // width, height, 1/width, 1/height
+};
+
+layout(location = 0) uniform mat4 uModel;
+layout(location = 1) uniform mat3 uNormalMatrix;
+layout(location = 2) uniform vec4 uBaseColor;      // rgb, a = alpha
+layout(location = 3) uniform vec4 uTransmission;   // rgb transmission colour
+layout(location = 4) uniform vec4 uSpecular;       // rgb, a = shininess
+
+const int LIGHT_DIRECTIONAL = 0;
+const int LIGHT_SPOT = 1;
+const int LIGHT_POINT = 2;
+
+int lightType() { return int(uLightPosition.w + 0.5); }
+
+// Unit vector from a surface point towards the light.
+vec3 directionToLight(vec3 worldPos) {
+    return lightType() == LIGHT_DIRECTIONAL ? -uLightDirection.xyz : normalize(uLightPosition.xyz - worldPos);
+}
+
+// 1 inside a spot light's inner cone, 0 outside its outer cone, smooth between; 1 otherwise.
+float spotFactor(vec3 worldPos) {
+    if (lightType() != LIGHT_SPOT) return 1.0;
+    float cosAngle = dot(normalize(worldPos - uLightPosition.xyz), uLightDirection.xyz);
+    return smoothstep(uLightSpot.x, uLightSpot.y, cosAngle);
+}
+
+// What the main pass hands to a technique's shadowTerm().
+struct ShadowInput {
+    vec3 worldPos;
+    vec3 worldNormal;   // unit, facing the viewer
+    vec3 toLight;       // unit
+    float NdotL;
+    vec2 fragCoord;     // pixel centre in the main render target
+};
+
+#endif

@@ -1,0 +1,8 @@
+// One triangle covering the viewport; no vertex buffer needed.
+out vec2 vUv;
+
+void main() {
+    vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+    vUv = corner;
+    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}

@@ -1,0 +1,20 @@
+// Host main pass, vertex stage: world position and normal for lighting and the shadow term.
+#include "common.glsl"
+
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+
+out VertexOut {
+    vec3 worldPos;
+    vec3 worldNormal;
+    vec2 uv;
+} vOut;
+
+void main() {
+    vec4 world = uModel * vec4(inPosition, 1.0);
+    vOut.worldPos = world.xyz;
+    vOut.worldNormal = uNormalMatrix * inNormal;
+    vOut.uv = inUv;
+    gl_Position = uViewProjection * world;
+}
