@@ -29,8 +29,9 @@ const ParamDesc kParams[] = {
      "Negative polygon offset (factor and units) that lifts the flattened shadow above the receiver. "
      "At zero the shadow and the plane fight for the same depth (z-fighting, seed 000 Fig. 3.2a).", nullptr},
     {"clip_anti_shadow", "clip anti-shadows", ParamType::Bool, 0, 1, 1, "",
-     "Clip the parts of casters above a point light (and below the plane) before projecting. Off, a caster "
-     "above the light throws an impossible anti-shadow (seed 000 Fig. 3.3).", nullptr},
+     "Clip the parts of casters above a point light (and below the plane) before projecting, so no caster "
+     "throws an impossible anti-shadow (seed 000 Fig. 3.3). Off, only the rasteriser's clipping of points with "
+     "negative w remains: it removes anti-shadows in front of the viewer but not those projected behind it.", nullptr},
     {"stencil", "stencil to receiver", ParamType::Bool, 0, 1, 1, "",
      "Keep each shadow on the visible pixels of its receiver plane. Off, shadows can fall beyond the edge "
      "of the receiver (seed 000 Fig. 3.2b).", nullptr},

@@ -66,7 +66,7 @@ LightSpace fitLightSpace(const LightInfo& light, const Bounds& bounds) {
         }
         // A near plane too close wastes depth precision; boxes reaching behind the light clamp.
         ls.farPlane = std::max(farthest * 1.01f, 1e-2f);
-        ls.nearPlane = std::clamp(nearest * 0.99f, ls.farPlane * 1e-3f, ls.farPlane * 0.5f);
+        ls.nearPlane = std::clamp(nearest * 0.99f, ls.farPlane * 1e-3f, ls.farPlane * 0.99f);
         ls.projection = glm::perspective(2.0f * halfFov, 1.0f, ls.nearPlane, ls.farPlane);
         ls.perspective = true;
         ls.worldSizeAtUnitDepth = glm::vec2(2.0f * std::tan(halfFov));

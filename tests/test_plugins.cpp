@@ -1,0 +1,192 @@
+// Plugin loading and hot reload: a good plugin, a wrong ABI version, a missing entry symbol, a
+// failing init, a rebuilt library swapped in place (parameter values kept), and GLSL that fails
+// to compile on reload (the previous program keeps running).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <thread>
+
+#include <unistd.h>
+
+#include "plugin/plugin_library.h"
+#include "test_support.h"
+#include "util/log.h"
+
+using namespace shadowlab;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kTestPlugins = fs::path(SHADOWLAB_BUILD_DIR) / "test_plugins";
+
+bool logContains(const std::string& text) {
+    for (const auto& entry : recentLog())
+        if (entry.message.find(text) != std::string::npos) return true;
+    return false;
+}
+
+void writeFile(const fs::path& file, const std::string& text) {
+    fs::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+}
+
+// Replaces `target` with `source` and moves its time forward, as a rebuild would.
+void replaceLibrary(const fs::path& source, const fs::path& target, int generation) {
+    fs::copy_file(source, target, fs::copy_options::overwrite_existing);
+    fs::last_write_time(target, fs::file_time_type::clock::now() + std::chrono::seconds(generation));
+}
+
+// A private data root (shaders + the test plugin's GLSL) and plugin folder, so tests can edit files.
+class PluginSandbox : public ::testing::Test {
+protected:
+    void SetUp() override {
+        root_ = fs::temp_directory_path() / ("shadowlab-test-" + std::to_string(::getpid()) + "-" +
+                                             ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(root_);
+        fs::create_directories(root_ / "bin");
+        fs::copy(fs::path(SHADOWLAB_SOURCE_DIR) / "shaders", root_ / "shaders", fs::copy_options::recursive);
+        writeFile(shaderFile(), kShader);
+        setenv("SHADOWLAB_DATA_DIR", root_.c_str(), 1);
+        setenv("SHADOWLAB_PLUGIN_DIR", (root_ / "bin").c_str(), 1);
+    }
+    void TearDown() override {
+        unsetenv("SHADOWLAB_DATA_DIR");
+        unsetenv("SHADOWLAB_PLUGIN_DIR");
+        fs::remove_all(root_);
+    }
+    fs::path shaderFile() const { return root_ / "plugins" / "reload_test" / "reload_test.glsl"; }
+    fs::path pluginFile() const { return root_ / "bin" / "reload_test.so"; }
+
+    // Renders frames until `done` holds or ~3 s pass (reloads are polled every 100-200 ms).
+    template <typename Done>
+    bool renderUntil(App& app, Done&& done) {
+        for (int i = 0; i < 60; ++i) {
+            std::string error;
+            EXPECT_TRUE(app.renderFrame("reload_test", error)) << error;
+            if (done()) return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
+        return false;
+    }
+
+    static float centreVisibility(App& app) {
+        const auto v = app.renderer().readTarget(MainTarget::Visibility);
+        const glm::ivec2 size = app.renderer().size();
+        return v[size_t(size.y / 2) * size_t(size.x) + size_t(size.x / 2)].r;
+    }
+
+    static constexpr const char* kShader =
+        "layout(location = 16) uniform float uLit;\n"
+        "vec3 shadowTerm(ShadowInput s) { return vec3(uLit); }\n";
+    fs::path root_;
+};
+
+} // namespace
+
+TEST(PluginLibrary, LoadsAGoodPluginAndReadsItsDescriptor) {
+    std::string error;
+    auto library = PluginLibrary::open(kTestPlugins / "reload_v1.so", error);
+    ASSERT_TRUE(library) << error;
+    EXPECT_EQ(library->info().id, "reload_test");
+    EXPECT_EQ(library->info().explanation, "version 1");
+    ASSERT_EQ(library->info().params.size(), 2u);
+    EXPECT_EQ(library->info().params[0].id, "darkness");
+}
+
+TEST(PluginLibrary, RefusesAWrongAbiVersionNamingTheFile) {
+    std::string error;
+    EXPECT_FALSE(PluginLibrary::open(kTestPlugins / "wrong_abi.so", error));
+    EXPECT_NE(error.find("wrong_abi.so"), std::string::npos) << error;
+    EXPECT_NE(error.find("ABI version " + std::to_string(SHADOWLAB_ABI_VERSION + 1000)), std::string::npos) << error;
+    EXPECT_NE(error.find("host expects " + std::to_string(SHADOWLAB_ABI_VERSION)), std::string::npos) << error;
+}
+
+TEST(PluginLibrary, RefusesALibraryWithoutTheEntrySymbol) {
+    std::string error;
+    EXPECT_FALSE(PluginLibrary::open(kTestPlugins / "no_entry.so", error));
+    EXPECT_NE(error.find("no_entry.so"), std::string::npos) << error;
+    EXPECT_NE(error.find("shadowlab_plugin_entry"), std::string::npos) << error;
+}
+
+TEST(PluginLibrary, ScanSkipsBadPluginsAndKeepsGoodOnes) {
+    const fs::path dir = fs::temp_directory_path() / ("shadowlab-scan-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (const char* name : {"reload_v1.so", "wrong_abi.so", "no_entry.so"}) fs::copy_file(kTestPlugins / name, dir / name);
+    writeFile(dir / "garbage.so", "not an ELF file");
+    const PluginScan scan = scanPlugins(dir);
+    ASSERT_EQ(scan.techniques.size(), 1u);
+    EXPECT_EQ(scan.techniques[0].id, "reload_test");
+    EXPECT_EQ(scan.errors.size(), 3u);
+    fs::remove_all(dir);
+}
+
+TEST_F(PluginSandbox, InitFailureIsReportedByNameAndTheHostKeepsRunning) {
+    fs::copy_file(kTestPlugins / "init_fails.so", root_ / "bin" / "init_fails.so");
+    fs::copy_file(kTestPlugins / "reload_v1.so", pluginFile());
+    writeFile(root_ / "plugins" / "init_fails" / "none.glsl", "vec3 shadowTerm(ShadowInput s) { return vec3(1.0); }\n");
+    auto app = test::makeHeadlessApp("cube", {64, 48});
+    ASSERT_TRUE(app);
+    std::string error;
+    EXPECT_FALSE(app->renderFrame("init_fails", error));
+    EXPECT_NE(error.find("init_fails.so"), std::string::npos) << error;
+    EXPECT_NE(error.find("needs a feature"), std::string::npos) << error;
+    EXPECT_TRUE(app->renderFrame("reload_test", error)) << error;
+}
+
+TEST_F(PluginSandbox, HotReloadOfARebuiltLibraryKeepsParameterValues) {
+    fs::copy_file(kTestPlugins / "reload_v1.so", pluginFile());
+    auto app = test::makeHeadlessApp("cube", {64, 48});
+    ASSERT_TRUE(app);
+    std::string error;
+    ASSERT_TRUE(app->applyAssignments({"darkness=0.2", "samples=9"}, "reload_test", error)) << error;
+    ASSERT_TRUE(app->renderFrame("reload_test", error)) << error;
+    EXPECT_NEAR(centreVisibility(*app), 0.8f, 0.01f) << "version 1: 1 - darkness";
+
+    replaceLibrary(kTestPlugins / "reload_v2.so", pluginFile(), 2);
+    ASSERT_TRUE(renderUntil(*app, [&] { return app->techniques().find("reload_test")->explanation == "version 2"; }))
+        << "the rebuilt library was not picked up";
+    EXPECT_TRUE(logContains("1 GL object(s) still alive")) << "version 1 leaked a texture; the host must release it";
+    ASSERT_TRUE(app->renderFrame("reload_test", error)) << error;
+    EXPECT_NEAR(centreVisibility(*app), 0.2f, 0.01f) << "version 2 runs: darkness itself";
+    const TechniqueInfo* info = app->techniques().find("reload_test");
+    const auto& values = app->params().values(*info);
+    ASSERT_EQ(values.size(), 3u);
+    EXPECT_DOUBLE_EQ(values[0], 0.2) << "darkness kept";
+    EXPECT_DOUBLE_EQ(values[1], 9.0) << "samples kept";
+    EXPECT_DOUBLE_EQ(values[2], 1.0) << "new parameter at its default";
+
+    // A broken rebuild (wrong ABI) leaves version 2 running and says why.
+    replaceLibrary(kTestPlugins / "wrong_abi.so", pluginFile(), 4);
+    ASSERT_TRUE(renderUntil(*app, [&] { return !app->techniques().lastReloadError().empty(); }));
+    EXPECT_NE(app->techniques().lastReloadError().find("ABI version"), std::string::npos);
+    ASSERT_TRUE(app->renderFrame("reload_test", error)) << error;
+    EXPECT_NEAR(centreVisibility(*app), 0.2f, 0.01f);
+    EXPECT_EQ(app->techniques().find("reload_test")->explanation, "version 2");
+}
+
+TEST_F(PluginSandbox, ShaderThatFailsOnReloadLeavesTheOldProgramRunning) {
+    fs::copy_file(kTestPlugins / "reload_v1.so", pluginFile());
+    auto app = test::makeHeadlessApp("cube", {64, 48});
+    ASSERT_TRUE(app);
+    std::string error;
+    ASSERT_TRUE(app->applyAssignments({"darkness=0.3"}, "reload_test", error)) << error;
+    ASSERT_TRUE(app->renderFrame("reload_test", error)) << error;
+    EXPECT_NEAR(centreVisibility(*app), 0.7f, 0.01f);
+
+    writeFile(shaderFile(), "vec3 shadowTerm(ShadowInput s) { return vec3(uLit) +; }\n");
+    fs::last_write_time(shaderFile(), fs::file_time_type::clock::now() + std::chrono::seconds(2));
+    ASSERT_TRUE(renderUntil(*app, [&] { return !app->shaders().lastReloadError().empty(); }));
+    EXPECT_NE(app->shaders().lastReloadError().find("reload_test.glsl:1"), std::string::npos)
+        << "error names the file and line: " << app->shaders().lastReloadError();
+    ASSERT_TRUE(app->renderFrame("reload_test", error)) << error;
+    EXPECT_NEAR(centreVisibility(*app), 0.7f, 0.01f) << "old program still draws";
+
+    writeFile(shaderFile(), "vec3 shadowTerm(ShadowInput s) { return vec3(0.25); }\n");
+    fs::last_write_time(shaderFile(), fs::file_time_type::clock::now() + std::chrono::seconds(4));
+    ASSERT_TRUE(renderUntil(*app, [&] { return app->shaders().lastReloadError().empty(); }));
+    ASSERT_TRUE(app->renderFrame("reload_test", error)) << error;
+    EXPECT_NEAR(centreVisibility(*app), 0.25f, 0.01f) << "fixed shader took over";
+}

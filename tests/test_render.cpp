@@ -1,0 +1,161 @@
+// Rendered pixels against analytic shadows on the `cube` scene: the shadow of a box on a plane
+// under a directional light is the set of ground points whose ray towards the light hits the box.
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+using namespace shadowlab;
+
+namespace {
+
+// Ray/box slab test in the box's object space.
+bool rayHitsBox(glm::vec3 origin, glm::vec3 direction, const glm::mat4& boxToWorld, glm::vec3 boxMin, glm::vec3 boxMax) {
+    const glm::mat4 worldToBox = glm::inverse(boxToWorld);
+    const glm::vec3 o = glm::vec3(worldToBox * glm::vec4(origin, 1.0f));
+    const glm::vec3 d = glm::vec3(worldToBox * glm::vec4(direction, 0.0f));
+    float tNear = 0.0f, tFar = 1e30f;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (std::abs(d[axis]) < 1e-12f) {
+            if (o[axis] < boxMin[axis] || o[axis] > boxMax[axis]) return false;
+            continue;
+        }
+        float t0 = (boxMin[axis] - o[axis]) / d[axis], t1 = (boxMax[axis] - o[axis]) / d[axis];
+        if (t0 > t1) std::swap(t0, t1);
+        tNear = std::max(tNear, t0);
+        tFar = std::min(tFar, t1);
+        if (tNear > tFar) return false;
+    }
+    return true;
+}
+
+struct GroundClassification {
+    std::vector<int> analytic;   // per pixel: -1 not ground, 0 lit, 1 in the box's shadow
+    glm::ivec2 size;
+    // True when a pixel within `band` pixels has the other class (or is not ground).
+    bool nearBoundary(int x, int y, int band) const {
+        const int centre = analytic[size_t(y) * size_t(size.x) + size_t(x)];
+        for (int dy = -band; dy <= band; ++dy)
+            for (int dx = -band; dx <= band; ++dx) {
+                const int nx = x + dx, ny = y + dy;
+                if (nx < 0 || ny < 0 || nx >= size.x || ny >= size.y) continue;
+                if (analytic[size_t(ny) * size_t(size.x) + size_t(nx)] != centre) return true;
+            }
+        return false;
+    }
+};
+
+GroundClassification classifyGround(App& app) {
+    const Scene& scene = app.scene();
+    const SceneObject* cube = nullptr;
+    for (const auto& object : scene.objects)
+        if (object.name == "cube") cube = &object;
+    EXPECT_TRUE(cube) << "the cube scene has an object named 'cube'";
+    glm::vec3 boxMin(1e30f), boxMax(-1e30f);
+    for (const Vertex& v : scene.meshes[cube->mesh].vertices) {
+        boxMin = glm::min(boxMin, v.position);
+        boxMax = glm::max(boxMax, v.position);
+    }
+    const glm::vec3 toLight = -glm::normalize(app.light().direction);
+    const auto positions = app.renderer().readTarget(MainTarget::Position);
+    const auto normals = app.renderer().readTarget(MainTarget::Normal);
+    GroundClassification out{std::vector<int>(positions.size(), -1), app.renderer().size()};
+    for (size_t i = 0; i < positions.size(); ++i) {
+        const bool ground = positions[i].w > 0.5f && std::abs(positions[i].y) < 1e-3f && normals[i].y > 0.99f;
+        if (!ground) continue;
+        out.analytic[i] = rayHitsBox(glm::vec3(positions[i]), toLight, cube->transform, boxMin, boxMax) ? 1 : 0;
+    }
+    return out;
+}
+
+} // namespace
+
+class CubeScene : public ::testing::Test {
+protected:
+    void SetUp() override {
+        app_ = test::makeHeadlessApp("cube", {320, 240});
+        ASSERT_TRUE(app_);
+    }
+    std::unique_ptr<App> app_;
+};
+
+TEST_F(CubeScene, ShadowMapDarkensTheAnalyticShadowAndNothingElse) {
+    const auto visibility = test::renderVisibility(*app_, "shadowmap");
+    const GroundClassification ground = classifyGround(*app_);
+    int inside = 0, outside = 0, wrongInside = 0, wrongOutside = 0;
+    for (int y = 0; y < ground.size.y; ++y)
+        for (int x = 0; x < ground.size.x; ++x) {
+            const size_t i = size_t(y) * size_t(ground.size.x) + size_t(x);
+            if (ground.analytic[i] < 0 || ground.nearBoundary(x, y, 2)) continue;
+            const bool shadowed = visibility[i].r < 0.5f;
+            if (ground.analytic[i] == 1) {
+                ++inside;
+                wrongInside += !shadowed;
+            } else {
+                ++outside;
+                wrongOutside += shadowed;
+            }
+        }
+    EXPECT_GT(inside, 500) << "the shadow must be in view";
+    EXPECT_GT(outside, 5000);
+    EXPECT_EQ(wrongInside, 0) << "lit pixels inside the analytic shadow polygon";
+    EXPECT_EQ(wrongOutside, 0) << "shadowed pixels well outside it";
+}
+
+TEST_F(CubeScene, PlanarAgreesWithShadowMapOnTheGround) {
+    const auto shadowMap = test::renderVisibility(*app_, "shadowmap", {"resolution=4096"});
+    const auto planar = test::renderVisibility(*app_, "planar");
+    const GroundClassification ground = classifyGround(*app_);
+    int groundPixels = 0, disagreements = 0, planarInside = 0, planarWrongInside = 0;
+    for (size_t i = 0; i < planar.size(); ++i) {
+        if (ground.analytic[i] < 0) continue;
+        ++groundPixels;
+        disagreements += (planar[i].r < 0.5f) != (shadowMap[i].r < 0.5f);
+        if (ground.analytic[i] == 1) {
+            ++planarInside;
+            planarWrongInside += planar[i].r >= 0.5f;
+        }
+    }
+    ASSERT_GT(groundPixels, 10000);
+    EXPECT_LT(double(disagreements), 0.01 * groundPixels) << disagreements << " of " << groundPixels;
+    EXPECT_LT(double(planarWrongInside), 0.02 * planarInside) << "planar is exact up to edge pixels";
+}
+
+TEST_F(CubeScene, NoneHasNoShadowedPixels) {
+    const auto visibility = test::renderVisibility(*app_, "none");
+    int compared = 0;
+    for (const auto& v : visibility) {
+        if (v.a < 0.5f) continue;
+        ++compared;
+        EXPECT_EQ(v.r, 1.0f);
+    }
+    EXPECT_GT(compared, 10000);
+}
+
+TEST_F(CubeScene, PlanarHandlesAPointLightBelowTheCasterTop) {
+    // A point light lower than the cube's top: the top projects "through" the light, towards the
+    // far side of the light (the anti-shadow of seed 000 Fig. 3.3). The real shadow of the part
+    // below the light falls on the side away from the light; nothing may darken beyond the light.
+    app_->light().type = LightType::Point;
+    app_->light().position = {2.5f, 0.6f, 0.0f};
+    const auto planar = test::renderVisibility(*app_, "planar");
+    const auto positions = app_->renderer().readTarget(MainTarget::Position);
+    int beyondLight = 0, behindCube = 0;
+    for (size_t i = 0; i < positions.size(); ++i) {
+        if (positions[i].w < 0.5f || std::abs(positions[i].y) > 1e-3f) continue;
+        if (positions[i].x > 3.0f) beyondLight += planar[i].r < 0.5f;
+        if (positions[i].x < -0.6f && std::abs(positions[i].z) < 0.4f) behindCube += planar[i].r < 0.5f;
+    }
+    EXPECT_EQ(beyondLight, 0) << "anti-shadow pixels";
+    EXPECT_GT(behindCube, 50) << "the real shadow is there";
+}
+
+TEST_F(CubeScene, ShadowMapMemoryIsAccounted) {
+    std::string error;
+    ASSERT_TRUE(app_->applyAssignments({"resolution=1024", "depth_format=32F"}, "shadowmap", error)) << error;
+    ASSERT_TRUE(app_->renderFrame("shadowmap", error)) << error;
+    EXPECT_EQ(app_->techniques().get("shadowmap", error)->host().gpuBytes(), size_t(1024) * 1024 * 4);
+    ASSERT_TRUE(app_->applyAssignments({"resolution=512", "depth_format=16"}, "shadowmap", error)) << error;
+    ASSERT_TRUE(app_->renderFrame("shadowmap", error)) << error;
+    EXPECT_EQ(app_->techniques().get("shadowmap", error)->host().gpuBytes(), size_t(512) * 512 * 2)
+        << "the old map is released when the resolution changes";
+}
