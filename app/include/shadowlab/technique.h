@@ -189,6 +189,9 @@ public:
     virtual bool checkFramebuffer(uint32_t framebuffer, const char* what) = 0;
 
     virtual void registerDebugImage(const char* name, uint32_t texture, DebugImageKind kind) = 0;
+    // A number the technique measures about itself (e.g. "early-out rate"), shown in the UI and
+    // written with benchmark results. Report values read back without stalling (a frame or more late).
+    virtual void reportStatistic(const char* name, double value) = 0;
 
 protected:
     ~IHost() = default;

@@ -65,10 +65,12 @@ public:
     void destroyFramebuffer(uint32_t framebuffer) override;
     bool checkFramebuffer(uint32_t framebuffer, const char* what) override;
     void registerDebugImage(const char* name, uint32_t texture, DebugImageKind kind) override;
+    void reportStatistic(const char* name, double value) override { statistics_[name ? name : "?"] = value; }
 
     size_t gpuBytes() const;
     const std::map<GLuint, TrackedAllocation>& textures() const { return textures_; }
     const std::vector<DebugImage>& debugImages() const { return debugImages_; }
+    const std::map<std::string, double>& statistics() const { return statistics_; }
     // Deletes every tracked object and program still alive; returns how many were left over.
     int releaseAll();
 
@@ -79,6 +81,7 @@ private:
     std::map<GLuint, std::string> framebuffers_;
     std::vector<ProgramId> programs_;
     std::vector<DebugImage> debugImages_;
+    std::map<std::string, double> statistics_;
 };
 
 // Size in bytes of a texture described by `desc`, every mip level included.

@@ -236,6 +236,7 @@ void Ui::draw(App& app, UiState& state, float frameSeconds) {
             ImGui::Text("technique GPU memory: %.2f MiB", double(loaded->host().gpuBytes()) / (1024.0 * 1024.0));
             for (const auto& [name, allocation] : loaded->host().textures())
                 ImGui::TextDisabled("  %s: %.2f MiB", allocation.label.c_str(), double(allocation.bytes) / (1024.0 * 1024.0));
+            for (const auto& [name, value] : loaded->host().statistics()) ImGui::Text("%s: %.4g", name.c_str(), value);
         }
     }
 
