@@ -1,0 +1,599 @@
+// Ray-traced ground truth with Intel Embree 3 on the CPU (the module libshadowlab_groundtruth.so;
+// interface and semantics in app/src/groundtruth/groundtruth.h).
+//
+// - One BVH per scene, built once in setScene() and reused for every frame and technique. A mesh
+//   used by one object is flattened into world space; a mesh shared by several objects (forests
+//   of instanced trees) is built once in object space and referenced by instance geometries.
+//   Ray masks separate what primary rays see (every object) from what blocks shadow rays
+//   (castsShadow objects).
+// - Shadow rays start at p + n * rayOffset(), n the G-buffer normal turned towards the light,
+//   rayOffset() = 1e-4 * the scene's size: far above float error in positions read back from a
+//   G-buffer (about 1e-7 relative), far below a pixel's footprint, so the reference has no acne
+//   and no visible leak at contacts.
+// - Soft shadows: a jittered sqrt(N) x sqrt(N) grid per pixel mapped to the emitter with
+//   Shirley and Chiu's concentric map; each pixel seeds its own generator from (pixel, seed), so
+//   the image does not depend on the thread count.
+// - Coloured transmission: hits are walked in order along the ray; a translucent caster of
+//   alpha a and transmission colour t lets through (1 - a) + a * t per channel (a fraction
+//   1 - a of the light misses its coverage, the rest is filtered by t: the "modified
+//   transmission" of stochastic/coloured shadow maps); the first opaque caster gives 0. Every
+//   surface crossing counts, so a closed translucent solid filters twice (entry and exit), as a
+//   rasteriser accumulating all translucent fragments does.
+// - Rows are shared between std::threads through an atomic counter; rays of a row (hard) or of
+//   a pixel (soft) go to Embree as one stream, which it traces as packets.
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "groundtruth/groundtruth.h"
+
+namespace shadowlab {
+namespace {
+
+constexpr unsigned kMaskVisible = 1u; // primary rays: every object
+constexpr unsigned kMaskCaster = 2u;  // shadow rays: objects with castsShadow
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+constexpr int kMaxTransmissionHits = 256; // guard against degenerate stacks of coplanar quads
+
+// ---------------------------------------------------------------------------------------------
+// Sampling
+
+// PCG32 (O'Neill 2014, "PCG: a family of simple fast space-efficient statistically good
+// algorithms for random number generation"): 64-bit LCG state, permuted 32-bit output.
+class Pcg32 {
+public:
+    Pcg32(uint64_t pixel, uint32_t seed) {
+        // Scramble (pixel, seed) with the SplitMix64 finaliser so neighbouring pixels start
+        // from unrelated states.
+        uint64_t z = (static_cast<uint64_t>(seed) << 32 | (pixel & 0xffffffffu)) + 0x9e3779b97f4a7c15ull;
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        state_ = z ^ (z >> 31);
+        increment_ = (static_cast<uint64_t>(seed) << 1) | 1u;
+        next();
+    }
+    uint32_t next() {
+        const uint64_t old = state_;
+        state_ = old * 6364136223846793005ull + increment_;
+        const auto xorShifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
+        const auto rotation = static_cast<uint32_t>(old >> 59u);
+        return (xorShifted >> rotation) | (xorShifted << ((32u - rotation) & 31u));
+    }
+    float uniform() { return static_cast<float>(next() >> 8) * 0x1p-24f; } // [0, 1)
+
+private:
+    uint64_t state_;
+    uint64_t increment_;
+};
+
+// Shirley and Chiu 1997, "A low distortion map between disk and square": concentric squares to
+// concentric circles, so the strata stay compact on the disc.
+glm::vec2 concentricDisc(glm::vec2 u) {
+    const glm::vec2 o = 2.0f * u - 1.0f;
+    if (o.x == 0.0f && o.y == 0.0f) return glm::vec2(0.0f);
+    constexpr float quarterPi = std::numbers::pi_v<float> / 4.0f;
+    float r, phi;
+    if (std::abs(o.x) > std::abs(o.y)) {
+        r = o.x;
+        phi = quarterPi * (o.y / o.x);
+    } else {
+        r = o.y;
+        phi = 2.0f * quarterPi - quarterPi * (o.x / o.y);
+    }
+    return r * glm::vec2(std::cos(phi), std::sin(phi));
+}
+
+// Duff et al. 2017, "Building an orthonormal basis, revisited": branchless, no singularity but
+// the sign switch at n.z = 0.
+void orthonormalBasis(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float c = n.x * n.y * a;
+    t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+    b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
+}
+
+// Jittered stratification of N samples: an nx * ny grid (nx = floor(sqrt N)), the N - nx*ny
+// left over drawn uniformly. Each sample is uniform over its stratum or the square, so the mean
+// stays unbiased for any N.
+struct Strata {
+    explicit Strata(int n) : count(std::max(1, n)) {
+        nx = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(count))));
+        ny = count / nx;
+    }
+    glm::vec2 sample(int k, Pcg32& rng) const {
+        const float jx = rng.uniform();
+        const float jy = rng.uniform();
+        if (k >= nx * ny) return {jx, jy};
+        return {(static_cast<float>(k % nx) + jx) / static_cast<float>(nx),
+                (static_cast<float>(k / nx) + jy) / static_cast<float>(ny)};
+    }
+    int count, nx, ny;
+};
+
+// Where one shadow ray goes: unit direction and length (infinite for directional lights).
+struct ShadowRay {
+    glm::vec3 direction;
+    float length;
+};
+
+// Samples over the light's emitter as seen from one shaded point.
+class EmitterSampler {
+public:
+    EmitterSampler(const SceneLight& light, glm::vec3 origin, float endOffset)
+        : light_(light), origin_(origin), endOffset_(endOffset) {
+        if (light.type == LightType::Directional) {
+            axis_ = -light.direction;
+            // 1 - cos(size) as 2 sin^2(size / 2): no cancellation for the small angles of the sun.
+            const float s = std::sin(0.5f * light.size);
+            oneMinusCosMax_ = 2.0f * s * s;
+        } else {
+            // The disc faces the shaded point (point light) or looks along the spot's axis.
+            const glm::vec3 toPoint = origin - light.position;
+            const float length = glm::length(toPoint);
+            axis_ = light.type == LightType::Spot || length == 0.0f ? light.direction : toPoint / length;
+        }
+        orthonormalBasis(axis_, tangent_, bitangent_);
+    }
+
+    ShadowRay centre() const { return toward(light_.position); }
+
+    // u in [0,1)^2 -> a ray to a point of the emitter, uniform in area (disc) or solid angle (cone).
+    ShadowRay sample(glm::vec2 u) const {
+        const glm::vec2 d = concentricDisc(u);
+        if (light_.type == LightType::Directional) {
+            // Uniform on the spherical cap of angular radius size: cos(theta) = 1 - r^2 (1 - cos max),
+            // r^2 uniform in [0,1) on the concentric disc, phi kept from the disc point.
+            const float r2 = glm::dot(d, d);
+            const float cosTheta = 1.0f - r2 * oneMinusCosMax_;
+            const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
+            const float r = std::sqrt(r2);
+            const glm::vec2 phi = r > 0.0f ? d / r : glm::vec2(1.0f, 0.0f);
+            const glm::vec3 direction =
+                cosTheta * axis_ + sinTheta * (phi.x * tangent_ + phi.y * bitangent_);
+            return {glm::normalize(direction), kInfinity};
+        }
+        return toward(light_.position + light_.size * (d.x * tangent_ + d.y * bitangent_));
+    }
+
+private:
+    ShadowRay toward(glm::vec3 target) const {
+        if (light_.type == LightType::Directional) return {-light_.direction, kInfinity};
+        const glm::vec3 toTarget = target - origin_;
+        const float distance = glm::length(toTarget);
+        if (distance == 0.0f) return {-light_.direction, 0.0f};
+        // Stop short of the light by the same offset as at the surface: a lamp's own fixture
+        // touching the light position does not shadow everything.
+        return {toTarget / distance, std::max(0.0f, distance - endOffset_)};
+    }
+
+    const SceneLight& light_;
+    glm::vec3 origin_;
+    float endOffset_;
+    glm::vec3 axis_{0.0f, 1.0f, 0.0f}, tangent_{1.0f, 0.0f, 0.0f}, bitangent_{0.0f, 0.0f, 1.0f};
+    float oneMinusCosMax_ = 0.0f;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Geometry kept beside the BVH: Embree reads the positions and indices in place (shared
+// buffers); normals and materials are ours, for primary hits and transmission.
+struct MeshData {
+    std::vector<glm::vec3> positions; // one element of padding: Embree loads vertices 16 bytes at a time
+    std::vector<glm::vec3> normals;
+    std::vector<uint32_t> indices;
+    size_t vertexCount = 0;
+    RTCScene scene = nullptr;         // instanced meshes only
+};
+
+// One per top-level geometry ID.
+struct SurfaceRecord {
+    const MeshData* mesh = nullptr;
+    glm::mat4 model{1.0f};            // identity for flattened meshes (already in world space)
+    glm::mat3 normalMatrix{1.0f};
+    bool opaque = true;
+    glm::vec3 transmittance{0.0f};    // (1 - alpha) + alpha * transmission colour
+};
+
+void initRay(RTCRay& ray, glm::vec3 origin, const ShadowRay& shadowRay, unsigned mask) {
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.tnear = 0.0f;
+    ray.dir_x = shadowRay.direction.x;
+    ray.dir_y = shadowRay.direction.y;
+    ray.dir_z = shadowRay.direction.z;
+    ray.time = 0.0f;
+    ray.tfar = shadowRay.length;
+    ray.mask = mask;
+    ray.id = 0;
+    ray.flags = 0;
+}
+
+// Runs worker(nextRow) on `threads` std::threads; each pulls rows with nextRow++ until the rows
+// run out, so fast and slow rows even out. The first exception is rethrown here.
+template <class Worker>
+void parallelRows(int threads, Worker&& worker) {
+    std::atomic<int> nextRow{0};
+    std::exception_ptr failure;
+    std::mutex failureMutex;
+    auto run = [&]() {
+        try {
+            worker(nextRow);
+        } catch (...) {
+            std::lock_guard lock(failureMutex);
+            if (!failure) failure = std::current_exception();
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(run);
+    run();
+    for (std::thread& thread : pool) thread.join();
+    if (failure) std::rethrow_exception(failure);
+}
+
+int threadCount(int requested, int rows) {
+    int threads = requested > 0 ? requested : static_cast<int>(std::thread::hardware_concurrency());
+    return std::clamp(threads, 1, std::max(1, rows));
+}
+
+// ---------------------------------------------------------------------------------------------
+class EmbreeGroundTruth final : public IGroundTruth {
+public:
+    EmbreeGroundTruth() {
+        device_ = rtcNewDevice(nullptr);
+        if (!device_) {
+            deviceError_ = "rtcNewDevice failed (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")";
+            return;
+        }
+        rtcSetDeviceErrorFunction(device_, &EmbreeGroundTruth::onError, this);
+    }
+
+    ~EmbreeGroundTruth() override {
+        releaseScene();
+        if (device_) rtcReleaseDevice(device_);
+    }
+
+    EmbreeGroundTruth(const EmbreeGroundTruth&) = delete;
+    EmbreeGroundTruth& operator=(const EmbreeGroundTruth&) = delete;
+
+    void setScene(const Scene& scene) override {
+        if (!device_) throw std::runtime_error("ground truth: " + deviceError_);
+        releaseScene();
+        deviceError_.clear();
+
+        std::vector<int> uses(scene.meshes.size(), 0);
+        for (size_t i = 0; i < scene.objects.size(); ++i) {
+            const SceneObject& object = scene.objects[i];
+            if (object.mesh >= scene.meshes.size())
+                throw std::runtime_error("ground truth: objects[" + std::to_string(i) + "] ('" + object.name +
+                                         "') uses mesh " + std::to_string(object.mesh) + " of " +
+                                         std::to_string(scene.meshes.size()));
+            ++uses[object.mesh];
+        }
+
+        top_ = rtcNewScene(device_);
+        // Robust: watertight traversal, no shadow ray slips between two triangles of a shared edge.
+        rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH); // built once, traced millions of times
+
+        std::vector<MeshData*> shared(scene.meshes.size(), nullptr);
+        glm::vec3 lower(kInfinity), upper(-kInfinity);
+        for (size_t i = 0; i < scene.objects.size(); ++i) {
+            const SceneObject& object = scene.objects[i];
+            const Mesh& mesh = scene.meshes[object.mesh];
+            validateMesh(mesh, object, i);
+            if (mesh.indices.size() < 3) continue;
+
+            for (const Vertex& v : mesh.vertices) {
+                const glm::vec3 p(object.transform * glm::vec4(v.position, 1.0f));
+                lower = glm::min(lower, p);
+                upper = glm::max(upper, p);
+            }
+
+            SurfaceRecord record;
+            const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(object.transform)));
+            RTCGeometry geometry;
+            if (uses[object.mesh] > 1) {
+                MeshData*& data = shared[object.mesh];
+                if (!data) {
+                    data = addMesh(mesh, glm::mat4(1.0f));
+                    data->scene = rtcNewScene(device_);
+                    rtcSetSceneFlags(data->scene, RTC_SCENE_FLAG_ROBUST);
+                    rtcSetSceneBuildQuality(data->scene, RTC_BUILD_QUALITY_HIGH);
+                    RTCGeometry triangles = newTriangleGeometry(*data);
+                    rtcCommitGeometry(triangles);
+                    rtcAttachGeometry(data->scene, triangles);
+                    rtcReleaseGeometry(triangles);
+                    rtcCommitScene(data->scene);
+                }
+                geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+                rtcSetGeometryInstancedScene(geometry, data->scene);
+                rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &object.transform[0][0]);
+                record.mesh = data;
+                record.model = object.transform;
+                record.normalMatrix = normalMatrix;
+            } else {
+                MeshData* data = addMesh(mesh, object.transform);
+                geometry = newTriangleGeometry(*data);
+                record.mesh = data;
+            }
+            rtcSetGeometryMask(geometry, kMaskVisible | (object.castsShadow ? kMaskCaster : 0u));
+            rtcCommitGeometry(geometry);
+            const unsigned id = rtcAttachGeometry(top_, geometry);
+            rtcReleaseGeometry(geometry);
+
+            const Material fallback;
+            const Material& material = object.material < scene.materials.size() ? scene.materials[object.material] : fallback;
+            record.opaque = !material.translucent();
+            if (!record.opaque) {
+                const float alpha = std::clamp(material.alpha, 0.0f, 1.0f);
+                record.transmittance = (1.0f - alpha) + alpha * glm::clamp(material.transmission, 0.0f, 1.0f);
+                if (object.castsShadow) anyTranslucentCaster_ = true;
+            }
+            if (surfaces_.size() <= id) surfaces_.resize(id + 1);
+            surfaces_[id] = record;
+        }
+        rtcCommitScene(top_);
+        if (!deviceError_.empty()) {
+            const std::string message = deviceError_;
+            releaseScene();
+            throw std::runtime_error("ground truth: Embree: " + message);
+        }
+
+        // The offset scales with the scene's size and with its distance from the origin (float
+        // spacing grows with |p|).
+        if (lower.x <= upper.x) {
+            const float extent = std::max(glm::length(upper - lower),
+                                          std::max(glm::length(lower), glm::length(upper)));
+            rayOffset_ = 1e-4f * std::max(extent, 1e-3f);
+        } else {
+            rayOffset_ = 1e-4f;
+        }
+    }
+
+    void trace(const GBufferView& gbuffer, const SceneLight& light, const ReferenceOptions& options,
+               std::vector<glm::vec3>& visibility) override {
+        requireScene();
+        if (gbuffer.width < 0 || gbuffer.height < 0 ||
+            (gbuffer.width * gbuffer.height > 0 && (!gbuffer.positions || !gbuffer.normals)))
+            throw std::invalid_argument("ground truth: trace: G-buffer without positions or normals");
+        const int width = gbuffer.width, height = gbuffer.height;
+        visibility.assign(static_cast<size_t>(width) * static_cast<size_t>(height), glm::vec3(0.0f));
+
+        const bool soft = options.mode == ReferenceOptions::Mode::Soft && light.size > 0.0f && options.samplesPerPixel > 1;
+        const bool coloured = options.transmission && anyTranslucentCaster_;
+        const Strata strata(soft ? options.samplesPerPixel : 1);
+
+        parallelRows(threadCount(options.threads, height), [&](std::atomic<int>& nextRow) {
+            std::vector<RTCRay> rays(static_cast<size_t>(soft ? strata.count : std::max(width, 1)));
+            std::vector<int> rayPixel(rays.size());
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            // Hard rays of a row to one light are coherent: Embree traces the stream as packets.
+            context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+
+            for (int row; (row = nextRow++) < height;) {
+                const size_t rowStart = static_cast<size_t>(row) * static_cast<size_t>(width);
+                int count = 0;
+                for (int x = 0; x < width; ++x) {
+                    const size_t i = rowStart + static_cast<size_t>(x);
+                    if (!facesLight(gbuffer.positions[i], gbuffer.normals[i], light)) continue;
+                    const glm::vec3 p(gbuffer.positions[i]);
+                    glm::vec3 n = glm::normalize(glm::vec3(gbuffer.normals[i]));
+                    if (glm::dot(n, directionToLight(light, p)) < 0.0f) n = -n; // face the light
+                    const glm::vec3 origin = p + n * rayOffset_;
+                    const EmitterSampler emitter(light, origin, rayOffset_);
+
+                    if (!soft) {
+                        if (coloured) {
+                            visibility[i] = transmittance(origin, emitter.centre(), context);
+                        } else {
+                            initRay(rays[static_cast<size_t>(count)], origin, emitter.centre(), kMaskCaster);
+                            rayPixel[static_cast<size_t>(count++)] = x;
+                        }
+                        continue;
+                    }
+
+                    Pcg32 rng(i, options.seed);
+                    glm::vec3 sum(0.0f);
+                    int streamed = 0;
+                    for (int k = 0; k < strata.count; ++k) {
+                        const ShadowRay ray = emitter.sample(strata.sample(k, rng));
+                        // Emitter points below the tangent plane are hidden by the surface itself,
+                        // whether or not the receiver casts shadows.
+                        if (glm::dot(ray.direction, n) <= 0.0f) continue;
+                        if (coloured)
+                            sum += transmittance(origin, ray, context);
+                        else
+                            initRay(rays[static_cast<size_t>(streamed++)], origin, ray, kMaskCaster);
+                    }
+                    if (!coloured) {
+                        rtcOccluded1M(top_, &context, rays.data(), static_cast<unsigned>(streamed), sizeof(RTCRay));
+                        for (int k = 0; k < streamed; ++k)
+                            if (rays[static_cast<size_t>(k)].tfar >= 0.0f) sum += 1.0f;
+                    }
+                    visibility[i] = sum / static_cast<float>(strata.count);
+                }
+                if (count > 0) {
+                    rtcOccluded1M(top_, &context, rays.data(), static_cast<unsigned>(count), sizeof(RTCRay));
+                    for (int k = 0; k < count; ++k) // occluded rays come back with tfar = -inf
+                        if (rays[static_cast<size_t>(k)].tfar >= 0.0f)
+                            visibility[rowStart + static_cast<size_t>(rayPixel[static_cast<size_t>(k)])] = glm::vec3(1.0f);
+                }
+            }
+        });
+    }
+
+    void tracePrimary(const glm::mat4& viewProjection, glm::vec3 cameraPos, int width, int height,
+                      std::vector<glm::vec4>& positions, std::vector<glm::vec4>& normals) override {
+        requireScene();
+        width = std::max(width, 0);
+        height = std::max(height, 0);
+        const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+        positions.assign(pixels, glm::vec4(0.0f));
+        normals.assign(pixels, glm::vec4(0.0f));
+        const glm::mat4 inverseViewProjection = glm::inverse(viewProjection);
+
+        parallelRows(threadCount(0, height), [&](std::atomic<int>& nextRow) {
+            std::vector<RTCRayHit> rayHits(static_cast<size_t>(std::max(width, 1)));
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+            for (int row; (row = nextRow++) < height;) {
+                for (int x = 0; x < width; ++x) {
+                    // NDC z = 1 is the far plane in both GL (-1..1) and zero-to-one depth conventions.
+                    const glm::vec2 ndc((static_cast<float>(x) + 0.5f) / static_cast<float>(width) * 2.0f - 1.0f,
+                                        (static_cast<float>(row) + 0.5f) / static_cast<float>(height) * 2.0f - 1.0f);
+                    const glm::vec4 farPoint = inverseViewProjection * glm::vec4(ndc, 1.0f, 1.0f);
+                    const glm::vec3 direction = glm::normalize(glm::vec3(farPoint) / farPoint.w - cameraPos);
+                    RTCRayHit& rayHit = rayHits[static_cast<size_t>(x)];
+                    initRay(rayHit.ray, cameraPos, {direction, kInfinity}, kMaskVisible);
+                    rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                    rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                }
+                rtcIntersect1M(top_, &context, rayHits.data(), static_cast<unsigned>(width), sizeof(RTCRayHit));
+                for (int x = 0; x < width; ++x) {
+                    const RTCRayHit& rayHit = rayHits[static_cast<size_t>(x)];
+                    if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+                    const size_t i = static_cast<size_t>(row) * static_cast<size_t>(width) + static_cast<size_t>(x);
+                    surfacePoint(rayHit.hit, positions[i], normals[i]);
+                }
+            }
+        });
+    }
+
+    float rayOffset() const override { return rayOffset_; }
+
+private:
+    // Embree may report from its build threads.
+    static void onError(void* user, RTCError code, const char* message) {
+        auto* self = static_cast<EmbreeGroundTruth*>(user);
+        std::lock_guard lock(self->errorMutex_);
+        if (self->deviceError_.empty())
+            self->deviceError_ = (message ? std::string(message) : std::string("error")) + " (code " +
+                                 std::to_string(static_cast<int>(code)) + ")";
+    }
+
+    void requireScene() const {
+        if (!top_) throw std::logic_error("ground truth: setScene() was not called (or failed)");
+    }
+
+    static void validateMesh(const Mesh& mesh, const SceneObject& object, size_t index) {
+        for (uint32_t vertex : mesh.indices)
+            if (vertex >= mesh.vertices.size())
+                throw std::runtime_error("ground truth: objects[" + std::to_string(index) + "] ('" + object.name +
+                                         "'): index " + std::to_string(vertex) + " out of " +
+                                         std::to_string(mesh.vertices.size()) + " vertices");
+    }
+
+    // Copies a mesh, transformed by `model`, into storage Embree can read in place.
+    MeshData* addMesh(const Mesh& mesh, const glm::mat4& model) {
+        auto data = std::make_unique<MeshData>();
+        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
+        data->vertexCount = mesh.vertices.size();
+        data->positions.reserve(mesh.vertices.size() + 1);
+        data->normals.reserve(mesh.vertices.size());
+        for (const Vertex& v : mesh.vertices) {
+            data->positions.emplace_back(model * glm::vec4(v.position, 1.0f));
+            data->normals.push_back(normalMatrix * v.normal);
+        }
+        data->positions.emplace_back(0.0f); // padding
+        data->indices.assign(mesh.indices.begin(), mesh.indices.begin() + static_cast<std::ptrdiff_t>(mesh.indices.size() / 3 * 3));
+        meshes_.push_back(std::move(data));
+        return meshes_.back().get();
+    }
+
+    RTCGeometry newTriangleGeometry(MeshData& data) {
+        RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, data.positions.data(), 0,
+                                   sizeof(glm::vec3), data.vertexCount);
+        rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, data.indices.data(), 0,
+                                   3 * sizeof(uint32_t), data.indices.size() / 3);
+        return geometry;
+    }
+
+    const SurfaceRecord& surfaceOf(const RTCHit& hit) const {
+        return surfaces_[hit.instID[0] != RTC_INVALID_GEOMETRY_ID ? hit.instID[0] : hit.geomID];
+    }
+
+    // World position (barycentric on the triangle: exact to float rounding, unlike o + t d) and
+    // interpolated vertex normal of a primary hit.
+    void surfacePoint(const RTCHit& hit, glm::vec4& position, glm::vec4& normal) const {
+        const SurfaceRecord& surface = surfaceOf(hit);
+        const MeshData& mesh = *surface.mesh;
+        const uint32_t* triangle = &mesh.indices[3 * static_cast<size_t>(hit.primID)];
+        const float w = 1.0f - hit.u - hit.v;
+        const glm::vec3 p = w * mesh.positions[triangle[0]] + hit.u * mesh.positions[triangle[1]] +
+                            hit.v * mesh.positions[triangle[2]];
+        glm::vec3 n = w * mesh.normals[triangle[0]] + hit.u * mesh.normals[triangle[1]] + hit.v * mesh.normals[triangle[2]];
+        if (glm::dot(n, n) < 1e-12f) n = glm::vec3(hit.Ng_x, hit.Ng_y, hit.Ng_z); // mesh without normals
+        position = glm::vec4(glm::vec3(surface.model * glm::vec4(p, 1.0f)), 1.0f);
+        normal = glm::vec4(glm::normalize(surface.normalMatrix * n), 0.0f);
+    }
+
+    // Product of the transmittance of every caster the ray crosses, nearest first; 0 at the first
+    // opaque one. Restarting just past each hit (rayOffset) crosses a surface once even where the
+    // ray meets the shared edge of two of its triangles.
+    glm::vec3 transmittance(glm::vec3 origin, const ShadowRay& shadowRay, RTCIntersectContext& context) const {
+        glm::vec3 throughput(1.0f);
+        float tnear = 0.0f;
+        for (int hits = 0; hits < kMaxTransmissionHits; ++hits) {
+            RTCRayHit rayHit;
+            initRay(rayHit.ray, origin, shadowRay, kMaskCaster);
+            rayHit.ray.tnear = tnear;
+            rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(top_, &context, &rayHit);
+            if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return throughput;
+            const SurfaceRecord& surface = surfaceOf(rayHit.hit);
+            if (surface.opaque) return glm::vec3(0.0f);
+            throughput *= surface.transmittance;
+            if (throughput.r == 0.0f && throughput.g == 0.0f && throughput.b == 0.0f) return throughput;
+            tnear = rayHit.ray.tfar + rayOffset_;
+            if (tnear >= shadowRay.length) return throughput;
+        }
+        return throughput;
+    }
+
+    void releaseScene() {
+        if (top_) rtcReleaseScene(top_);
+        top_ = nullptr;
+        for (auto& mesh : meshes_)
+            if (mesh->scene) rtcReleaseScene(mesh->scene);
+        meshes_.clear();
+        surfaces_.clear();
+        anyTranslucentCaster_ = false;
+        rayOffset_ = 1e-4f;
+    }
+
+    RTCDevice device_ = nullptr;
+    RTCScene top_ = nullptr;
+    std::string deviceError_;
+    std::mutex errorMutex_;
+    std::vector<std::unique_ptr<MeshData>> meshes_;
+    std::vector<SurfaceRecord> surfaces_;
+    bool anyTranslucentCaster_ = false;
+    float rayOffset_ = 1e-4f;
+};
+
+} // namespace
+} // namespace shadowlab
+
+extern "C" __attribute__((visibility("default"))) shadowlab::IGroundTruth* shadowlab_create_groundtruth(uint32_t abiVersion) {
+    if (abiVersion != SHADOWLAB_GROUNDTRUTH_ABI_VERSION) return nullptr;
+    return new shadowlab::EmbreeGroundTruth();
+}

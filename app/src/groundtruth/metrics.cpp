@@ -1,0 +1,137 @@
+// Per-pixel accuracy of a technique against the ray-traced reference (see metrics.h for every
+// definition). Sums are in double and in a fixed pixel order, so equal inputs give equal numbers.
+#include "groundtruth/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+namespace shadowlab {
+
+namespace {
+
+constexpr float kLitThreshold = 0.5f;   // reference >= 0.5: lit; technique < 0.5: shadowed
+constexpr float kPenumbraLow = 0.02f;   // reference strictly between these: partial visibility
+constexpr float kPenumbraHigh = 0.98f;
+
+float scalarVisibility(const glm::vec3& rgb) { return (rgb.r + rgb.g + rgb.b) / 3.0f; }
+
+void checkSizes(size_t technique, size_t reference, size_t mask, int width, int height, const char* what) {
+    if (width < 0 || height < 0)
+        throw std::invalid_argument(std::string(what) + ": negative image size");
+    const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+    if (technique != pixels || reference != pixels || mask != pixels)
+        throw std::invalid_argument(std::string(what) + ": technique (" + std::to_string(technique) +
+                                    "), reference (" + std::to_string(reference) + ") and mask (" +
+                                    std::to_string(mask) + ") must each have " + std::to_string(width) + " x " +
+                                    std::to_string(height) + " pixels");
+}
+
+} // namespace
+
+std::vector<uint8_t> compareMask(const GBufferView& gbuffer, const SceneLight& light) {
+    const size_t pixels = static_cast<size_t>(std::max(gbuffer.width, 0)) * static_cast<size_t>(std::max(gbuffer.height, 0));
+    std::vector<uint8_t> mask(pixels, 0);
+    if (pixels > 0 && (!gbuffer.positions || !gbuffer.normals))
+        throw std::invalid_argument("compareMask: G-buffer without positions or normals");
+    for (size_t i = 0; i < pixels; ++i)
+        mask[i] = facesLight(gbuffer.positions[i], gbuffer.normals[i], light) ? 1 : 0;
+    return mask;
+}
+
+AccuracyMetrics compareVisibility(const std::vector<glm::vec3>& technique, const std::vector<glm::vec3>& reference,
+                                  const std::vector<uint8_t>& mask, int width, int height) {
+    checkSizes(technique.size(), reference.size(), mask.size(), width, height, "compareVisibility");
+    AccuracyMetrics m;
+    const size_t pixels = reference.size();
+    if (pixels == 0) return m;
+
+    double sumAbs = 0.0, sumSquared = 0.0, sumPenumbra = 0.0, sumOutside = 0.0;
+    glm::dvec3 sumChannels(0.0);
+    size_t falseShadow = 0, falseLight = 0;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const size_t i = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+            if (!mask[i]) continue;
+            const float ref = scalarVisibility(reference[i]);
+            const float tech = scalarVisibility(technique[i]);
+            const double error = std::abs(static_cast<double>(tech) - static_cast<double>(ref));
+            ++m.comparedPixels;
+            sumAbs += error;
+            sumSquared += error * error;
+            sumChannels += glm::abs(glm::dvec3(technique[i]) - glm::dvec3(reference[i]));
+            const bool refLit = ref >= kLitThreshold;
+            if (refLit && tech < kLitThreshold) ++falseShadow;
+            if (!refLit && tech > kLitThreshold) ++falseLight;
+
+            bool penumbra = ref > kPenumbraLow && ref < kPenumbraHigh;
+            for (int dy = -1; dy <= 1 && !penumbra; ++dy) {
+                for (int dx = -1; dx <= 1 && !penumbra; ++dx) {
+                    const int nx = x + dx, ny = y + dy;
+                    if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+                    const size_t j = static_cast<size_t>(ny) * static_cast<size_t>(width) + static_cast<size_t>(nx);
+                    // Excluded neighbours hold no visibility (0 by convention): not a shadow edge.
+                    if (mask[j] && (scalarVisibility(reference[j]) >= kLitThreshold) != refLit) penumbra = true;
+                }
+            }
+            if (penumbra) {
+                ++m.penumbraPixels;
+                sumPenumbra += error;
+            } else {
+                sumOutside += error;
+            }
+        }
+    }
+
+    m.comparedFraction = static_cast<double>(m.comparedPixels) / static_cast<double>(pixels);
+    if (m.comparedPixels == 0) return m;
+    const auto compared = static_cast<double>(m.comparedPixels);
+    m.mae = sumAbs / compared;
+    m.rmse = std::sqrt(sumSquared / compared);
+    m.maePerChannel = sumChannels / compared;
+    m.falseShadowRate = static_cast<double>(falseShadow) / compared;
+    m.falseLightRate = static_cast<double>(falseLight) / compared;
+    const size_t outside = m.comparedPixels - m.penumbraPixels;
+    m.maePenumbra = m.penumbraPixels ? sumPenumbra / static_cast<double>(m.penumbraPixels) : 0.0;
+    m.maeOutsidePenumbra = outside ? sumOutside / static_cast<double>(outside) : 0.0;
+    return m;
+}
+
+std::vector<uint8_t> errorHeatmap(const std::vector<glm::vec3>& technique, const std::vector<glm::vec3>& reference,
+                                  const std::vector<uint8_t>& mask, int width, int height) {
+    checkSizes(technique.size(), reference.size(), mask.size(), width, height, "errorHeatmap");
+    const glm::vec3 falseShadowHue(255.0f, 0.0f, 255.0f); // magenta: technique darker
+    const glm::vec3 falseLightHue(0.0f, 255.0f, 0.0f);    // green: technique brighter
+    std::vector<uint8_t> rgb(reference.size() * 3, 24);   // excluded: dark grey
+    for (size_t i = 0; i < reference.size(); ++i) {
+        if (!mask[i]) continue;
+        const float ref = std::clamp(scalarVisibility(reference[i]), 0.0f, 1.0f);
+        const float error = scalarVisibility(technique[i]) - scalarVisibility(reference[i]);
+        const float a = std::sqrt(std::min(std::abs(error), 1.0f));
+        const glm::vec3 grey(56.0f + 72.0f * ref);
+        const glm::vec3 colour = glm::mix(grey, error < 0.0f ? falseShadowHue : falseLightHue, a);
+        for (int c = 0; c < 3; ++c)
+            rgb[3 * i + static_cast<size_t>(c)] = static_cast<uint8_t>(std::lround(std::clamp(colour[c], 0.0f, 255.0f)));
+    }
+    return rgb;
+}
+
+std::string metricsToJson(const AccuracyMetrics& m, int indent) {
+    const nlohmann::json json = {
+        {"mae", m.mae},
+        {"rmse", m.rmse},
+        {"falseShadowRate", m.falseShadowRate},
+        {"falseLightRate", m.falseLightRate},
+        {"maePenumbra", m.maePenumbra},
+        {"maeOutsidePenumbra", m.maeOutsidePenumbra},
+        {"maePerChannel", {m.maePerChannel.r, m.maePerChannel.g, m.maePerChannel.b}},
+        {"comparedFraction", m.comparedFraction},
+        {"comparedPixels", m.comparedPixels},
+        {"penumbraPixels", m.penumbraPixels},
+    };
+    return json.dump(indent);
+}
+
+} // namespace shadowlab

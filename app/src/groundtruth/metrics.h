@@ -1,0 +1,60 @@
+// Accuracy of a shadow technique against the ray-traced reference (groundtruth.h), per pixel of
+// one view: how wrong it is, and in which way (acne, leaks, blur, noise). Pure CPU, no Embree.
+//
+// Images are width * height linear RGB visibilities in [0, 1], in the G-buffer's row order. The
+// scalar visibility of a pixel is the plain mean of r, g and b (not luminance: a coloured
+// shadow's error should count every channel alike; per-channel errors are reported separately).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "groundtruth/groundtruth.h"
+
+namespace shadowlab {
+
+// 1 where a pixel is compared: drawn geometry facing the light (N.L > 0 with the G-buffer
+// normal) and inside a spot light's cone; 0 for background and everything else, where the
+// visibility of a shadow is not defined (facesLight() in groundtruth.h).
+std::vector<uint8_t> compareMask(const GBufferView& gbuffer, const SceneLight& light);
+
+// All rates and means are over compared pixels (0 when none is compared).
+struct AccuracyMetrics {
+    double mae = 0.0;                 // mean |technique - reference| of the scalar visibility
+    double rmse = 0.0;                // root mean square of the same; weighs large errors (acne, leaks) up
+    double falseShadowRate = 0.0;     // reference lit (>= 0.5), technique < 0.5: acne, over-darkening
+    double falseLightRate = 0.0;      // reference shadowed (< 0.5), technique > 0.5: leaks, peter-panning, light bleeding
+    double maePenumbra = 0.0;         // mean error over penumbra pixels (see below): blur, noise, banding
+    double maeOutsidePenumbra = 0.0;  // mean error over the rest: acne, leaks, aliasing far from edges
+    glm::dvec3 maePerChannel{0.0};    // mean |error| of r, g, b: coloured techniques
+    double comparedFraction = 0.0;    // compared pixels / all pixels of the image
+    size_t comparedPixels = 0;
+    size_t penumbraPixels = 0;
+};
+
+// Penumbra (reference side only): compared pixels with 0.02 < reference < 0.98, plus compared
+// pixels within one pixel (8-neighbourhood) of a compared pixel whose lit/shadowed class
+// (reference >= 0.5) differs, so a hard reference has a one-to-two-pixel boundary class too.
+// Throws std::invalid_argument when an image or the mask is not width * height.
+AccuracyMetrics compareVisibility(const std::vector<glm::vec3>& technique, const std::vector<glm::vec3>& reference,
+                                  const std::vector<uint8_t>& mask, int width, int height);
+
+// RGB8 error image, width * height * 3 bytes, same row order as the input. With e = technique -
+// reference (scalar visibility) and a = sqrt(min(|e|, 1)) (square root: a 0.1 error is already a
+// third of the way to full colour):
+//   excluded pixels (mask 0):        dark grey        (24, 24, 24)
+//   compared pixels, base colour:    grey g = 56 + 72 * reference (56..128), the scene stays readable
+//   technique darker (e < 0):        mix(g, magenta (255, 0, 255), a)   false shadow: acne, over-darkening
+//   technique brighter (e > 0):      mix(g, green (0, 255, 0), a)       false light: leaks, bleeding
+// Magenta and green stay apart for the common colour-vision deficiencies.
+std::vector<uint8_t> errorHeatmap(const std::vector<glm::vec3>& technique, const std::vector<glm::vec3>& reference,
+                                  const std::vector<uint8_t>& mask, int width, int height);
+
+// One JSON object with the fields above (maePerChannel as [r, g, b]); indent < 0: one line.
+std::string metricsToJson(const AccuracyMetrics& metrics, int indent = -1);
+
+} // namespace shadowlab

@@ -1,0 +1,566 @@
+// Ray-traced ground truth (libshadowlab_groundtruth.so, loaded as the host loads it): the hard
+// reference of a box on a plane against the analytic shadow polygon, absence of acne at grazing
+// light, determinism across runs and thread counts, soft penumbrae, coloured transmission.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "groundtruth/groundtruth.h"
+#include "groundtruth/metrics.h"
+#include "scene/scene.h"
+
+using namespace shadowlab;
+
+namespace {
+
+GroundTruthPtr loadOrFail() {
+    std::string error;
+    GroundTruthPtr groundTruth = loadGroundTruth(error);
+    EXPECT_TRUE(groundTruth) << error;
+    return groundTruth;
+}
+
+Scene planeScene(float size = 20.0f) {
+    Scene scene;
+    scene.name = "test";
+    scene.materials = {Material{}};
+    scene.meshes.push_back(makePlane(size, size, 4));
+    SceneObject ground;
+    ground.name = "ground";
+    ground.isPlane = true;
+    scene.objects.push_back(ground);
+    return scene;
+}
+
+// The box of the analytic test: size, rotation about y and position chosen so that no edge of
+// its shadow lines up with the pixel grid.
+const glm::vec3 kBoxSize(1.0f, 1.5f, 0.8f);
+glm::mat4 boxTransform() {
+    return glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.75f, -0.2f)), 0.5f, glm::vec3(0, 1, 0));
+}
+
+Scene boxOnPlane() {
+    Scene scene = planeScene();
+    scene.meshes.push_back(makeBox(kBoxSize));
+    SceneObject box;
+    box.name = "box";
+    box.mesh = 1;
+    box.transform = boxTransform();
+    scene.objects.push_back(box);
+    return scene;
+}
+
+struct View {
+    int width = 320, height = 240;
+    glm::vec3 eye{2.0f, 5.0f, 6.5f};
+    glm::vec3 target{0.6f, 0.0f, 0.4f};
+    glm::mat4 viewProjection() const {
+        return glm::perspective(0.9f, static_cast<float>(width) / static_cast<float>(height), 0.1f, 100.0f) *
+               glm::lookAt(eye, target, glm::vec3(0, 1, 0));
+    }
+};
+
+struct GBuffer {
+    int width = 0, height = 0;
+    std::vector<glm::vec4> positions, normals;
+    GBufferView view() const { return {width, height, positions.data(), normals.data()}; }
+};
+
+GBuffer primary(IGroundTruth& groundTruth, const View& view) {
+    GBuffer g;
+    g.width = view.width;
+    g.height = view.height;
+    groundTruth.tracePrimary(view.viewProjection(), view.eye, view.width, view.height, g.positions, g.normals);
+    return g;
+}
+
+// A top-down grid of ground points (y = 0, normal +y), spacing `step`, from (x0, z0): a
+// G-buffer in world units, for measuring penumbrae.
+GBuffer groundGrid(float x0, float z0, float step, int width, int height) {
+    GBuffer g;
+    g.width = width;
+    g.height = height;
+    for (int j = 0; j < height; ++j)
+        for (int i = 0; i < width; ++i) {
+            g.positions.emplace_back(x0 + step * static_cast<float>(i), 0.0f, z0 + step * static_cast<float>(j), 1.0f);
+            g.normals.emplace_back(0.0f, 1.0f, 0.0f, 0.0f);
+        }
+    return g;
+}
+
+std::vector<glm::vec3> trace(IGroundTruth& groundTruth, const GBuffer& g, const SceneLight& light,
+                             ReferenceOptions options = {}) {
+    std::vector<glm::vec3> visibility;
+    groundTruth.trace(g.view(), light, options, visibility);
+    return visibility;
+}
+
+bool identical(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::vec3)) == 0;
+}
+
+// --- analytic shadow of the box -------------------------------------------------------------
+
+// Where the light projects a point onto the ground plane y = 0.
+glm::vec2 projectToGround(const SceneLight& light, glm::vec3 c) {
+    if (light.type == LightType::Directional) {
+        const glm::vec3 p = c + light.direction * (-c.y / light.direction.y);
+        return {p.x, p.z};
+    }
+    const glm::vec3 p = light.position + (c - light.position) * (light.position.y / (light.position.y - c.y));
+    return {p.x, p.z};
+}
+
+float cross2(glm::vec2 o, glm::vec2 a, glm::vec2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
+
+// Andrew's monotone chain; counter-clockwise, no repeated point.
+std::vector<glm::vec2> convexHull(std::vector<glm::vec2> points) {
+    std::sort(points.begin(), points.end(), [](glm::vec2 a, glm::vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    std::vector<glm::vec2> hull(2 * points.size());
+    size_t k = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        while (k >= 2 && cross2(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+        hull[k++] = points[i];
+    }
+    for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+        while (k >= lower && cross2(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+        hull[k++] = points[i];
+    }
+    hull.resize(k - 1);
+    return hull;
+}
+
+bool insideConvex(const std::vector<glm::vec2>& hull, glm::vec2 p) {
+    for (size_t i = 0; i < hull.size(); ++i)
+        if (cross2(hull[i], hull[(i + 1) % hull.size()], p) < 0) return false;
+    return true;
+}
+
+float distanceToSegment(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
+    const glm::vec2 ab = b - a;
+    const float t = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
+    return glm::length(p - (a + t * ab));
+}
+
+struct AnalyticCheck {
+    int groundInside = 0, groundOutside = 0, boxLit = 0;
+    int wrongInside = 0, wrongOutside = 0, wrongBox = 0;
+};
+
+// Classifies every compared pixel: ground pixels farther than one pixel (screen space) from the
+// box's shadow polygon must be 0 inside and 1 outside; box pixels facing the light must be lit
+// (the box is convex and the ground lies below it).
+AnalyticCheck checkAgainstPolygon(IGroundTruth& groundTruth, const SceneLight& light, const View& view) {
+    const Scene scene = boxOnPlane();
+    groundTruth.setScene(scene);
+    const GBuffer g = primary(groundTruth, view);
+    const std::vector<glm::vec3> reference = trace(groundTruth, g, light);
+    const std::vector<uint8_t> mask = compareMask(g.view(), light);
+
+    std::vector<glm::vec2> shadow;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 local((corner & 1 ? 0.5f : -0.5f) * kBoxSize.x, (corner & 2 ? 0.5f : -0.5f) * kBoxSize.y,
+                              (corner & 4 ? 0.5f : -0.5f) * kBoxSize.z);
+        shadow.push_back(projectToGround(light, glm::vec3(boxTransform() * glm::vec4(local, 1.0f))));
+    }
+    const std::vector<glm::vec2> hull = convexHull(shadow);
+    const glm::mat4 viewProjection = view.viewProjection();
+    std::vector<glm::vec2> hullOnScreen;
+    for (glm::vec2 p : hull) {
+        const glm::vec4 clip = viewProjection * glm::vec4(p.x, 0.0f, p.y, 1.0f);
+        EXPECT_GT(clip.w, 0.0f) << "shadow polygon behind the camera";
+        const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+        hullOnScreen.push_back((ndc * 0.5f + 0.5f) * glm::vec2(static_cast<float>(view.width), static_cast<float>(view.height)));
+    }
+
+    AnalyticCheck check;
+    for (int y = 0; y < g.height; ++y)
+        for (int x = 0; x < g.width; ++x) {
+            const size_t i = static_cast<size_t>(y) * static_cast<size_t>(g.width) + static_cast<size_t>(x);
+            if (!mask[i]) {
+                EXPECT_EQ(reference[i], glm::vec3(0.0f)) << "excluded pixel " << x << "," << y << " not 0";
+                continue;
+            }
+            const glm::vec3 p(g.positions[i]);
+            EXPECT_TRUE(reference[i] == glm::vec3(0.0f) || reference[i] == glm::vec3(1.0f)) << "hard reference not binary";
+            const bool ground = std::abs(p.y) < 1e-4f && g.normals[i].y > 0.999f;
+            if (!ground) {
+                ++check.boxLit;
+                if (reference[i].x != 1.0f) ++check.wrongBox;
+                continue;
+            }
+            const glm::vec2 pixel(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+            float distance = std::numeric_limits<float>::infinity();
+            for (size_t e = 0; e < hullOnScreen.size(); ++e)
+                distance = std::min(distance, distanceToSegment(pixel, hullOnScreen[e], hullOnScreen[(e + 1) % hullOnScreen.size()]));
+            if (distance <= 1.0f) continue;
+            if (insideConvex(hull, glm::vec2(p.x, p.z))) {
+                ++check.groundInside;
+                if (reference[i].x != 0.0f) ++check.wrongInside;
+            } else {
+                ++check.groundOutside;
+                if (reference[i].x != 1.0f) ++check.wrongOutside;
+            }
+        }
+    return check;
+}
+
+void expectMatchesPolygon(const AnalyticCheck& c) {
+    EXPECT_GT(c.groundInside, 500) << "the view should show the shadow";
+    EXPECT_GT(c.groundOutside, 5000);
+    EXPECT_GT(c.boxLit, 100) << "the view should show lit box faces";
+    EXPECT_EQ(c.wrongInside, 0) << "lit pixels inside the shadow polygon (leaks)";
+    EXPECT_EQ(c.wrongOutside, 0) << "shadowed pixels outside the shadow polygon";
+    EXPECT_EQ(c.wrongBox, 0) << "box faces facing the light not lit (acne)";
+}
+
+SceneLight directional(glm::vec3 direction, float size = 0.0f) {
+    SceneLight light;
+    light.type = LightType::Directional;
+    light.direction = glm::normalize(direction);
+    light.size = size;
+    return light;
+}
+
+// A point or spot light above and beside the box; the spot aims past the box at its shadow.
+SceneLight lampNearBox(LightType type) {
+    SceneLight light;
+    light.type = type;
+    light.position = glm::vec3(-1.5f, 4.0f, -1.2f);
+    light.direction = glm::normalize(glm::vec3(1.0f, 0.0f, 0.8f) - light.position);
+    light.spotOuterAngle = 0.6f;
+    light.spotInnerAngle = 0.5f;
+    return light;
+}
+
+} // namespace
+
+TEST(GroundTruth, LoadsModule) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    std::vector<glm::vec3> visibility;
+    EXPECT_THROW(groundTruth->trace(GBufferView{}, SceneLight{}, ReferenceOptions{}, visibility), std::logic_error);
+    groundTruth->setScene(boxOnPlane());
+    EXPECT_GT(groundTruth->rayOffset(), 0.0f);
+    EXPECT_LT(groundTruth->rayOffset(), 0.01f);
+}
+
+TEST(GroundTruth, PrimaryGBufferFollowsGlRowOrder) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    groundTruth->setScene(boxOnPlane());
+    const View view;
+    const GBuffer g = primary(*groundTruth, view);
+    // Row 0 is the bottom of the image: the ground nearest the camera.
+    const size_t bottom = static_cast<size_t>(view.width / 2);
+    const size_t top = static_cast<size_t>(view.height - 1) * static_cast<size_t>(view.width) + bottom;
+    ASSERT_EQ(g.positions[bottom].w, 1.0f);
+    if (g.positions[top].w == 1.0f) {
+        EXPECT_LT(glm::length(glm::vec3(g.positions[bottom]) - view.eye), glm::length(glm::vec3(g.positions[top]) - view.eye));
+    }
+    for (size_t i = 0; i < g.positions.size(); ++i) {
+        if (g.positions[i].w == 1.0f) {
+            EXPECT_NEAR(glm::length(glm::vec3(g.normals[i])), 1.0f, 1e-5f);
+        }
+    }
+}
+
+TEST(GroundTruth, HardDirectionalMatchesShadowPolygon) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    expectMatchesPolygon(checkAgainstPolygon(*groundTruth, directional({0.5f, -1.0f, 0.35f}), View{}));
+}
+
+TEST(GroundTruth, HardPointMatchesShadowPolygon) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    expectMatchesPolygon(checkAgainstPolygon(*groundTruth, lampNearBox(LightType::Point), View{}));
+}
+
+TEST(GroundTruth, HardSpotMatchesShadowPolygonInsideItsCone) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    const SceneLight light = lampNearBox(LightType::Spot);
+    expectMatchesPolygon(checkAgainstPolygon(*groundTruth, light, View{}));
+
+    // The cone leaves part of the ground out of the comparison.
+    const GBuffer g = primary(*groundTruth, View{});
+    const std::vector<uint8_t> mask = compareMask(g.view(), light);
+    size_t ground = 0, compared = 0;
+    for (size_t i = 0; i < mask.size(); ++i) {
+        ground += g.positions[i].w == 1.0f;
+        compared += mask[i];
+    }
+    EXPECT_LT(compared, ground * 9 / 10);
+}
+
+// A plane under light 5 degrees above the horizon: every compared pixel lit, also with the
+// position noise of a float G-buffer read back from the GPU.
+TEST(GroundTruth, NoAcneAtGrazingLight) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    groundTruth->setScene(planeScene());
+    const float elevation = 5.0f * std::numbers::pi_v<float> / 180.0f;
+    const SceneLight sun = directional({std::cos(elevation) * 0.8f, -std::sin(elevation), std::cos(elevation) * 0.6f});
+    SceneLight lamp;
+    lamp.type = LightType::Point;
+    lamp.position = glm::vec3(-9.0f, 0.3f, -9.0f); // low over a corner: grazing across the plane
+
+    GBuffer g = primary(*groundTruth, View{});
+    GBuffer noisy = g;
+    for (size_t i = 0; i < noisy.positions.size(); ++i) // deterministic +-1e-4 noise
+        noisy.positions[i] += glm::vec4(glm::vec3(static_cast<float>((i * 7919u) % 201u) - 100.0f) * 1e-6f, 0.0f);
+
+    for (const SceneLight& light : {sun, lamp})
+        for (const GBuffer* gbuffer : {&g, &noisy}) {
+            const std::vector<glm::vec3> reference = trace(*groundTruth, *gbuffer, light);
+            const std::vector<uint8_t> mask = compareMask(gbuffer->view(), light);
+            size_t compared = 0, shadowed = 0;
+            for (size_t i = 0; i < mask.size(); ++i) {
+                compared += mask[i];
+                shadowed += mask[i] && reference[i] != glm::vec3(1.0f);
+            }
+            EXPECT_GT(compared, mask.size() / 2);
+            EXPECT_EQ(shadowed, 0u) << "acne on a plane at grazing light";
+        }
+
+    // A box under the same elevation from the other side (its 17-unit shadow then runs away from
+    // the camera): its top face sees the light at 5 degrees too, and the shadow still matches.
+    const SceneLight sunBehind = directional({-std::cos(elevation) * 0.8f, -std::sin(elevation), -std::cos(elevation) * 0.6f});
+    expectMatchesPolygon(checkAgainstPolygon(*groundTruth, sunBehind, View{}));
+}
+
+TEST(GroundTruth, DeterministicAcrossRunsAndThreadCounts) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    const Scene scene = boxOnPlane();
+    groundTruth->setScene(scene);
+    const GBuffer g = primary(*groundTruth, View{});
+    SceneLight light = directional({0.5f, -1.0f, 0.35f}, 0.08f);
+
+    ReferenceOptions hard;
+    hard.threads = 1;
+    const auto hard1 = trace(*groundTruth, g, light, hard);
+    hard.threads = 3;
+    EXPECT_TRUE(identical(hard1, trace(*groundTruth, g, light, hard)));
+
+    ReferenceOptions soft;
+    soft.mode = ReferenceOptions::Mode::Soft;
+    soft.samplesPerPixel = 9;
+    soft.threads = 1;
+    const auto soft1 = trace(*groundTruth, g, light, soft);
+    soft.threads = 2;
+    EXPECT_TRUE(identical(soft1, trace(*groundTruth, g, light, soft)));
+    soft.threads = 0;
+    EXPECT_TRUE(identical(soft1, trace(*groundTruth, g, light, soft)));
+    EXPECT_FALSE(identical(hard1, soft1));
+
+    // A fresh instance (its own BVH build) gives the same images.
+    auto other = loadOrFail();
+    ASSERT_TRUE(other);
+    other->setScene(scene);
+    const GBuffer g2 = primary(*other, View{});
+    EXPECT_TRUE(g.positions == g2.positions && g.normals == g2.normals);
+    EXPECT_TRUE(identical(hard1, trace(*other, g2, light, hard)));
+    EXPECT_TRUE(identical(soft1, trace(*other, g2, light, soft)));
+
+    // The seed is what varies the noise.
+    soft.seed = 2;
+    EXPECT_FALSE(identical(soft1, trace(*groundTruth, g, light, soft)));
+}
+
+// A tall box under a sun of angular radius 0.1 rad: the penumbra along the side of the shadow
+// widens with the distance to the occluding edge, the umbra is 0, open ground 1.
+TEST(GroundTruth, SoftPenumbraWidensAwayFromContact) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    Scene scene = planeScene();
+    scene.meshes.push_back(makeBox(glm::vec3(1.0f, 3.0f, 1.0f)));
+    SceneObject box;
+    box.name = "box";
+    box.mesh = 1;
+    box.transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.5f, 0.0f));
+    scene.objects.push_back(box);
+    groundTruth->setScene(scene);
+
+    // Light travels towards +x and down (2 in y per 1 in x): the shadow spans x in [0.5, 2].
+    const SceneLight sun = directional({0.5f, -1.0f, 0.0f}, 0.1f);
+    const float step = 0.01f, x0 = -1.0f, z0 = -1.5f;
+    const GBuffer g = groundGrid(x0, z0, step, 350, 300);
+    ReferenceOptions options;
+    options.mode = ReferenceOptions::Mode::Soft;
+    options.samplesPerPixel = 64;
+    const std::vector<glm::vec3> v = trace(*groundTruth, g, sun, options);
+
+    auto at = [&](float x, float z) {
+        const int i = static_cast<int>(std::lround((x - x0) / step));
+        const int j = static_cast<int>(std::lround((z - z0) / step));
+        return v[static_cast<size_t>(j) * static_cast<size_t>(g.width) + static_cast<size_t>(i)];
+    };
+    for (const glm::vec3& value : v) {
+        EXPECT_GE(value.x, 0.0f);
+        EXPECT_LE(value.x, 1.0f);
+        EXPECT_EQ(value.x, value.y);
+        EXPECT_EQ(value.x, value.z);
+    }
+    EXPECT_EQ(at(1.0f, 0.0f), glm::vec3(0.0f)) << "umbra";
+    EXPECT_EQ(at(-0.8f, 0.0f), glm::vec3(1.0f)) << "open ground before the box";
+    EXPECT_EQ(at(1.0f, 1.2f), glm::vec3(1.0f)) << "open ground beside the shadow";
+
+    // Penumbra width across the side boundary (z = 0.5), in samples of `step`.
+    auto penumbraWidth = [&](float x) {
+        int count = 0;
+        for (float z = 0.0f; z < 1.49f; z += step)
+            if (const float value = at(x, z).x; value > 0.02f && value < 0.98f) ++count;
+        return count;
+    };
+    const int nearContact = penumbraWidth(0.6f), middle = penumbraWidth(1.0f), far = penumbraWidth(1.4f);
+    EXPECT_GT(nearContact, 0);
+    EXPECT_GT(middle, nearContact + 5);
+    EXPECT_GT(far, middle + 5);
+    // Blocker 0.9 * sqrt(5) = 2.0 away at x = 1.4: width about 2 * 2.0 * tan(0.1) = 0.4.
+    EXPECT_NEAR(far * step, 0.4f, 0.12f);
+}
+
+TEST(GroundTruth, SoftWithoutEmitterSizeIsHard) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    groundTruth->setScene(boxOnPlane());
+    const GBuffer g = primary(*groundTruth, View{});
+    const SceneLight light = directional({0.5f, -1.0f, 0.35f}, 0.0f);
+    ReferenceOptions soft;
+    soft.mode = ReferenceOptions::Mode::Soft;
+    EXPECT_TRUE(identical(trace(*groundTruth, g, light), trace(*groundTruth, g, light, soft)));
+}
+
+TEST(GroundTruth, SoftPointLightUmbraAndLit) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    Scene scene = planeScene();
+    scene.meshes.push_back(makeBox(glm::vec3(2.0f, 0.2f, 2.0f)));
+    SceneObject slab; // a table top 1 above the ground, under a lamp of radius 0.3
+    slab.name = "slab";
+    slab.mesh = 1;
+    slab.transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    scene.objects.push_back(slab);
+    groundTruth->setScene(scene);
+    SceneLight lamp;
+    lamp.type = LightType::Point;
+    lamp.position = glm::vec3(0.0f, 3.0f, 0.0f);
+    lamp.size = 0.3f;
+    const GBuffer g = groundGrid(-3.0f, 0.0f, 0.05f, 121, 1);
+    ReferenceOptions options;
+    options.mode = ReferenceOptions::Mode::Soft;
+    const std::vector<glm::vec3> v = trace(*groundTruth, g, lamp, options);
+    EXPECT_EQ(v[60], glm::vec3(0.0f)) << "under the slab";
+    EXPECT_EQ(v[0], glm::vec3(1.0f)) << "far from it";
+    bool partial = false;
+    for (const glm::vec3& value : v) partial = partial || (value.x > 0.0f && value.x < 1.0f);
+    EXPECT_TRUE(partial);
+}
+
+// Quads of alpha 0.5: one tinted red (transmission (1, 0, 0)) over x in [-1, 1], one tinted blue
+// over x in [0, 2] above it, an opaque box, and an opaque box that casts no shadow; sun overhead.
+TEST(GroundTruth, ColouredTransmissionMultiplies) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    Scene scene = planeScene();
+    scene.materials.push_back({.name = "red", .alpha = 0.5f, .transmission = glm::vec3(1.0f, 0.0f, 0.0f)});
+    scene.materials.push_back({.name = "blue", .alpha = 0.5f, .transmission = glm::vec3(0.0f, 0.0f, 1.0f)});
+    scene.meshes.push_back(makePlane(2.0f, 2.0f, 1));
+    scene.meshes.push_back(makeBox(glm::vec3(1.0f)));
+    auto add = [&](const char* name, uint32_t mesh, uint32_t material, glm::vec3 at, bool castsShadow) {
+        SceneObject object;
+        object.name = name;
+        object.mesh = mesh;
+        object.material = material;
+        object.transform = glm::translate(glm::mat4(1.0f), at);
+        object.castsShadow = castsShadow;
+        scene.objects.push_back(object);
+    };
+    add("red", 1, 1, {0.0f, 1.0f, 0.0f}, true);
+    add("blue", 1, 2, {1.0f, 1.5f, 0.0f}, true);
+    add("opaque", 2, 0, {-4.0f, 2.0f, 0.0f}, true);
+    add("ghost", 2, 0, {4.0f, 2.0f, 0.0f}, false);
+    groundTruth->setScene(scene);
+
+    const SceneLight sun = directional({0.0f, -1.0f, 0.0f}, 0.02f);
+    // Ground points: under red only, under both, open ground, under the opaque box, under the ghost,
+    // and under the shared edge of the red quad's two triangles.
+    const std::vector<glm::vec3> points = {{-0.5f, 0, 0.3f}, {0.5f, 0, -0.3f}, {0, 0, 3}, {-4, 0, 0}, {4, 0, 0}, {0.5f, 0, 0.5f}};
+    GBuffer g;
+    g.width = static_cast<int>(points.size());
+    g.height = 1;
+    for (glm::vec3 p : points) {
+        g.positions.emplace_back(p, 1.0f);
+        g.normals.emplace_back(0.0f, 1.0f, 0.0f, 0.0f);
+    }
+    const glm::vec3 red(1.0f, 0.5f, 0.5f), both(0.5f, 0.25f, 0.5f);
+
+    for (ReferenceOptions::Mode mode : {ReferenceOptions::Mode::Hard, ReferenceOptions::Mode::Soft}) {
+        ReferenceOptions options;
+        options.mode = mode;
+        options.samplesPerPixel = 16;
+        options.transmission = true;
+        const std::vector<glm::vec3> v = trace(*groundTruth, g, sun, options);
+        EXPECT_EQ(v[0], red);
+        EXPECT_EQ(v[1], both);
+        EXPECT_EQ(v[2], glm::vec3(1.0f));
+        EXPECT_EQ(v[3], glm::vec3(0.0f));
+        EXPECT_EQ(v[4], glm::vec3(1.0f)) << "castsShadow = false must not block";
+        EXPECT_EQ(v[5], both) << "a ray through a shared edge crosses the surface once";
+
+        // Without transmission every caster blocks, translucent or not.
+        options.transmission = false;
+        const std::vector<glm::vec3> grey = trace(*groundTruth, g, sun, options);
+        EXPECT_EQ(grey[0], glm::vec3(0.0f));
+        EXPECT_EQ(grey[1], glm::vec3(0.0f));
+        EXPECT_EQ(grey[2], glm::vec3(1.0f));
+        EXPECT_EQ(grey[4], glm::vec3(1.0f));
+    }
+}
+
+TEST(GroundTruth, InstancedMeshesCastLikeFlattenedOnes) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    // Two objects share the box mesh (instanced), a third has its own (flattened).
+    Scene scene = planeScene();
+    scene.meshes.push_back(makeBox(glm::vec3(1.0f)));
+    scene.meshes.push_back(makeBox(glm::vec3(1.0f)));
+    for (int k = 0; k < 3; ++k) {
+        SceneObject box;
+        box.name = "box" + std::to_string(k);
+        box.mesh = k < 2 ? 1 : 2;
+        box.transform = glm::translate(glm::mat4(1.0f), glm::vec3(-3.0f + 3.0f * static_cast<float>(k), 0.5f, 0.0f));
+        scene.objects.push_back(box);
+    }
+    groundTruth->setScene(scene);
+    const SceneLight sun = directional({0.0f, -1.0f, 0.0f});
+    // Points under each box's top (y = 1) and beside it.
+    GBuffer g = groundGrid(-3.0f, 0.0f, 1.5f, 5, 1);
+    for (glm::vec4& p : g.positions) p.y = 0.0f;
+    const std::vector<glm::vec3> v = trace(*groundTruth, g, sun);
+    EXPECT_EQ(v[0], glm::vec3(0.0f));
+    EXPECT_EQ(v[1], glm::vec3(1.0f));
+    EXPECT_EQ(v[2], glm::vec3(0.0f));
+    EXPECT_EQ(v[3], glm::vec3(1.0f));
+    EXPECT_EQ(v[4], glm::vec3(0.0f));
+
+    // Primary hits on instanced boxes report world-space points and normals.
+    View view;
+    view.eye = glm::vec3(-3.0f, 5.0f, 0.01f);
+    view.target = glm::vec3(-3.0f, 0.0f, 0.0f);
+    const GBuffer top = primary(*groundTruth, view);
+    const size_t centre = static_cast<size_t>(view.height / 2) * static_cast<size_t>(view.width) + static_cast<size_t>(view.width / 2);
+    EXPECT_NEAR(top.positions[centre].y, 1.0f, 1e-4f);
+    EXPECT_NEAR(top.positions[centre].x, -3.0f, 0.05f);
+    EXPECT_NEAR(top.normals[centre].y, 1.0f, 1e-5f);
+}
