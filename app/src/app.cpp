@@ -10,6 +10,7 @@
 #include <GLFW/glfw3.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "reference/reference_technique.h"
 #include "ui/ui.h"
 #include "util/log.h"
 #include "util/paths.h"
@@ -70,7 +71,13 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
     applyLightOverrides();
     techniques_ = std::make_unique<TechniqueManager>(HostContext{*renderer_, *shaders_, *timer_, backend_->loader()}, pluginDir());
     techniques_->scan();
-    if (techniques_->techniques().empty()) {
+    techniques_->registerBuiltin(copyDescriptor(referenceDescriptor(), {}), [this] {
+        return std::make_unique<ReferenceTechnique>(
+            [this](const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
+                   std::string& error) { return traceReference(gbuffer, options, visibility, error); },
+            &sceneGeneration_);
+    });
+    if (techniques_->techniques().size() <= 1) {
         error = "no technique plugins found in " + pluginDir().string();
         return false;
     }
@@ -91,6 +98,7 @@ bool App::loadScene(const std::string& nameOrPath, const std::map<std::string, d
         auto scene = std::make_unique<Scene>(shadowlab::loadScene(nameOrPath, parameters));
         // Techniques keep screen- and scene-dependent resources; they rebuild on next use.
         scene_ = std::move(scene);
+        ++sceneGeneration_;
         renderer_->setScene(*scene_);
         camera_.reset(scene_->camera);
         light_ = lightFromScene(scene_->light);
@@ -198,6 +206,63 @@ bool App::measure(const std::string& technique, int warmupFrames, int frames, Me
     out.gpuBytes = loaded ? loaded->host().gpuBytes() : 0;
     out.frames = frames;
     return true;
+}
+
+SceneLight App::currentLight() const {
+    SceneLight light;
+    light.type = light_.type;
+    light.position = light_.position;
+    light.direction = glm::normalize(light_.direction);
+    light.color = light_.color;
+    light.size = light_.size;
+    light.spotOuterAngle = light_.spotOuterAngle;
+    light.spotInnerAngle = light_.spotInnerAngle;
+    return light;
+}
+
+bool App::traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
+                         std::string& error) {
+    if (!groundTruth_) {
+        groundTruth_ = loadGroundTruth(error);
+        if (!groundTruth_) return false;
+    }
+    try {
+        if (groundTruthGeneration_ != sceneGeneration_) {
+            groundTruth_->setScene(*scene_);   // the BVH is built once per scene
+            groundTruthGeneration_ = sceneGeneration_;
+        }
+        groundTruth_->trace(gbuffer, currentLight(), options, visibility);
+    } catch (const std::exception& e) {
+        error = std::string("ground truth: ") + e.what();
+        return false;
+    }
+    return true;
+}
+
+bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error) {
+    const glm::ivec2 size = renderer_->size();
+    const auto positions = renderer_->readTarget(MainTarget::Position);
+    const auto normals = renderer_->readTarget(MainTarget::Normal);
+    const auto visibility = renderer_->readTarget(MainTarget::Visibility);
+    const GBufferView gbuffer{size.x, size.y, positions.data(), normals.data()};
+    out.width = size.x;
+    out.height = size.y;
+    out.technique.resize(visibility.size());
+    for (size_t i = 0; i < visibility.size(); ++i) out.technique[i] = glm::clamp(glm::vec3(visibility[i]), 0.0f, 1.0f);
+    out.mask = compareMask(gbuffer, currentLight());
+    const auto start = std::chrono::steady_clock::now();
+    if (!traceReference(gbuffer, options, out.reference, error)) return false;
+    out.traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out.metrics = compareVisibility(out.technique, out.reference, out.mask, size.x, size.y);
+    return true;
+}
+
+Image Evaluation::heatmap() const {
+    const auto rgb = errorHeatmap(technique, reference, mask, width, height);
+    Image image{width, height, 4, std::vector<uint8_t>(size_t(width) * size_t(height) * 4, 255)};
+    for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
+        for (int c = 0; c < 3; ++c) image.pixels[i * 4 + size_t(c)] = rgb[i * 3 + size_t(c)];
+    return image;
 }
 
 int App::runInteractive(const std::string& initialTechnique, int smokeFrames, const std::string& screenshot) {

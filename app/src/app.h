@@ -10,6 +10,8 @@
 
 #include "backend/backend.h"
 #include "camera.h"
+#include "groundtruth/groundtruth.h"
+#include "groundtruth/metrics.h"
 #include "plugin/params.h"
 #include "plugin/technique_runtime.h"
 #include "render/gpu_timer.h"
@@ -45,6 +47,18 @@ struct Measurement {
     int frames = 0;
 };
 
+// Accuracy of the last rendered frame against the ray-traced reference.
+struct Evaluation {
+    AccuracyMetrics metrics;
+    std::vector<glm::vec3> technique;   // the technique's shadow term per pixel
+    std::vector<glm::vec3> reference;
+    std::vector<uint8_t> mask;          // compared pixels
+    int width = 0;
+    int height = 0;
+    double traceSeconds = 0.0;
+    Image heatmap() const;              // errorHeatmap() as an RGBA image
+};
+
 class App {
 public:
     App() = default;
@@ -71,6 +85,12 @@ public:
     // Interactive window; smokeFrames > 0 runs that many frames cycling techniques, then saves
     // `screenshot` (if given) and returns.
     int runInteractive(const std::string& technique, int smokeFrames, const std::string& screenshot);
+    // Compares the last frame's shadow term with the reference traced from its own G-buffer.
+    bool evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error);
+    // Traces the current scene and light for `gbuffer` (loads the Embree module on first use).
+    bool traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
+                        std::string& error);
+    SceneLight currentLight() const;
 
     GlBackend& backend() { return *backend_; }
     Renderer& renderer() { return *renderer_; }
@@ -98,6 +118,9 @@ private:
     LightInfo light_{};
     CameraController camera_;
     double lastCpuFrameMs_ = 0.0;
+    GroundTruthPtr groundTruth_;
+    uint64_t sceneGeneration_ = 0;         // bumped when the scene changes
+    uint64_t groundTruthGeneration_ = ~0ull;
 };
 
 LightInfo lightFromScene(const SceneLight& light);

@@ -4,6 +4,8 @@
 //   shadowlab list [--json]   techniques and their parameters (no GL needed)
 //   shadowlab render ...      one frame headless to a PNG
 // Exit codes: 0 success, 1 failure of the machine (no GL, ...), 2 bad input (with a message).
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -155,13 +157,44 @@ int commandList(bool json) {
     return 0;
 }
 
+// --reference: hard | soft | both | auto (hard for hard techniques, both for filtered and soft).
+bool referenceModes(const std::string& text, const TechniqueInfo& info, std::vector<ReferenceOptions::Mode>& modes,
+                    std::string& error) {
+    using Mode = ReferenceOptions::Mode;
+    if (text == "hard") modes = {Mode::Hard};
+    else if (text == "soft") modes = {Mode::Soft};
+    else if (text == "both") modes = {Mode::Hard, Mode::Soft};
+    else if (text == "auto")
+        modes = (info.category == "hard" || info.category == "baseline") ? std::vector<Mode>{Mode::Hard}
+                                                                         : std::vector<Mode>{Mode::Hard, Mode::Soft};
+    else {
+        error = "--reference '" + text + "': expected hard, soft, both or auto";
+        return false;
+    }
+    return true;
+}
+
+// Shadow term as grey (sRGB-encoded), pixels outside the comparison dark blue: `--view reference`.
+Image visibilityImage(const std::vector<glm::vec3>& visibility, const std::vector<uint8_t>& mask, int width, int height) {
+    Image image{width, height, 4, std::vector<uint8_t>(size_t(width) * size_t(height) * 4, 255)};
+    for (size_t i = 0; i < visibility.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            const float v = std::clamp(visibility[i][c], 0.0f, 1.0f);
+            const float srgb = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+            image.pixels[i * 4 + size_t(c)] = mask[i] ? uint8_t(std::lround(srgb * 255.0f)) : uint8_t(c == 2 ? 38 : 13);
+        }
+    }
+    return image;
+}
+
 ViewSelection parseView(const std::string& text) {
     if (text == "lit" || text.empty()) return {};
     if (text == "visibility") return {ViewSelection::Kind::Visibility, ""};
     return {ViewSelection::Kind::DebugImage, text};
 }
 
-int commandRender(const CommonOptions& common, const std::string& out, const std::string& view, int frames) {
+int commandRender(const CommonOptions& common, const std::string& out, const std::string& view, int frames,
+                  const std::string& reference, int samples) {
     App app;
     if (int code = startApp(app, common, false)) return code;
     const std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;
@@ -174,9 +207,85 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
     if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
     for (int i = 0; i < std::max(frames, 1); ++i)
         if (!app.renderFrame(technique, error)) return fail(error, kExitFailure);
-    if (!app.presentView(technique, parseView(view), ~0u, {}, error)) return fail(error, kExitBadInput);
-    if (!writePng(out, app.readDisplay(), error)) return fail(error, kExitFailure);
+    Image image;
+    if (view == "error" || view == "reference") {
+        // Accuracy views: the reference traced from this frame's own G-buffer.
+        std::vector<ReferenceOptions::Mode> modes;
+        if (!referenceModes(reference == "auto" ? "hard" : reference, *app.techniques().find(technique), modes, error))
+            return fail(error, kExitBadInput);
+        ReferenceOptions options;
+        options.mode = modes.front();
+        options.samplesPerPixel = samples;
+        Evaluation evaluation;
+        if (!app.evaluate(options, evaluation, error)) return fail(error, kExitFailure);
+        image = view == "error" ? evaluation.heatmap()
+                                : visibilityImage(evaluation.reference, evaluation.mask, evaluation.width, evaluation.height);
+    } else {
+        if (!app.presentView(technique, parseView(view), ~0u, {}, error)) return fail(error, kExitBadInput);
+        image = app.readDisplay();
+    }
+    if (!writePng(out, image, error)) return fail(error, kExitFailure);
     logInfo("wrote " + out);
+    return 0;
+}
+
+std::string describeParams(App& app, const TechniqueInfo& info) {
+    std::string text;
+    const auto& values = app.params().values(info);
+    for (size_t i = 0; i < info.params.size(); ++i) {
+        if (!text.empty()) text += " ";
+        text += info.params[i].id + "=" + formatParamValue(info.params[i], values[i]);
+    }
+    return text;
+}
+
+int commandEval(const CommonOptions& common, const std::string& reference, int samples, int frames, bool json) {
+    App app;
+    if (int code = startApp(app, common, false)) return code;
+    const std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;
+    const TechniqueInfo* info = app.techniques().find(technique);
+    if (!info) return fail("--technique '" + technique + "': no such technique", kExitBadInput);
+    std::string error;
+    std::vector<ReferenceOptions::Mode> modes;
+    if (!referenceModes(reference, *info, modes, error)) return fail(error, kExitBadInput);
+    if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
+    Measurement m;
+    if (!app.measure(technique, 5, frames, m, error)) return fail(error, kExitFailure);
+
+    nlohmann::json out = {{"scene", app.scene().name}, {"technique", technique}, {"parameters", describeParams(app, *info)},
+                          {"width", app.renderer().size().x}, {"height", app.renderer().size().y},
+                          {"renderer", glRendererString()}, {"gpu_bytes", m.gpuBytes}};
+    for (const auto& [pass, summary] : m.gpuMs)
+        out["gpu_ms"][pass] = {{"median", summary.median}, {"p5", summary.p5}, {"p95", summary.p95}};
+    out["cpu_ms"] = {{"median", m.cpuMs.median}, {"p5", m.cpuMs.p5}, {"p95", m.cpuMs.p95}};
+    for (const auto mode : modes) {
+        ReferenceOptions options;
+        options.mode = mode;
+        options.samplesPerPixel = samples;
+        Evaluation evaluation;
+        if (!app.evaluate(options, evaluation, error)) return fail(error, kExitFailure);
+        const std::string name = mode == ReferenceOptions::Mode::Hard ? "hard" : "soft";
+        out["accuracy"][name] = nlohmann::json::parse(metricsToJson(evaluation.metrics));
+        out["accuracy"][name]["trace_seconds"] = evaluation.traceSeconds;
+    }
+    if (json) {
+        std::cout << out.dump(2) << "\n";
+        return 0;
+    }
+    std::printf("scene %s, technique %s (%s), %dx%d, %s\n", app.scene().name.c_str(), technique.c_str(),
+                describeParams(app, *info).c_str(), app.renderer().size().x, app.renderer().size().y,
+                glRendererString().c_str());
+    for (const auto& [pass, summary] : m.gpuMs)
+        std::printf("  GPU %-20s median %8.3f ms  (p5 %.3f, p95 %.3f)\n", pass.c_str(), summary.median, summary.p5, summary.p95);
+    std::printf("  host CPU per frame   median %8.3f ms;  GPU memory %.2f MiB\n", m.cpuMs.median, double(m.gpuBytes) / 1048576.0);
+    for (const auto& [name, metrics] : out["accuracy"].items()) {
+        std::printf("  vs %s reference: MAE %.4f  RMSE %.4f  false shadow %.3f%%  false light %.3f%%  "
+                    "MAE penumbra %.4f  MAE elsewhere %.4f  compared %.1f%% of pixels\n",
+                    name.c_str(), metrics["mae"].get<double>(), metrics["rmse"].get<double>(),
+                    100.0 * metrics["falseShadowRate"].get<double>(), 100.0 * metrics["falseLightRate"].get<double>(),
+                    metrics["maePenumbra"].get<double>(), metrics["maeOutsidePenumbra"].get<double>(),
+                    100.0 * metrics["comparedFraction"].get<double>());
+    }
     return 0;
 }
 
@@ -236,8 +345,21 @@ int main(int argc, char** argv) {
     std::string renderOut, renderView = "lit";
     int renderFrames = 3;
     render->add_option("--out,-o", renderOut, "PNG file to write")->required();
-    render->add_option("--view", renderView, "lit | visibility | a debug image of the technique (e.g. 'shadow map')");
+    render->add_option("--view", renderView,
+                       "lit | visibility | error (heatmap vs the reference) | reference | a debug image (e.g. 'shadow map')");
     render->add_option("--frames", renderFrames, "frames to render before saving (default 3)")->check(CLI::Range(1, 10000));
+    std::string reference = "auto";
+    int referenceSamples = 64;
+    render->add_option("--reference", reference, "--view error/reference: hard | soft (default hard)");
+    render->add_option("--samples", referenceSamples, "soft reference: rays per pixel (default 64)")->check(CLI::Range(1, 4096));
+
+    auto* eval = cli.add_subcommand("eval", "accuracy against the ray-traced reference, with the frame timing of the same run");
+    bool evalJson = false;
+    int evalFrames = 50;
+    eval->add_option("--reference", reference, "hard | soft | both | auto (default: hard for hard techniques, else both)");
+    eval->add_option("--samples", referenceSamples, "soft reference: rays per pixel (default 64)")->check(CLI::Range(1, 4096));
+    eval->add_option("--frames", evalFrames, "timed frames (default 50)")->check(CLI::Range(1, 100000));
+    eval->add_flag("--json", evalJson, "machine-readable output");
 
     try {
         cli.parse(argc, argv);
@@ -247,7 +369,8 @@ int main(int argc, char** argv) {
     }
 
     if (*list) return commandList(listJson);
-    if (*render) return commandRender(common, renderOut, renderView, renderFrames);
+    if (*render) return commandRender(common, renderOut, renderView, renderFrames, reference, referenceSamples);
+    if (*eval) return commandEval(common, reference, referenceSamples, evalFrames, evalJson);
 
     // The main job.
     const bool windowed = common.backend.empty() ? defaultBackend() == BackendKind::Glfw : common.backend == "glfw";

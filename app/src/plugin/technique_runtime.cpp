@@ -143,47 +143,68 @@ int PluginHost::releaseAll() {
     return leftovers;
 }
 
+bool LoadedTechnique::start(HostContext context, const std::filesystem::path& shadowGlsl, std::string& error) {
+    shaders_ = &context.shaders;
+    host_ = std::make_unique<PluginHost>(context, info_);
+    ShaderRequest main;
+    main.vertexFile = "main.vert";
+    main.fragmentFile = "main.frag";
+    main.searchPaths = {sharedShaderDir()};
+    main.aliases["technique_shadow.glsl"] = shadowGlsl;
+    main.label = info_.id + ": main pass";
+    std::string shaderError;
+    mainProgram_ = context.shaders.build(main, shaderError);
+    if (!mainProgram_) {
+        error = "main pass with " + info_.shadowGlsl + " failed to build: " + shaderError;
+        return false;
+    }
+    std::string initError;
+    if (!technique_->init(*host_, initError)) {
+        error = "init failed: " + (initError.empty() ? std::string("no reason given") : initError);
+        return false;   // the destructor shuts down and releases what init created
+    }
+    return true;
+}
+
 std::unique_ptr<LoadedTechnique> LoadedTechnique::load(const std::filesystem::path& file, HostContext context,
                                                        std::string& error) {
     auto loaded = std::unique_ptr<LoadedTechnique>(new LoadedTechnique());
     loaded->library_ = PluginLibrary::open(file, error);
     if (!loaded->library_) return nullptr;
-    const TechniqueInfo& info = loaded->library_->info();
-    loaded->shaders_ = &context.shaders;
-    loaded->host_ = std::make_unique<PluginHost>(context, info);
-
-    ShaderRequest main;
-    main.vertexFile = "main.vert";
-    main.fragmentFile = "main.frag";
-    main.searchPaths = {sharedShaderDir()};
-    main.aliases["technique_shadow.glsl"] = pluginSourceDir(info.id) / info.shadowGlsl;
-    main.label = info.id + ": main pass";
-    std::string shaderError;
-    loaded->mainProgram_ = context.shaders.build(main, shaderError);
-    if (!loaded->mainProgram_) {
-        error = file.string() + ": main pass with " + info.shadowGlsl + " failed to build: " + shaderError;
-        return nullptr;
-    }
-
+    loaded->info_ = loaded->library_->info();
     loaded->technique_ = loaded->library_->entry().create();
     if (!loaded->technique_) {
         error = file.string() + ": create() returned nothing";
         return nullptr;
     }
-    std::string initError;
-    if (!loaded->technique_->init(*loaded->host_, initError)) {
-        error = file.string() + ": init failed: " + (initError.empty() ? "no reason given" : initError);
-        return nullptr;   // the destructor shuts down and releases what init created
+    if (!loaded->start(context, pluginSourceDir(loaded->info_.id) / loaded->info_.shadowGlsl, error)) {
+        error = file.string() + ": " + error;
+        return nullptr;
+    }
+    return loaded;
+}
+
+std::unique_ptr<LoadedTechnique> LoadedTechnique::createBuiltin(const TechniqueInfo& info,
+                                                                std::unique_ptr<IShadowTechnique> technique,
+                                                                HostContext context, std::string& error) {
+    auto loaded = std::unique_ptr<LoadedTechnique>(new LoadedTechnique());
+    loaded->info_ = info;
+    loaded->builtin_ = std::move(technique);
+    loaded->technique_ = loaded->builtin_.get();
+    if (!loaded->start(context, sharedShaderDir() / info.shadowGlsl, error)) {
+        error = info.id + ": " + error;
+        return nullptr;
     }
     return loaded;
 }
 
 LoadedTechnique::~LoadedTechnique() {
-    // Order matters: the technique's code lives in the library, so it goes last.
+    // Order matters: a plugin's code lives in its library, so the library goes last.
     if (technique_) {
         technique_->shutdown();
-        library_->entry().destroy(technique_);
+        if (library_) library_->entry().destroy(technique_);
     }
+    builtin_.reset();
     if (host_) host_->releaseAll();
     host_.reset();
     if (mainProgram_ && shaders_) shaders_->release(mainProgram_);
@@ -202,6 +223,12 @@ void TechniqueManager::scan() {
     for (const auto& error : scanErrors_) logWarning("skipped plugin: " + error);
 }
 
+void TechniqueManager::registerBuiltin(const TechniqueInfo& info, BuiltinFactory factory) {
+    std::erase_if(techniques_, [&](const TechniqueInfo& t) { return t.id == info.id; });
+    techniques_.push_back(info);
+    builtins_[info.id] = std::move(factory);
+}
+
 const TechniqueInfo* TechniqueManager::find(const std::string& id) const {
     for (const auto& t : techniques_)
         if (t.id == id) return &t;
@@ -217,7 +244,11 @@ LoadedTechnique* TechniqueManager::get(const std::string& id, std::string& error
         error = "no technique '" + id + "' (available: " + known + ")";
         return nullptr;
     }
-    auto loaded = LoadedTechnique::load(info->library, context_, error);
+    std::unique_ptr<LoadedTechnique> loaded;
+    if (auto builtin = builtins_.find(id); builtin != builtins_.end())
+        loaded = LoadedTechnique::createBuiltin(*info, builtin->second(), context_, error);
+    else
+        loaded = LoadedTechnique::load(info->library, context_, error);
     if (!loaded) return nullptr;
     auto* raw = loaded.get();
     loaded_[id] = std::move(loaded);
@@ -236,11 +267,13 @@ std::vector<std::string> TechniqueManager::pollForChanges(ParamStore& params, st
     if (now - lastPoll_ < interval) return reloaded;
     lastPoll_ = now;
     for (auto& [id, loaded] : loaded_) {
-        const auto& file = loaded->library().file();
+        if (!loaded->library()) continue;   // built into the host
+        const PluginLibrary& library = *loaded->library();
+        const auto& file = library.file();
         std::error_code ec;
         const auto time = std::filesystem::last_write_time(file, ec);
         const auto size = ec ? 0 : std::filesystem::file_size(file, ec);
-        if (ec || (time == loaded->library().fileTime() && size == loaded->library().fileSize())) {
+        if (ec || (time == library.fileTime() && size == library.fileSize())) {
             pending_.erase(id);
             continue;
         }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -91,19 +92,26 @@ class LoadedTechnique {
 public:
     static std::unique_ptr<LoadedTechnique> load(const std::filesystem::path& file, HostContext context,
                                                  std::string& error);
+    // A technique compiled into the host (the ray-traced reference): no library, GLSL in shaders/.
+    static std::unique_ptr<LoadedTechnique> createBuiltin(const TechniqueInfo& info,
+                                                          std::unique_ptr<IShadowTechnique> technique,
+                                                          HostContext context, std::string& error);
     ~LoadedTechnique();
     LoadedTechnique(const LoadedTechnique&) = delete;
     LoadedTechnique& operator=(const LoadedTechnique&) = delete;
 
-    const TechniqueInfo& info() const { return library_->info(); }
+    const TechniqueInfo& info() const { return info_; }
     IShadowTechnique& technique() { return *technique_; }
     PluginHost& host() { return *host_; }
     GLuint mainProgram() const;
-    const PluginLibrary& library() const { return *library_; }
+    const PluginLibrary* library() const { return library_.get(); }
 
 private:
     LoadedTechnique() = default;
+    bool start(HostContext context, const std::filesystem::path& shadowGlsl, std::string& error);
+    TechniqueInfo info_;
     std::unique_ptr<PluginLibrary> library_;
+    std::unique_ptr<IShadowTechnique> builtin_;
     std::unique_ptr<PluginHost> host_;
     IShadowTechnique* technique_ = nullptr;
     ProgramId mainProgram_ = 0;
@@ -125,6 +133,8 @@ public:
                                             std::chrono::milliseconds interval = std::chrono::milliseconds(100));
     const std::string& lastReloadError() const { return lastReloadError_; }
     void unloadAll() { loaded_.clear(); }
+    using BuiltinFactory = std::function<std::unique_ptr<IShadowTechnique>()>;
+    void registerBuiltin(const TechniqueInfo& info, BuiltinFactory factory);
     std::vector<LoadedTechnique*> loadedTechniques();
 
 private:
@@ -137,6 +147,7 @@ private:
     std::vector<TechniqueInfo> techniques_;
     std::vector<std::string> scanErrors_;
     std::map<std::string, std::unique_ptr<LoadedTechnique>> loaded_;
+    std::map<std::string, BuiltinFactory> builtins_;
     std::map<std::string, Pending> pending_;          // changed on disk, waiting to settle
     std::map<std::string, Pending> failed_;           // last version that failed to load
     std::chrono::steady_clock::time_point lastPoll_{};

@@ -1,0 +1,209 @@
+// Procedural meshes for scenes: plane, box, sphere, capped cylinder, torus and a simple tree.
+// All are in object space with y up, wound counter-clockwise seen from outside, with outward unit
+// normals and uv in [0, 1]. Closed shapes are closed once seam vertices are welded by position
+// (seams are duplicated only so that uv can wrap), so shadow volumes and back-face tricks work.
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/constants.hpp>
+
+#include "scene/scene.h"
+
+namespace shadowlab {
+namespace {
+
+constexpr float kTwoPi = glm::two_pi<float>();
+
+uint32_t nextIndex(const Mesh& mesh) { return static_cast<uint32_t>(mesh.vertices.size()); }
+
+void addTriangle(Mesh& mesh, uint32_t a, uint32_t b, uint32_t c) {
+    mesh.indices.insert(mesh.indices.end(), {a, b, c});
+}
+
+void append(Mesh& into, const Mesh& part) {
+    const uint32_t offset = nextIndex(into);
+    into.vertices.insert(into.vertices.end(), part.vertices.begin(), part.vertices.end());
+    for (uint32_t index : part.indices) into.indices.push_back(index + offset);
+}
+
+// A disc of `radius` at height y facing up (+y) or down (-y): a centre vertex and a fan.
+void addDisc(Mesh& mesh, float radius, float y, bool facingUp, int segments) {
+    const glm::vec3 normal{0.0f, facingUp ? 1.0f : -1.0f, 0.0f};
+    const uint32_t centre = nextIndex(mesh);
+    mesh.vertices.push_back({{0.0f, y, 0.0f}, normal, {0.5f, 0.5f}});
+    for (int s = 0; s <= segments; ++s) {
+        const float phi = kTwoPi * static_cast<float>(s) / static_cast<float>(segments);
+        const float c = std::cos(phi), sn = std::sin(phi);
+        mesh.vertices.push_back({{radius * c, y, radius * sn}, normal, {0.5f + 0.5f * c, 0.5f + 0.5f * sn}});
+    }
+    // With phi running from +x towards +z, (centre, s, s+1) faces -y.
+    for (int s = 0; s < segments; ++s) {
+        const uint32_t current = centre + 1 + static_cast<uint32_t>(s);
+        if (facingUp) addTriangle(mesh, centre, current + 1, current);
+        else addTriangle(mesh, centre, current, current + 1);
+    }
+}
+
+// The side of a cone (topRadius 0) or cylinder between heights y0 and y1, without caps.
+void addSide(Mesh& mesh, float bottomRadius, float topRadius, float y0, float y1, int segments) {
+    const float height = y1 - y0;
+    const bool cone = topRadius == 0.0f;
+    const uint32_t first = nextIndex(mesh);
+    for (int s = 0; s <= segments; ++s) {
+        const float u = static_cast<float>(s) / static_cast<float>(segments);
+        // A cone's apex gets one vertex per segment, at the middle of the segment, so its normal
+        // is that of the face it belongs to.
+        const float phiBottom = kTwoPi * u;
+        const float phiTop = cone ? kTwoPi * (static_cast<float>(s) + 0.5f) / static_cast<float>(segments) : phiBottom;
+        // Normal of a frustum side: perpendicular to the slope (bottomRadius - topRadius, height).
+        const float slope = bottomRadius - topRadius;
+        auto normalAt = [&](float phi) {
+            return glm::normalize(glm::vec3(height * std::cos(phi), slope, height * std::sin(phi)));
+        };
+        mesh.vertices.push_back({{bottomRadius * std::cos(phiBottom), y0, bottomRadius * std::sin(phiBottom)},
+                                 normalAt(phiBottom), {u, 0.0f}});
+        mesh.vertices.push_back({{topRadius * std::cos(phiTop), y1, topRadius * std::sin(phiTop)},
+                                 normalAt(phiTop), {u, 1.0f}});
+    }
+    for (int s = 0; s < segments; ++s) {
+        const uint32_t bottom = first + 2 * static_cast<uint32_t>(s), top = bottom + 1;
+        const uint32_t nextBottom = bottom + 2, nextTop = bottom + 3;
+        addTriangle(mesh, bottom, top, nextBottom);
+        if (!cone) addTriangle(mesh, top, nextTop, nextBottom);
+    }
+}
+
+} // namespace
+
+Mesh makePlane(float sizeX, float sizeZ, int subdivisions) {
+    const int cells = std::max(subdivisions, 1);
+    Mesh mesh;
+    for (int j = 0; j <= cells; ++j) {
+        for (int i = 0; i <= cells; ++i) {
+            const glm::vec2 uv{static_cast<float>(i) / static_cast<float>(cells),
+                               static_cast<float>(j) / static_cast<float>(cells)};
+            mesh.vertices.push_back({{(uv.x - 0.5f) * sizeX, 0.0f, (uv.y - 0.5f) * sizeZ}, {0.0f, 1.0f, 0.0f}, uv});
+        }
+    }
+    const uint32_t row = static_cast<uint32_t>(cells) + 1;
+    for (uint32_t j = 0; j < static_cast<uint32_t>(cells); ++j) {
+        for (uint32_t i = 0; i < static_cast<uint32_t>(cells); ++i) {
+            const uint32_t a = j * row + i;
+            // (i, j), (i, j+1), (i+1, j) is counter-clockwise seen from +y.
+            addTriangle(mesh, a, a + row, a + 1);
+            addTriangle(mesh, a + 1, a + row, a + row + 1);
+        }
+    }
+    return mesh;
+}
+
+Mesh makeBox(glm::vec3 size) {
+    const glm::vec3 half = size * 0.5f;
+    // Each face: outward normal n and axes u, v with cross(u, v) = n, so the corners
+    // -u-v, +u-v, +u+v, -u+v run counter-clockwise seen from outside.
+    struct Face { glm::vec3 n, u, v; };
+    const Face faces[] = {
+        {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}},  {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+        {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},  {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
+        {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},   {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}},
+    };
+    const glm::vec2 corners[] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    Mesh mesh;
+    for (const Face& face : faces) {
+        const uint32_t first = nextIndex(mesh);
+        for (const glm::vec2& corner : corners) {
+            const glm::vec3 position = (face.n + corner.x * face.u + corner.y * face.v) * half;
+            mesh.vertices.push_back({position, face.n, corner * 0.5f + 0.5f});
+        }
+        addTriangle(mesh, first, first + 1, first + 2);
+        addTriangle(mesh, first, first + 2, first + 3);
+    }
+    return mesh;
+}
+
+Mesh makeSphere(float radius, int segments, int rings) {
+    segments = std::max(segments, 3);
+    rings = std::max(rings, 2);
+    Mesh mesh;
+    // theta from the north pole (+y) down, phi around y from +x towards +z.
+    for (int r = 0; r <= rings; ++r) {
+        const float theta = glm::pi<float>() * static_cast<float>(r) / static_cast<float>(rings);
+        for (int s = 0; s <= segments; ++s) {
+            const float phi = kTwoPi * static_cast<float>(s) / static_cast<float>(segments);
+            glm::vec3 normal{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)};
+            float u = static_cast<float>(s);
+            // A pole vertex belongs to one triangle (below: north vertex s with segment s-1, south
+            // vertex s with segment s), so it takes the middle of that segment in u.
+            if (r == 0) u = std::max(u - 0.5f, 0.0f);
+            if (r == rings) u = std::min(u + 0.5f, static_cast<float>(segments));
+            if (r == 0 || r == rings) normal = {0.0f, r == 0 ? 1.0f : -1.0f, 0.0f};
+            const float v = 1.0f - static_cast<float>(r) / static_cast<float>(rings);
+            mesh.vertices.push_back({radius * normal, normal, {u / static_cast<float>(segments), v}});
+        }
+    }
+    const uint32_t row = static_cast<uint32_t>(segments) + 1;
+    for (uint32_t r = 0; r < static_cast<uint32_t>(rings); ++r) {
+        for (uint32_t s = 0; s < static_cast<uint32_t>(segments); ++s) {
+            const uint32_t a = r * row + s;
+            // Going +phi then +theta is counter-clockwise seen from outside; at the poles one of
+            // the two triangles of the quad would be degenerate and is left out.
+            if (r != 0) addTriangle(mesh, a, a + 1, a + row);
+            if (r != static_cast<uint32_t>(rings) - 1) addTriangle(mesh, a + 1, a + row + 1, a + row);
+        }
+    }
+    return mesh;
+}
+
+Mesh makeCylinder(float radius, float height, int segments) {
+    segments = std::max(segments, 3);
+    Mesh mesh;
+    addSide(mesh, radius, radius, 0.0f, height, segments);
+    addDisc(mesh, radius, height, true, segments);
+    addDisc(mesh, radius, 0.0f, false, segments);
+    return mesh;
+}
+
+Mesh makeTorus(float majorRadius, float minorRadius, int segments, int sides) {
+    // Centred at the origin, ring in the xz plane (the one generator not resting on y = 0).
+    segments = std::max(segments, 3);
+    sides = std::max(sides, 3);
+    Mesh mesh;
+    for (int i = 0; i <= segments; ++i) {
+        const float u = static_cast<float>(i) / static_cast<float>(segments);
+        const float phi = kTwoPi * u;   // around the ring
+        for (int j = 0; j <= sides; ++j) {
+            const float v = static_cast<float>(j) / static_cast<float>(sides);
+            const float psi = kTwoPi * v;   // around the tube
+            const glm::vec3 normal{std::cos(psi) * std::cos(phi), std::sin(psi), std::cos(psi) * std::sin(phi)};
+            const glm::vec3 centre{majorRadius * std::cos(phi), 0.0f, majorRadius * std::sin(phi)};
+            mesh.vertices.push_back({centre + minorRadius * normal, normal, {u, v}});
+        }
+    }
+    const uint32_t row = static_cast<uint32_t>(sides) + 1;
+    for (uint32_t i = 0; i < static_cast<uint32_t>(segments); ++i) {
+        for (uint32_t j = 0; j < static_cast<uint32_t>(sides); ++j) {
+            const uint32_t a = i * row + j;
+            // +psi then +phi is counter-clockwise seen from outside the tube.
+            addTriangle(mesh, a, a + 1, a + row);
+            addTriangle(mesh, a + 1, a + row + 1, a + row);
+        }
+    }
+    return mesh;
+}
+
+Mesh makeTree(float height, float crownRadius, int segments) {
+    // A stylised conifer: a thin capped trunk and a cone crown that overlaps its top. Two closed
+    // parts in one mesh; enough to throw a tree-shaped shadow, nothing more.
+    segments = std::max(segments, 3);
+    const float trunkRadius = 0.15f * crownRadius;
+    const float trunkHeight = 0.35f * height;
+    const float crownBase = 0.25f * height;
+    Mesh tree = makeCylinder(trunkRadius, trunkHeight, segments);
+    Mesh crown;
+    addSide(crown, crownRadius, 0.0f, crownBase, height, segments);
+    addDisc(crown, crownRadius, crownBase, false, segments);
+    append(tree, crown);
+    return tree;
+}
+
+} // namespace shadowlab

@@ -1,0 +1,749 @@
+// Scene loading: JSON scene descriptions (docs/scene-format.md) turned into meshes, materials,
+// objects, one light and a camera; the built-in scenes embedded from assets/scenes/; and the few
+// queries the host asks of a scene (bounds, triangle count, draw sets).
+// Parsing is strict on purpose: every field is checked for type, length and range, and a field
+// nobody reads (a typo) is an error, because a silently ignored field quietly changes an experiment.
+#include <algorithm>
+#include <cctype>
+#include <climits>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string_view>
+#include <utility>
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "scene/scene.h"
+
+namespace shadowlab {
+
+// Generated from assets/scenes/*.json by cmake/EmbedScenes.cmake: {name, JSON text}.
+extern const std::pair<std::string_view, std::string_view> kBuiltinScenes[];
+extern const unsigned kBuiltinSceneCount;
+
+namespace {
+
+using nlohmann::json;
+
+constexpr float kRadiansPerDegree = glm::pi<float>() / 180.0f;
+constexpr int kMaxInstances = 1'000'000;   // a typo like count=5000000 should fail, not swap
+constexpr int kMaxSegments = 4096;
+constexpr const char* kShapes = "plane, box, sphere, cylinder, torus, tree, obj";
+
+std::string formatNumber(double value, int precision = 6) {
+    std::ostringstream text;
+    text.precision(precision);
+    text << value;
+    return text.str();
+}
+
+std::string joined(const std::vector<std::string>& items) {
+    std::string text;
+    for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+    return text;
+}
+
+std::string describe(const json& value) {
+    switch (value.type()) {
+    case json::value_t::object: return "an object";
+    case json::value_t::array: return "an array of " + std::to_string(value.size()) + " elements";
+    case json::value_t::string: return "the string \"" + value.get<std::string>() + "\"";
+    case json::value_t::boolean: return value.get<bool>() ? "true" : "false";
+    case json::value_t::null: return "null";
+    default: return "the number " + value.dump();
+    }
+}
+
+size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<size_t> previous(b.size() + 1), current(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) previous[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        current[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                              std::tolower(static_cast<unsigned char>(b[j - 1]));
+            current[j] = std::min({previous[j] + 1, current[j - 1] + 1, previous[j - 1] + (same ? 0 : 1)});
+        }
+        std::swap(previous, current);
+    }
+    return previous[b.size()];
+}
+
+// The known name nearest to `name` when it is near enough to be a typo of it, else "".
+std::string likelyMeant(const std::string& name, const std::vector<std::string>& known) {
+    std::string best;
+    size_t bestDistance = std::max<size_t>(2, name.size() / 3) + 1;
+    for (const std::string& candidate : known) {
+        const size_t distance = editDistance(name, candidate);
+        if (distance < bestDistance) {
+            best = candidate;
+            bestDistance = distance;
+        }
+    }
+    return best;
+}
+
+std::string childPath(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
+std::string elementPath(const std::string& path, size_t index) { return path + "[" + std::to_string(index) + "]"; }
+
+// What every reader needs: where errors point to, and the values "$name" stands for.
+struct ParseContext {
+    std::string source;
+    std::map<std::string, double> parameters;
+
+    [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
+        throw SceneError(source + ": " + (path.empty() ? "" : path + ": ") + problem);
+    }
+
+    std::string parameterList() const {
+        std::vector<std::string> names;
+        for (const auto& entry : parameters) names.push_back(entry.first);
+        return names.empty() ? "this scene has no parameters" : "this scene has: " + joined(names);
+    }
+};
+
+enum class Range { Any, NonNegative, Positive };
+
+double readNumber(const json& value, const std::string& path, const ParseContext& context, Range range = Range::Any) {
+    double number = 0.0;
+    if (value.is_number()) {
+        number = value.get<double>();
+    } else if (value.is_string() && value.get_ref<const std::string&>().starts_with('$')) {
+        const std::string name = value.get<std::string>().substr(1);
+        const auto found = context.parameters.find(name);
+        if (found == context.parameters.end()) {
+            context.fail(path, "unknown parameter '$" + name + "' (" + context.parameterList() + ")");
+        }
+        number = found->second;
+    } else {
+        context.fail(path, std::string("expected a number") + (value.is_string() ? " or \"$parameter\"" : "") +
+                               ", got " + describe(value));
+    }
+    if (!std::isfinite(number)) context.fail(path, "must be a finite number");
+    if (range == Range::Positive && !(number > 0.0)) {
+        context.fail(path, "must be positive (got " + formatNumber(number) + ")");
+    }
+    if (range == Range::NonNegative && number < 0.0) {
+        context.fail(path, "must not be negative (got " + formatNumber(number) + ")");
+    }
+    return number;
+}
+
+int readInteger(const json& value, const std::string& path, const ParseContext& context, int minimum, int maximum) {
+    const double number = readNumber(value, path, context);
+    if (number != std::floor(number)) context.fail(path, "expected a whole number, got " + formatNumber(number));
+    if (number < minimum || number > maximum) {
+        context.fail(path, "must be between " + std::to_string(minimum) + " and " + std::to_string(maximum) +
+                               " (got " + formatNumber(number, 12) + ")");
+    }
+    return static_cast<int>(number);
+}
+
+template <glm::length_t N>
+glm::vec<N, float> readVector(const json& value, const std::string& path, const ParseContext& context,
+                              Range range = Range::Any) {
+    if (!value.is_array() || value.size() != N) {
+        context.fail(path, "expected an array of " + std::to_string(N) + " numbers, got " + describe(value));
+    }
+    glm::vec<N, float> result{};
+    for (glm::length_t i = 0; i < N; ++i) {
+        const size_t index = static_cast<size_t>(i);
+        result[i] = static_cast<float>(readNumber(value.at(index), elementPath(path, index), context, range));
+    }
+    return result;
+}
+
+// One JSON object being read. Every field the parser understands is asked for by name, so whatever
+// is left at finish() is a field nobody reads: reported with the name it probably meant.
+class FieldReader {
+public:
+    FieldReader(const json& node, std::string path, const ParseContext& context)
+        : node_(node), path_(std::move(path)), context_(context) {
+        if (!node_.is_object()) context_.fail(path_, "expected an object, got " + describe(node_));
+    }
+
+    std::string pathOf(const std::string& key) const { return childPath(path_, key); }
+    [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+        context_.fail(pathOf(key), problem);
+    }
+    const ParseContext& context() const { return context_; }
+    bool has(const std::string& key) const { return node_.contains(key); }
+
+    // The field, or nullptr when it is absent; either way `key` is now a known field.
+    const json* find(const std::string& key) {
+        if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.push_back(key);
+        const auto found = node_.find(key);
+        return found == node_.end() ? nullptr : &*found;
+    }
+
+    const json& required(const std::string& key, const std::string& why) {
+        const json* value = find(key);
+        if (!value) fail(key, "missing (" + why + ")");
+        return *value;
+    }
+
+    float number(const std::string& key, float fallback, Range range = Range::Any) {
+        const json* value = find(key);
+        return value ? static_cast<float>(readNumber(*value, pathOf(key), context_, range)) : fallback;
+    }
+
+    int integer(const std::string& key, int fallback, int minimum, int maximum) {
+        const json* value = find(key);
+        return value ? readInteger(*value, pathOf(key), context_, minimum, maximum) : fallback;
+    }
+
+    template <glm::length_t N>
+    glm::vec<N, float> vec(const std::string& key, glm::vec<N, float> fallback, Range range = Range::Any) {
+        const json* value = find(key);
+        return value ? readVector<N>(*value, pathOf(key), context_, range) : fallback;
+    }
+
+    bool boolean(const std::string& key, bool fallback) {
+        const json* value = find(key);
+        if (!value) return fallback;
+        if (!value->is_boolean()) fail(key, "expected true or false, got " + describe(*value));
+        return value->get<bool>();
+    }
+
+    std::string string(const std::string& key, const std::string& fallback) {
+        const json* value = find(key);
+        if (!value) return fallback;
+        if (!value->is_string()) fail(key, "expected a string, got " + describe(*value));
+        return value->get<std::string>();
+    }
+
+    void finish(const std::string& what) const {
+        for (const auto& item : node_.items()) {
+            if (std::find(known_.begin(), known_.end(), item.key()) != known_.end()) continue;
+            const std::string guess = likelyMeant(item.key(), known_);
+            fail(item.key(), "unknown field " + (guess.empty() ? "(" + what + " has: " + joined(known_) + ")"
+                                                               : "(did you mean '" + guess + "'?)"));
+        }
+    }
+
+private:
+    const json& node_;
+    std::string path_;
+    const ParseContext& context_;
+    std::vector<std::string> known_;
+};
+
+// How to make an object's mesh, and a key naming it: objects with the same key share one mesh.
+struct MeshRecipe {
+    std::string key;
+    std::function<Mesh()> make;
+    bool isPlane = false;
+};
+
+std::string recipeKey(const std::string& shape, std::initializer_list<double> arguments) {
+    std::string key = shape;
+    for (double argument : arguments) {
+        key += ' ';
+        key += formatNumber(argument, 9);
+    }
+    return key;
+}
+
+MeshRecipe readShape(FieldReader& fields, const std::string& shape, const std::filesystem::path& baseDir) {
+    if (shape == "plane") {
+        const glm::vec2 size = fields.vec("size", glm::vec2(10.0f), Range::Positive);
+        const int subdivisions = fields.integer("subdivisions", 1, 1, kMaxSegments);
+        return {recipeKey(shape, {size.x, size.y, double(subdivisions)}),
+                [=] { return makePlane(size.x, size.y, subdivisions); }, true};
+    }
+    if (shape == "box") {
+        const glm::vec3 size = fields.vec("size", glm::vec3(1.0f), Range::Positive);
+        return {recipeKey(shape, {size.x, size.y, size.z}), [=] { return makeBox(size); }};
+    }
+    if (shape == "sphere") {
+        const float radius = fields.number("radius", 0.5f, Range::Positive);
+        const int segments = fields.integer("segments", 32, 3, kMaxSegments);
+        const int rings = fields.integer("rings", 16, 2, kMaxSegments);
+        return {recipeKey(shape, {radius, double(segments), double(rings)}),
+                [=] { return makeSphere(radius, segments, rings); }};
+    }
+    if (shape == "cylinder") {
+        const float radius = fields.number("radius", 0.5f, Range::Positive);
+        const float height = fields.number("height", 1.0f, Range::Positive);
+        const int segments = fields.integer("segments", 32, 3, kMaxSegments);
+        return {recipeKey(shape, {radius, height, double(segments)}),
+                [=] { return makeCylinder(radius, height, segments); }};
+    }
+    if (shape == "torus") {
+        const float majorRadius = fields.number("majorRadius", 0.5f, Range::Positive);
+        const float minorRadius = fields.number("minorRadius", 0.2f, Range::Positive);
+        if (minorRadius >= majorRadius) {
+            fields.fail("minorRadius", "must be smaller than majorRadius (" + formatNumber(majorRadius) + ")");
+        }
+        const int segments = fields.integer("segments", 48, 3, kMaxSegments);
+        const int sides = fields.integer("sides", 16, 3, kMaxSegments);
+        return {recipeKey(shape, {majorRadius, minorRadius, double(segments), double(sides)}),
+                [=] { return makeTorus(majorRadius, minorRadius, segments, sides); }};
+    }
+    if (shape == "tree") {
+        const float height = fields.number("height", 2.0f, Range::Positive);
+        const float crownRadius = fields.number("crownRadius", 0.6f, Range::Positive);
+        const int segments = fields.integer("segments", 12, 3, kMaxSegments);
+        return {recipeKey(shape, {height, crownRadius, double(segments)}),
+                [=] { return makeTree(height, crownRadius, segments); }};
+    }
+    if (shape == "obj") {
+        const json& value = fields.required("file", "an obj object needs a file, relative to the scene file");
+        if (!value.is_string()) fields.fail("file", "expected a string, got " + describe(value));
+        const std::filesystem::path file = (baseDir / value.get<std::string>()).lexically_normal();
+        const std::string path = fields.pathOf("file");
+        const ParseContext& context = fields.context();
+        return {"obj " + file.string(), [file, path, &context] {
+                    std::error_code error;
+                    if (!std::filesystem::is_regular_file(file, error)) {
+                        context.fail(path, "missing OBJ file '" + file.string() + "'");
+                    }
+                    try {
+                        return loadObj(file);
+                    } catch (const SceneError& objError) {
+                        context.fail(path, objError.what());
+                    }
+                }};
+    }
+    fields.fail("shape", "unknown shape '" + shape + "' (expected one of: " + kShapes + ")");
+}
+
+// A "repeat" block: `count` instances on a grid of columns x rows (x by z) centred on the object,
+// each moved by up to +-jitter and scaled by a factor from scaleRange, both from `seed`.
+struct Repeat {
+    int count = 1;
+    int columns = 1;
+    int rows = 1;
+    glm::vec2 spacing{2.0f};
+    glm::vec3 jitter{0.0f};
+    glm::vec2 scaleRange{1.0f};
+    int seed = 1;
+};
+
+Repeat readRepeat(const json& node, const std::string& path, const ParseContext& context) {
+    FieldReader fields(node, path, context);
+    Repeat repeat;
+    const json* count = fields.find("count");
+    const json* grid = fields.find("grid");
+    if (!count && !grid) context.fail(path, "needs \"count\", \"grid\" or both");
+    if (count) repeat.count = readInteger(*count, fields.pathOf("count"), context, 1, kMaxInstances);
+    if (grid) {
+        if (!grid->is_array() || grid->size() != 2) {
+            fields.fail("grid", "expected an array of 2 numbers (columns, rows), got " + describe(*grid));
+        }
+        repeat.columns = readInteger(grid->at(0), elementPath(fields.pathOf("grid"), 0), context, 1, kMaxInstances);
+        repeat.rows = readInteger(grid->at(1), elementPath(fields.pathOf("grid"), 1), context, 1, kMaxInstances);
+        const long long cells = static_cast<long long>(repeat.columns) * repeat.rows;
+        if (!count) {
+            if (cells > kMaxInstances) fields.fail("grid", "more than " + std::to_string(kMaxInstances) + " instances");
+            repeat.count = static_cast<int>(cells);
+        } else if (repeat.count > cells) {
+            fields.fail("count", std::to_string(repeat.count) + " instances do not fit a " +
+                                     std::to_string(repeat.columns) + " x " + std::to_string(repeat.rows) + " grid");
+        }
+    } else {
+        // No grid given: as square as the count allows.
+        repeat.columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(repeat.count))));
+        repeat.rows = (repeat.count + repeat.columns - 1) / repeat.columns;
+    }
+    repeat.spacing = fields.vec("spacing", repeat.spacing, Range::NonNegative);
+    if (const json* jitter = fields.find("jitter")) {
+        repeat.jitter = jitter->is_array()
+                            ? readVector<3>(*jitter, fields.pathOf("jitter"), context, Range::NonNegative)
+                            : glm::vec3(1.0f, 0.0f, 1.0f) * static_cast<float>(readNumber(
+                                  *jitter, fields.pathOf("jitter"), context, Range::NonNegative));
+    }
+    repeat.scaleRange = fields.vec("scaleRange", repeat.scaleRange, Range::Positive);
+    if (repeat.scaleRange.x > repeat.scaleRange.y) fields.fail("scaleRange", "minimum exceeds maximum");
+    repeat.seed = fields.integer("seed", repeat.seed, 0, INT_MAX);
+    fields.finish("a repeat block");
+    return repeat;
+}
+
+glm::mat4 objectToWorld(glm::vec3 translate, glm::vec3 rotateRadians, glm::vec3 scale) {
+    // Scale, then rotate about x, y and z (in that order, fixed axes), then translate.
+    glm::mat4 transform = glm::translate(glm::mat4(1.0f), translate);
+    transform = glm::rotate(transform, rotateRadians.z, glm::vec3(0.0f, 0.0f, 1.0f));
+    transform = glm::rotate(transform, rotateRadians.y, glm::vec3(0.0f, 1.0f, 0.0f));
+    transform = glm::rotate(transform, rotateRadians.x, glm::vec3(1.0f, 0.0f, 0.0f));
+    return glm::scale(transform, scale);
+}
+
+// World plane (n, d) of a "plane" object: its object-space plane y = 0 with normal +y.
+glm::vec4 worldPlane(const glm::mat4& transform) {
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(transform)));
+    const glm::vec3 normal = glm::normalize(normalMatrix * glm::vec3(0.0f, 1.0f, 0.0f));
+    const glm::vec3 origin{transform[3]};
+    return {normal, -glm::dot(normal, origin)};
+}
+
+// The state of one scene being built.
+struct SceneBuilder {
+    ParseContext context;
+    std::filesystem::path baseDir;
+    Scene scene;
+    std::map<std::string, uint32_t> materialIndex;
+    std::map<std::string, uint32_t> meshIndex;   // by MeshRecipe::key
+
+    uint32_t meshFor(const MeshRecipe& recipe) {
+        const auto [found, inserted] = meshIndex.try_emplace(recipe.key, static_cast<uint32_t>(scene.meshes.size()));
+        if (inserted) scene.meshes.push_back(recipe.make());
+        return found->second;
+    }
+
+    uint32_t materialFor(FieldReader& fields) {
+        const json* value = fields.find("material");
+        std::string name = "default";
+        if (value) {
+            if (!value->is_string()) fields.fail("material", "expected a material name, got " + describe(*value));
+            name = value->get<std::string>();
+        }
+        const auto found = materialIndex.find(name);
+        if (found != materialIndex.end()) return found->second;
+        if (value && name != "default") {
+            std::vector<std::string> names;
+            for (const auto& entry : materialIndex) names.push_back(entry.first);
+            fields.fail("material", "unknown material '" + name + "' (" +
+                                        (names.empty() ? "the scene defines none" : "defined: " + joined(names)) + ")");
+        }
+        // Objects without a material share a plain grey one, added when first needed.
+        Material plain;
+        plain.name = name;
+        materialIndex[name] = static_cast<uint32_t>(scene.materials.size());
+        scene.materials.push_back(plain);
+        return materialIndex[name];
+    }
+};
+
+void readParameters(const json* node, const std::map<std::string, double>& overrides, ParseContext& context) {
+    if (node) {
+        if (!node->is_object()) {
+            context.fail("parameters", "expected an object of named numbers, got " + describe(*node));
+        }
+        for (const auto& item : node->items()) {
+            if (!item.value().is_number()) {
+                context.fail(childPath("parameters", item.key()), "expected a number, got " + describe(item.value()));
+            }
+            context.parameters[item.key()] = item.value().get<double>();
+        }
+    }
+    for (const auto& [name, value] : overrides) {
+        if (context.parameters.count(name) == 0) {
+            context.fail("parameters", "override " + name + "=" + formatNumber(value) +
+                                           " names an unknown parameter (" + context.parameterList() + ")");
+        }
+        if (!std::isfinite(value)) context.fail(childPath("parameters", name), "override is not a finite number");
+        context.parameters[name] = value;
+    }
+}
+
+void readMaterials(const json& node, SceneBuilder& builder) {
+    if (!node.is_object()) {
+        builder.context.fail("materials", "expected an object of named materials, got " + describe(node));
+    }
+    for (const auto& item : node.items()) {
+        FieldReader fields(item.value(), childPath("materials", item.key()), builder.context);
+        Material material;
+        material.name = item.key();
+        material.baseColor = fields.vec("baseColor", material.baseColor, Range::NonNegative);
+        material.alpha = fields.number("alpha", material.alpha, Range::NonNegative);
+        if (material.alpha > 1.0f) {
+            fields.fail("alpha", "must be between 0 and 1 (got " + formatNumber(material.alpha) + ")");
+        }
+        material.transmission = fields.vec("transmission", material.transmission, Range::NonNegative);
+        material.specular = fields.vec("specular", material.specular, Range::NonNegative);
+        material.shininess = fields.number("shininess", material.shininess, Range::Positive);
+        fields.finish("a material");
+        builder.materialIndex[material.name] = static_cast<uint32_t>(builder.scene.materials.size());
+        builder.scene.materials.push_back(material);
+    }
+}
+
+void readObject(const json& node, const std::string& path, size_t ordinal, SceneBuilder& builder) {
+    FieldReader fields(node, path, builder.context);
+    const json& shapeValue = fields.required("shape", std::string("one of: ") + kShapes);
+    if (!shapeValue.is_string()) fields.fail("shape", "expected a string, got " + describe(shapeValue));
+    const std::string shape = shapeValue.get<std::string>();
+    const MeshRecipe recipe = readShape(fields, shape, builder.baseDir);
+
+    const std::string name = fields.string("name", shape + " " + std::to_string(ordinal));
+    const uint32_t material = builder.materialFor(fields);
+    const glm::vec3 translate = fields.vec("translate", glm::vec3(0.0f));
+    const glm::vec3 rotate = fields.vec("rotate", glm::vec3(0.0f)) * kRadiansPerDegree;
+    glm::vec3 scale{1.0f};
+    if (const json* value = fields.find("scale")) {
+        scale = value->is_array() ? readVector<3>(*value, fields.pathOf("scale"), builder.context, Range::Positive)
+                                  : glm::vec3(static_cast<float>(
+                                        readNumber(*value, fields.pathOf("scale"), builder.context, Range::Positive)));
+    }
+    const bool castsShadow = fields.boolean("castsShadow", true);
+    const bool receivesShadow = fields.boolean("receivesShadow", true);
+    const json* repeatNode = fields.find("repeat");
+    const Repeat repeat = repeatNode ? readRepeat(*repeatNode, fields.pathOf("repeat"), builder.context) : Repeat{};
+    fields.finish("a " + shape + " object");
+
+    SceneObject object;
+    object.mesh = builder.meshFor(recipe);
+    object.material = material;
+    object.castsShadow = castsShadow;
+    object.receivesShadow = receivesShadow;
+    object.isPlane = recipe.isPlane;
+
+    // mt19937 produces the same sequence everywhere; the distributions of <random> do not, so
+    // the conversion to [0, 1) is done here to keep scenes identical across standard libraries.
+    std::mt19937 random(static_cast<uint32_t>(repeat.seed));
+    auto uniform = [&random] { return static_cast<float>(random() >> 8) * (1.0f / 16777216.0f); };
+    for (int i = 0; i < repeat.count; ++i) {
+        const int column = i % repeat.columns, row = i / repeat.columns;
+        const float gridX = static_cast<float>(column) - 0.5f * static_cast<float>(repeat.columns - 1);
+        const float gridZ = static_cast<float>(row) - 0.5f * static_cast<float>(repeat.rows - 1);
+        glm::vec3 offset{gridX * repeat.spacing.x, 0.0f, gridZ * repeat.spacing.y};
+        // Four draws per instance whatever is used, so changing one range leaves the others alone.
+        const glm::vec3 shake{uniform(), uniform(), uniform()};
+        const float scaleChoice = uniform();
+        offset += (2.0f * shake - 1.0f) * repeat.jitter;
+        const float instanceScale = glm::mix(repeat.scaleRange.x, repeat.scaleRange.y, scaleChoice);
+
+        object.name = repeatNode ? name + "#" + std::to_string(i) : name;
+        object.transform = objectToWorld(translate + offset, rotate, scale * instanceScale);
+        if (object.isPlane) object.plane = worldPlane(object.transform);
+        builder.scene.objects.push_back(object);
+    }
+}
+
+glm::vec3 readDirection(FieldReader& fields, const std::string& key, const std::string& why) {
+    const glm::vec3 direction = readVector<3>(fields.required(key, why), fields.pathOf(key), fields.context());
+    const float length = glm::length(direction);
+    if (!(length > 1e-6f)) fields.fail(key, "zero-length direction");
+    return direction / length;
+}
+
+float readDegrees(FieldReader& fields, const std::string& key, float fallbackDegrees, float minimum, float maximum) {
+    const float degrees = fields.number(key, fallbackDegrees);
+    if (degrees < minimum || degrees > maximum) {
+        fields.fail(key, "must be between " + formatNumber(minimum) + " and " + formatNumber(maximum) +
+                             " degrees (got " + formatNumber(degrees) + ")");
+    }
+    return degrees * kRadiansPerDegree;
+}
+
+SceneLight readLight(const json& node, const ParseContext& context) {
+    FieldReader fields(node, "light", context);
+    SceneLight light;
+    const std::string type = fields.string("type", "directional");
+    const glm::vec3 color = fields.vec("color", glm::vec3(1.0f), Range::NonNegative);
+    light.color = color * fields.number("intensity", 1.0f, Range::NonNegative);
+    if (type == "directional") {
+        light.type = LightType::Directional;
+        if (fields.has("elevation") || fields.has("azimuth")) {
+            if (fields.has("direction")) {
+                fields.fail("direction", "give either direction or elevation/azimuth, not both");
+            }
+            const float elevation = readDegrees(fields, "elevation", 45.0f, 0.01f, 90.0f);
+            const float azimuth = readDegrees(fields, "azimuth", 0.0f, -360.0f, 360.0f);
+            // Towards the light is (cos e cos a, sin e, cos e sin a); the light travels the other way.
+            light.direction = -glm::vec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
+                                         std::cos(elevation) * std::sin(azimuth));
+        } else {
+            light.direction = readDirection(fields, "direction", "or elevation and azimuth, in degrees");
+        }
+        light.size = readDegrees(fields, "size", 0.0f, 0.0f, 45.0f);
+    } else if (type == "spot" || type == "point") {
+        light.type = type == "spot" ? LightType::Spot : LightType::Point;
+        light.position = readVector<3>(fields.required("position", "a " + type + " light needs a position"),
+                                       fields.pathOf("position"), context);
+        light.size = fields.number("size", 0.0f, Range::NonNegative);
+        if (type == "spot") {
+            if (fields.has("target")) {
+                if (fields.has("direction")) fields.fail("direction", "give either direction or target, not both");
+                const glm::vec3 toTarget = fields.vec("target", glm::vec3(0.0f)) - light.position;
+                if (!(glm::length(toTarget) > 1e-6f)) fields.fail("target", "target is at the light's position");
+                light.direction = glm::normalize(toTarget);
+            } else {
+                light.direction = readDirection(fields, "direction", "or target");
+            }
+            light.spotOuterAngle = readDegrees(fields, "outerAngle", 30.0f, 0.1f, 89.0f);
+            light.spotInnerAngle = readDegrees(fields, "innerAngle", 0.8f * light.spotOuterAngle / kRadiansPerDegree,
+                                               0.0f, light.spotOuterAngle / kRadiansPerDegree);
+        }
+    } else {
+        fields.fail("type", "unknown light type '" + type + "' (expected directional, spot or point)");
+    }
+    fields.finish("a " + type + " light");
+    return light;
+}
+
+SceneCamera readCamera(const json& node, const ParseContext& context) {
+    FieldReader fields(node, "camera", context);
+    SceneCamera camera;
+    camera.position = fields.vec("position", camera.position);
+    camera.target = fields.vec("target", camera.target);
+    camera.up = fields.vec("up", camera.up);
+    camera.fovY = readDegrees(fields, "fovY", 45.0f, 1.0f, 170.0f);
+    camera.nearPlane = fields.number("near", camera.nearPlane, Range::Positive);
+    camera.farPlane = fields.number("far", camera.farPlane, Range::Positive);
+    if (camera.farPlane <= camera.nearPlane) fields.fail("far", "must be greater than near");
+    const glm::vec3 view = camera.target - camera.position;
+    if (!(glm::length(view) > 1e-6f)) fields.fail("target", "target is at the camera position");
+    if (!(glm::length(glm::cross(view, camera.up)) > 1e-6f * glm::length(view))) {
+        fields.fail("up", "parallel to the viewing direction (or zero)");
+    }
+    fields.finish("the camera");
+    return camera;
+}
+
+json parseJson(const std::string& text, const std::string& source) {
+    try {
+        return json::parse(text);
+    } catch (const json::parse_error& error) {
+        // nlohmann counts bytes up to the offending character; editors want line:column.
+        const size_t end = std::min(text.size(), error.byte > 0 ? error.byte - 1 : 0);
+        size_t line = 1, column = 1;
+        for (size_t i = 0; i < end; ++i) {
+            if (text[i] == '\n') {
+                ++line;
+                column = 1;
+            } else {
+                ++column;
+            }
+        }
+        // Its message starts "[json.exception.parse_error.101] parse error at line 1, column 2: ".
+        std::string detail = error.what();
+        const size_t colon = detail.find(": ", detail.find("parse error"));
+        if (colon != std::string::npos) detail = detail.substr(colon + 2);
+        detail = detail.starts_with("syntax error ") ? detail.substr(13) : ": " + detail;
+        throw SceneError(source + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                         ": JSON syntax error " + detail);
+    }
+}
+
+// "builtin:cube" -> "cube", "scenes/forest.json" -> "forest".
+std::string nameFromSource(const std::string& source) {
+    constexpr std::string_view prefix = "builtin:";
+    if (source.starts_with(prefix)) return source.substr(prefix.size());
+    return std::filesystem::path(source).stem().string();
+}
+
+} // namespace
+
+Scene parseScene(const std::string& jsonText, const std::string& sourceName, const std::filesystem::path& baseDir,
+                 const std::map<std::string, double>& overrides) {
+    SceneBuilder builder;
+    builder.context.source = sourceName;
+    builder.baseDir = baseDir;
+    const json root = parseJson(jsonText, sourceName);
+    if (!root.is_object()) builder.context.fail("", "a scene is one JSON object, got " + describe(root));
+    FieldReader fields(root, "", builder.context);
+
+    Scene& scene = builder.scene;
+    scene.source = sourceName;
+    scene.name = fields.string("name", nameFromSource(sourceName));
+    scene.description = fields.string("description", "");
+    readParameters(fields.find("parameters"), overrides, builder.context);
+    scene.parameters = builder.context.parameters;
+    if (const json* materials = fields.find("materials")) readMaterials(*materials, builder);
+
+    const json& objects = fields.required("objects", "a scene needs at least one object");
+    if (!objects.is_array() || objects.empty()) {
+        fields.fail("objects", "expected a non-empty array of objects, got " + describe(objects));
+    }
+    for (size_t i = 0; i < objects.size(); ++i) readObject(objects[i], elementPath("objects", i), i, builder);
+
+    if (const json* light = fields.find("light")) scene.light = readLight(*light, builder.context);
+    if (const json* camera = fields.find("camera")) scene.camera = readCamera(*camera, builder.context);
+    scene.ambient = fields.vec("ambient", scene.ambient, Range::NonNegative);
+    scene.background = fields.vec("background", scene.background, Range::NonNegative);
+    fields.finish("a scene");
+    return std::move(builder.scene);
+}
+
+Scene loadScene(const std::string& nameOrPath, const std::map<std::string, double>& overrides) {
+    const std::string name = nameFromSource(nameOrPath.starts_with("builtin:") ? nameOrPath : "builtin:" + nameOrPath);
+    for (unsigned i = 0; i < kBuiltinSceneCount; ++i) {
+        if (kBuiltinScenes[i].first == name) {
+            return parseScene(std::string(kBuiltinScenes[i].second), "builtin:" + name,
+                              std::filesystem::current_path(), overrides);
+        }
+    }
+    std::error_code error;
+    std::ifstream file;
+    if (std::filesystem::is_regular_file(nameOrPath, error)) file.open(nameOrPath, std::ios::binary);
+    if (!file.is_open()) {
+        throw SceneError(nameOrPath + ": cannot open scene file (not a built-in scene either; built-in: " +
+                         joined(builtinSceneNames()) + ")");
+    }
+    std::ostringstream text;
+    text << file.rdbuf();
+    std::filesystem::path baseDir = std::filesystem::path(nameOrPath).parent_path();
+    if (baseDir.empty()) baseDir = ".";
+    return parseScene(text.str(), nameOrPath, baseDir, overrides);
+}
+
+std::vector<std::string> builtinSceneNames() {
+    std::vector<std::string> names;
+    for (unsigned i = 0; i < kBuiltinSceneCount; ++i) names.emplace_back(kBuiltinScenes[i].first);
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+const char* defaultSceneName() { return "cube"; }
+
+Bounds Scene::worldBounds(DrawSet set) const {
+    // The eight corners of each mesh's box, moved to world space: loose for rotated meshes, but
+    // cheap with thousands of instances, and never too small for fitting a shadow map.
+    std::vector<Bounds> meshBounds(meshes.size());
+    std::vector<bool> measured(meshes.size(), false);
+    glm::vec3 low{std::numeric_limits<float>::max()};
+    glm::vec3 high{std::numeric_limits<float>::lowest()};
+    bool any = false;
+    for (const SceneObject& object : objects) {
+        if (!inSet(object, set) || object.mesh >= meshes.size() || meshes[object.mesh].vertices.empty()) continue;
+        Bounds& local = meshBounds[object.mesh];
+        if (!measured[object.mesh]) {
+            local = {glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
+            for (const Vertex& vertex : meshes[object.mesh].vertices) {
+                local.min = glm::min(local.min, vertex.position);
+                local.max = glm::max(local.max, vertex.position);
+            }
+            measured[object.mesh] = true;
+        }
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::vec3 point{(corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
+                                  (corner & 4) ? local.max.z : local.min.z};
+            const glm::vec3 world{object.transform * glm::vec4(point, 1.0f)};
+            low = glm::min(low, world);
+            high = glm::max(high, world);
+        }
+        any = true;
+    }
+    if (!any) return {glm::vec3(0.0f), glm::vec3(0.0f)};   // an empty set: a point, not inverted infinities
+    return {low, high};
+}
+
+size_t Scene::triangleCount() const {
+    size_t triangles = 0;
+    for (const SceneObject& object : objects) {
+        if (object.mesh < meshes.size()) triangles += meshes[object.mesh].indices.size() / 3;
+    }
+    return triangles;
+}
+
+bool Scene::inSet(const SceneObject& object, DrawSet set) const {
+    const bool translucent = object.material < materials.size() && materials[object.material].translucent();
+    switch (set) {
+    case DrawSet::All: return true;
+    case DrawSet::Casters: return object.castsShadow;
+    case DrawSet::Receivers: return object.receivesShadow;
+    case DrawSet::OpaqueCasters: return object.castsShadow && !translucent;
+    case DrawSet::TranslucentCasters: return object.castsShadow && translucent;
+    }
+    return false;
+}
+
+} // namespace shadowlab
