@@ -6,69 +6,6 @@
 
 using namespace shadowlab;
 
-namespace {
-
-// Ray/box slab test in the box's object space.
-bool rayHitsBox(glm::vec3 origin, glm::vec3 direction, const glm::mat4& boxToWorld, glm::vec3 boxMin, glm::vec3 boxMax) {
-    const glm::mat4 worldToBox = glm::inverse(boxToWorld);
-    const glm::vec3 o = glm::vec3(worldToBox * glm::vec4(origin, 1.0f));
-    const glm::vec3 d = glm::vec3(worldToBox * glm::vec4(direction, 0.0f));
-    float tNear = 0.0f, tFar = 1e30f;
-    for (int axis = 0; axis < 3; ++axis) {
-        if (std::abs(d[axis]) < 1e-12f) {
-            if (o[axis] < boxMin[axis] || o[axis] > boxMax[axis]) return false;
-            continue;
-        }
-        float t0 = (boxMin[axis] - o[axis]) / d[axis], t1 = (boxMax[axis] - o[axis]) / d[axis];
-        if (t0 > t1) std::swap(t0, t1);
-        tNear = std::max(tNear, t0);
-        tFar = std::min(tFar, t1);
-        if (tNear > tFar) return false;
-    }
-    return true;
-}
-
-struct GroundClassification {
-    std::vector<int> analytic;   // per pixel: -1 not ground, 0 lit, 1 in the box's shadow
-    glm::ivec2 size;
-    // True when a pixel within `band` pixels has the other class (or is not ground).
-    bool nearBoundary(int x, int y, int band) const {
-        const int centre = analytic[size_t(y) * size_t(size.x) + size_t(x)];
-        for (int dy = -band; dy <= band; ++dy)
-            for (int dx = -band; dx <= band; ++dx) {
-                const int nx = x + dx, ny = y + dy;
-                if (nx < 0 || ny < 0 || nx >= size.x || ny >= size.y) continue;
-                if (analytic[size_t(ny) * size_t(size.x) + size_t(nx)] != centre) return true;
-            }
-        return false;
-    }
-};
-
-GroundClassification classifyGround(App& app) {
-    const Scene& scene = app.scene();
-    const SceneObject* cube = nullptr;
-    for (const auto& object : scene.objects)
-        if (object.name == "cube") cube = &object;
-    EXPECT_TRUE(cube) << "the cube scene has an object named 'cube'";
-    glm::vec3 boxMin(1e30f), boxMax(-1e30f);
-    for (const Vertex& v : scene.meshes[cube->mesh].vertices) {
-        boxMin = glm::min(boxMin, v.position);
-        boxMax = glm::max(boxMax, v.position);
-    }
-    const glm::vec3 toLight = -glm::normalize(app.light().direction);
-    const auto positions = app.renderer().readTarget(MainTarget::Position);
-    const auto normals = app.renderer().readTarget(MainTarget::Normal);
-    GroundClassification out{std::vector<int>(positions.size(), -1), app.renderer().size()};
-    for (size_t i = 0; i < positions.size(); ++i) {
-        const bool ground = positions[i].w > 0.5f && std::abs(positions[i].y) < 1e-3f && normals[i].y > 0.99f;
-        if (!ground) continue;
-        out.analytic[i] = rayHitsBox(glm::vec3(positions[i]), toLight, cube->transform, boxMin, boxMax) ? 1 : 0;
-    }
-    return out;
-}
-
-} // namespace
-
 class CubeScene : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -80,7 +17,7 @@ protected:
 
 TEST_F(CubeScene, ShadowMapDarkensTheAnalyticShadowAndNothingElse) {
     const auto visibility = test::renderVisibility(*app_, "shadowmap");
-    const GroundClassification ground = classifyGround(*app_);
+    const test::GroundClassification ground = test::classifyGround(*app_);
     int inside = 0, outside = 0, wrongInside = 0, wrongOutside = 0;
     for (int y = 0; y < ground.size.y; ++y)
         for (int x = 0; x < ground.size.x; ++x) {
@@ -104,7 +41,7 @@ TEST_F(CubeScene, ShadowMapDarkensTheAnalyticShadowAndNothingElse) {
 TEST_F(CubeScene, PlanarAgreesWithShadowMapOnTheGround) {
     const auto shadowMap = test::renderVisibility(*app_, "shadowmap", {"resolution=4096"});
     const auto planar = test::renderVisibility(*app_, "planar");
-    const GroundClassification ground = classifyGround(*app_);
+    const test::GroundClassification ground = test::classifyGround(*app_);
     int groundPixels = 0, disagreements = 0, planarInside = 0, planarWrongInside = 0;
     for (size_t i = 0; i < planar.size(); ++i) {
         if (ground.analytic[i] < 0) continue;

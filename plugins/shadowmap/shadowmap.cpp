@@ -25,9 +25,10 @@ const ParamDesc kParams[] = {
      "shadow-pass time grow with the square.", nullptr},
     {"depth_format", "depth format", ParamType::Enum, 0, 2, 2, "",
      "Precision of the stored depth. 16-bit depth quantises coarsely and needs more bias.", "16|24|32F"},
-    {"constant_bias", "constant bias", ParamType::Float, 0, 64, 2, "units",
-     "glPolygonOffset units: a constant push of stored depths away from the light. Zero shows acne; "
-     "too much detaches shadows from their casters (peter panning).", nullptr},
+    {"constant_bias", "constant bias", ParamType::Float, 0, 200000, 2, "units",
+     "glPolygonOffset units: a constant push of stored depths away from the light, in steps of the depth "
+     "format's smallest difference (2^-24 of the range near depth 1 for 24-bit and 32F). Zero shows acne; "
+     "tens of thousands detach shadows from their casters (peter panning).", nullptr},
     {"slope_bias", "slope-scaled bias", ParamType::Float, 0, 16, 2, "",
      "glPolygonOffset factor: bias growing with the surface slope as seen from the light, where acne is "
      "worst (grazing light).", nullptr},

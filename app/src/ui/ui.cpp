@@ -67,7 +67,9 @@ bool parameterWidget(const ParamSpec& spec, double& value) {
     case ParamType::Float: {
         float f = float(value);
         const std::string format = "%.4g" + (spec.unit.empty() ? "" : " " + spec.unit);
-        if ((changed = ImGui::SliderFloat(label.c_str(), &f, float(spec.minValue), float(spec.maxValue), format.c_str())))
+        const bool wide = spec.maxValue - spec.minValue >= 1000.0;
+        if ((changed = ImGui::SliderFloat(label.c_str(), &f, float(spec.minValue), float(spec.maxValue), format.c_str(),
+                                          wide ? ImGuiSliderFlags_Logarithmic : 0)))
             value = f;
         break;
     }
