@@ -165,6 +165,10 @@ bool App::presentView(const std::string& technique, const ViewSelection& view, G
     case ViewSelection::Kind::Visibility:
         renderer_->present(PresentMode::Visibility, renderer_->target(MainTarget::Visibility), fbo, size);
         return true;
+    case ViewSelection::Kind::ErrorHeatmap:
+        // Computed on the CPU by a measurement, already in the display texture.
+        if (!toDisplay) renderer_->present(PresentMode::Color, renderer_->displayTexture(), fbo, size);
+        return true;
     case ViewSelection::Kind::DebugImage: {
         LoadedTechnique* loaded = techniques_->get(technique, error);
         if (!loaded) return false;
@@ -315,6 +319,9 @@ int App::runInteractive(const std::string& initialTechnique, int smokeFrames, co
             const int perTechnique = std::max(1, smokeFrames / int(all.size()));
             state.technique = all[size_t(std::min(frame / perTechnique, int(all.size()) - 1))].id;
             state.view.kind = (frame / 7) % 2 ? ViewSelection::Kind::Visibility : ViewSelection::Kind::Lit;
+            // Once, the accuracy measurement and its heatmap view, as the button does.
+            if (frame == smokeFrames / 2) state.measureRequested = true;
+            if (frame > smokeFrames / 2 && frame < smokeFrames / 2 + 5) state.view.kind = ViewSelection::Kind::ErrorHeatmap;
         }
 
         const glm::ivec2 fb = backend_->framebufferSize();
@@ -323,6 +330,14 @@ int App::runInteractive(const std::string& initialTechnique, int smokeFrames, co
             if (!renderer_->resize(fb, state.msaaSamples, error)) logError(error);
             if (!renderFrame(state.technique, error)) {
                 state.frameError = error;
+            } else if (state.view.kind == ViewSelection::Kind::ErrorHeatmap) {
+                state.frameError.clear();
+                if (state.heatmap.width == renderer_->size().x && state.heatmap.height == renderer_->size().y) {
+                    renderer_->uploadDisplay(state.heatmap);
+                    renderer_->present(PresentMode::Color, renderer_->displayTexture(), 0, fb);
+                } else {
+                    state.view = {};   // the window changed size since the measurement
+                }
             } else {
                 state.frameError.clear();
                 if (!presentView(state.technique, state.view, 0, fb, error)) {

@@ -36,7 +36,7 @@ struct AppOptions {
 
 // Which image a frame shows: the lit scene, the shadow term, or one of the technique's debug images.
 struct ViewSelection {
-    enum class Kind { Lit, Visibility, DebugImage } kind = Kind::Lit;
+    enum class Kind { Lit, Visibility, DebugImage, ErrorHeatmap } kind = Kind::Lit;
     std::string debugImage;
 };
 

@@ -80,6 +80,38 @@ bool parameterWidget(const ParamSpec& spec, double& value) {
     return changed;
 }
 
+// Error against GPU milliseconds for every measurement of this session: the live version of the
+// speed-versus-accuracy chart. Lower left is better.
+void drawSpeedAccuracyPlot(const std::vector<UiState::MeasuredPoint>& points) {
+    if (points.empty()) return;
+    const ImVec2 size(ImGui::GetContentRegionAvail().x, 160.0f);
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(25, 25, 30, 255));
+    double maxMs = 1e-6, maxError = 1e-6;
+    for (const auto& p : points) {
+        maxMs = std::max(maxMs, p.gpuMs);
+        maxError = std::max(maxError, p.mae);
+    }
+    const float margin = 8.0f;
+    int hovered = -1;
+    for (size_t i = 0; i < points.size(); ++i) {
+        const float x = origin.x + margin + float(points[i].gpuMs / maxMs) * (size.x - 2 * margin);
+        const float y = origin.y + size.y - margin - float(points[i].mae / maxError) * (size.y - 2 * margin);
+        draw->AddCircleFilled(ImVec2(x, y), 4.0f, IM_COL32(90, 200, 255, 255));
+        const ImVec2 mouse = ImGui::GetIO().MousePos;
+        if (std::abs(mouse.x - x) < 5 && std::abs(mouse.y - y) < 5) hovered = int(i);
+    }
+    ImGui::Dummy(size);
+    ImGui::TextDisabled("x: GPU ms per frame (max %.3f)   y: MAE (max %.4f)", maxMs, maxError);
+    if (hovered >= 0) {
+        ImGui::BeginTooltip();
+        ImGui::Text("%s\n%.3f ms, MAE %.4f", points[size_t(hovered)].label.c_str(), points[size_t(hovered)].gpuMs,
+                    points[size_t(hovered)].mae);
+        ImGui::EndTooltip();
+    }
+}
+
 } // namespace
 
 std::string UiState::nextScreenshotName() {
@@ -188,9 +220,10 @@ void Ui::draw(App& app, UiState& state, float frameSeconds) {
     }
 
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
-        std::string current = state.view.kind == ViewSelection::Kind::Lit          ? "lit"
-                              : state.view.kind == ViewSelection::Kind::Visibility ? "visibility (shadow term)"
-                                                                                   : state.view.debugImage;
+        std::string current = state.view.kind == ViewSelection::Kind::Lit            ? "lit"
+                              : state.view.kind == ViewSelection::Kind::Visibility   ? "visibility (shadow term)"
+                              : state.view.kind == ViewSelection::Kind::ErrorHeatmap ? "error heatmap (last measurement)"
+                                                                                     : state.view.debugImage;
         if (ImGui::BeginCombo("image", current.c_str())) {
             if (ImGui::Selectable("lit")) state.view = {};
             if (ImGui::Selectable("visibility (shadow term)")) state.view = {ViewSelection::Kind::Visibility, ""};
@@ -240,6 +273,49 @@ void Ui::draw(App& app, UiState& state, float frameSeconds) {
                 ImGui::TextDisabled("  %s: %.2f MiB", allocation.label.c_str(), double(allocation.bytes) / (1024.0 * 1024.0));
             for (const auto& [name, value] : loaded->host().statistics()) ImGui::Text("%s: %.4g", name.c_str(), value);
         }
+    }
+
+    if (ImGui::CollapsingHeader("Accuracy", ImGuiTreeNodeFlags_DefaultOpen)) {
+        const char* modes[] = {"hard reference", "soft reference"};
+        ImGui::Combo("against", &state.referenceMode, modes, 2);
+        if (state.referenceMode == 1) ImGui::SliderInt("rays per pixel", &state.referenceSamples, 4, 256);
+        helpMarker("Traces the ray-traced reference (Embree, CPU) from the G-buffer of the frame on screen and "
+                   "compares the technique's shadow term per pixel. The heatmap shows false shadow (acne, "
+                   "over-darkening) in magenta and false light (leaks, peter panning) in green.");
+        if (ImGui::Button("Measure accuracy")) state.measureRequested = true;
+        if (state.measureRequested) {
+            state.measureRequested = false;
+            ReferenceOptions options;
+            options.mode = state.referenceMode == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
+            options.samplesPerPixel = state.referenceSamples;
+            Evaluation evaluation;
+            std::string error;
+            if (app.evaluate(options, evaluation, error)) {
+                const AccuracyMetrics& m = evaluation.metrics;
+                char text[512];
+                std::snprintf(text, sizeof(text),
+                              "MAE %.4f   RMSE %.4f\nfalse shadow %.3f%%   false light %.3f%%\n"
+                              "MAE in penumbra %.4f, elsewhere %.4f\ncompared %.1f%% of pixels (traced in %.2f s)",
+                              m.mae, m.rmse, 100.0 * m.falseShadowRate, 100.0 * m.falseLightRate, m.maePenumbra,
+                              m.maeOutsidePenumbra, 100.0 * m.comparedFraction, evaluation.traceSeconds);
+                state.accuracyText = text;
+                state.heatmap = evaluation.heatmap();
+                state.view = {ViewSelection::Kind::ErrorHeatmap, ""};
+                const auto frame = app.timer().latest().find("frame");
+                const TechniqueInfo* measuredInfo = app.techniques().find(state.technique);
+                std::string label = measuredInfo ? measuredInfo->id : state.technique;
+                if (measuredInfo)
+                    for (size_t i = 0; i < measuredInfo->params.size(); ++i)
+                        label += " " + measuredInfo->params[i].id + "=" +
+                                 formatParamValue(measuredInfo->params[i], app.params().values(*measuredInfo)[i]);
+                state.measured.push_back({label, frame == app.timer().latest().end() ? 0.0 : frame->second, m.mae});
+            } else {
+                state.accuracyText = error;
+            }
+        }
+        if (!state.accuracyText.empty()) ImGui::TextUnformatted(state.accuracyText.c_str());
+        if (state.heatmap.width > 0 && ImGui::Button("Show error heatmap")) state.view = {ViewSelection::Kind::ErrorHeatmap, ""};
+        drawSpeedAccuracyPlot(state.measured);
     }
 
     if (ImGui::CollapsingHeader("Hot reload and log")) {

@@ -18,9 +18,23 @@ struct UiState {
     float scroll = 0.0f;              // mouse wheel since last frame
     bool screenshotRequested = false;
     bool quitRequested = false;
+    bool measureRequested = false;  // measure accuracy on this frame (button or smoke test)
     std::string frameError;
     int screenshotCounter = 0;
     std::string nextScreenshotName();
+
+    // Accuracy measured on demand ("Measure accuracy"), and every measurement of this session for
+    // the error-against-milliseconds plot.
+    int referenceMode = 0;            // 0 hard, 1 soft
+    int referenceSamples = 64;
+    std::string accuracyText;
+    Image heatmap;                    // shown by the ErrorHeatmap view while the size matches
+    struct MeasuredPoint {
+        std::string label;
+        double gpuMs;
+        double mae;
+    };
+    std::vector<MeasuredPoint> measured;
 };
 
 class Ui {
