@@ -136,7 +136,7 @@ bool App::applyAssignments(const std::vector<std::string>& assignments, const st
 bool App::renderFrame(const std::string& technique, std::string& error) {
     const auto cpuStart = std::chrono::steady_clock::now();
     shaders_->pollForChanges();
-    techniques_->pollForChanges(params_);
+    lastReloaded_ = techniques_->pollForChanges(params_);
     LoadedTechnique* loaded = techniques_->get(technique, error);
     if (!loaded) return false;
     const std::vector<double>& values = params_.values(loaded->info());
@@ -209,6 +209,64 @@ bool App::measure(const std::string& technique, int warmupFrames, int frames, Me
     LoadedTechnique* loaded = techniques_->get(technique, error);
     out.gpuBytes = loaded ? loaded->host().gpuBytes() : 0;
     out.frames = frames;
+    return true;
+}
+
+bool App::setRenderSize(glm::ivec2 size, std::string& error) {
+    return renderer_->resize(size, renderer_->msaaSamples(), error);
+}
+
+bool App::measureDepthFloor(int resolution, int warmupFrames, int frames, Measurement& out, std::string& error) {
+    // Created for this measurement only (not in a frame loop): a depth texture, its framebuffer
+    // and the shared depth-only program.
+    GlTexture depth;
+    GlFramebuffer framebuffer;
+    GLuint name = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &name);
+    depth.reset(name);
+    glTextureStorage2D(name, 1, GL_DEPTH_COMPONENT32F, resolution, resolution);
+    glCreateFramebuffers(1, &name);
+    framebuffer.reset(name);
+    glNamedFramebufferTexture(name, GL_DEPTH_ATTACHMENT, depth.get(), 0);
+    glNamedFramebufferDrawBuffer(name, GL_NONE);
+    if (glCheckNamedFramebufferStatus(name, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        error = "depth floor framebuffer incomplete";
+        return false;
+    }
+    ShaderRequest request;
+    request.vertexFile = "depth_only.vert";
+    request.searchPaths = {sharedShaderDir()};
+    request.label = "depth floor";
+    const ProgramId program = shaders_->build(request, error);
+    if (!program) return false;
+    std::vector<double> cpu;
+    for (int i = 0; i < warmupFrames + frames; ++i) {
+        if (i == warmupFrames) {
+            timer_->drain();
+            timer_->clearHistory();
+        }
+        timer_->beginFrame();
+        renderer_->setView(camera_.info(renderer_->size()), light_);
+        timer_->begin("depth floor");
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+        glViewport(0, 0, resolution, resolution);
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_CULL_FACE);
+        glDisable(GL_POLYGON_OFFSET_FILL);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glUseProgram(shaders_->program(program));
+        glUniformMatrix4fv(16, 1, GL_FALSE, &renderer_->defaultLightSpace().viewProjection[0][0]);
+        renderer_->drawScene(DrawSet::OpaqueCasters, shaders_->program(program));
+        timer_->end();
+        timer_->endFrame();
+    }
+    timer_->drain();
+    out = {};
+    for (const auto& [pass, samples] : timer_->history()) out.gpuMs[pass] = summarize(samples);
+    out.frames = frames;
+    shaders_->release(program);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return true;
 }
 

@@ -85,6 +85,13 @@ public:
     // Interactive window; smokeFrames > 0 runs that many frames cycling techniques, then saves
     // `screenshot` (if given) and returns.
     int runInteractive(const std::string& technique, int smokeFrames, const std::string& screenshot);
+    // Headless: a new size for the main targets (the camera's aspect follows).
+    bool setRenderSize(glm::ivec2 size, std::string& error);
+    // Ids hot-reloaded during the last renderFrame() (for reload-latency measurement).
+    const std::vector<std::string>& lastReloaded() const { return lastReloaded_; }
+    // The floor a shadow pass is measured against: a bare depth-only pass of the same casters,
+    // from the host's fitted light space, at resolution x resolution (no bias, no culling).
+    bool measureDepthFloor(int resolution, int warmupFrames, int frames, Measurement& out, std::string& error);
     // Compares the last frame's shadow term with the reference traced from its own G-buffer.
     bool evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error);
     // Traces the current scene and light for `gbuffer` (loads the Embree module on first use).
@@ -118,6 +125,7 @@ private:
     LightInfo light_{};
     CameraController camera_;
     double lastCpuFrameMs_ = 0.0;
+    std::vector<std::string> lastReloaded_;
     GroundTruthPtr groundTruth_;
     uint64_t sceneGeneration_ = 0;         // bumped when the scene changes
     uint64_t groundTruthGeneration_ = ~0ull;

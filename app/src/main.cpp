@@ -1,12 +1,13 @@
 // shadowlab: command line. Each command sets up an App and runs one job:
-//   shadowlab                 the main job: the window if a display exists, else renders every
-//                             technique on the default scene to out/ and prints its timings
+//   shadowlab                 the main job: the window if a display exists, else the report
+//                             (every technique rendered to out/images, timings table, charts)
 //   shadowlab list [--json]   techniques and their parameters (no GL needed)
 //   shadowlab render ...      one frame headless to a PNG
 // Exit codes: 0 success, 1 failure of the machine (no GL, ...), 2 bad input (with a message).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -15,6 +16,8 @@
 
 #include "util/strings.h"
 #include "app.h"
+#include "bench/bench.h"
+#include "bench/report.h"
 #include "util/log.h"
 #include "util/paths.h"
 
@@ -289,38 +292,73 @@ int commandEval(const CommonOptions& common, const std::string& reference, int s
     return 0;
 }
 
-// The main job without a display: every technique on the default scene, a PNG each and a table.
-int commandShowcase(const CommonOptions& common, const std::string& outDir) {
+// Loads a spec file holding one spec object or an array of them (run one after the other).
+bool loadSpecs(const std::filesystem::path& file, std::vector<BenchSpec>& specs, std::string& error) {
+    std::ifstream in(file);
+    if (!in) {
+        error = file.string() + ": cannot open benchmark spec";
+        return false;
+    }
+    nlohmann::json json;
+    try {
+        json = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::parse_error& e) {
+        error = file.string() + ": JSON syntax error: " + e.what();
+        return false;
+    }
+    if (!json.is_array()) json = nlohmann::json::array({json});
+    for (size_t i = 0; i < json.size(); ++i) {
+        BenchSpec spec;
+        if (!parseBenchSpec(json[i], spec, error)) {
+            error = file.string() + ": spec " + std::to_string(i) + ": " + error;
+            return false;
+        }
+        specs.push_back(spec);
+    }
+    return true;
+}
+
+void printRowLine(const nlohmann::json& row) {
+    std::string params;
+    for (const auto& [key, value] : row.items())
+        if (key.rfind("param.", 0) == 0 || key.rfind("scene.", 0) == 0)
+            params += " " + key.substr(key.find('.') + 1) + "=" + (value.is_string() ? value.get<std::string>() : value.dump());
+    std::printf("%-8s %-14s %5dx%-5d GPU %8.3f ms  technique %8.3f ms  %7.2f MiB", row.value("scene", "").c_str(),
+                row.value("technique", "").c_str(), row.value("width", 0), row.value("height", 0),
+                row.value("gpu_frame_ms", 0.0), row.value("gpu_technique_ms", 0.0),
+                double(row.value("gpu_bytes", size_t(0))) / 1048576.0);
+    if (row.contains("hard_mae")) std::printf("  MAE hard %.4f", row["hard_mae"].get<double>());
+    if (row.contains("soft_mae")) std::printf("  MAE soft %.4f", row["soft_mae"].get<double>());
+    std::printf(" %s\n", params.c_str());
+    std::fflush(stdout);
+}
+
+int commandBench(const CommonOptions& common, std::vector<BenchSpec> specs, const std::string& out) {
     App app;
     if (int code = startApp(app, common, false)) return code;
-    std::printf("scene %s (%zu triangles), %dx%d, %s\n", app.scene().name.c_str(), app.scene().triangleCount(),
-                app.renderer().size().x, app.renderer().size().y, glRendererString().c_str());
-    std::printf("%-16s %12s %12s %12s %12s %10s  %s\n", "technique", "GPU frame ms", "shadow ms", "main ms",
-                "host CPU ms", "GPU MiB", "image");
-    int failures = 0;
-    for (const auto& info : app.techniques().techniques()) {
-        std::string error;
-        Measurement m;
-        if (!app.applyAssignments(common.sets, info.id, error) || !app.measure(info.id, 5, 30, m, error) ||
-            !app.presentView(info.id, {}, ~0u, {}, error)) {
-            logError(info.id + ": " + error);
-            ++failures;
-            continue;
-        }
-        const std::string file = outDir + "/" + info.id + ".png";
-        if (!writePng(file, app.readDisplay(), error)) {
-            logError(error);
-            ++failures;
-            continue;
-        }
-        double shadowMs = 0.0;
-        for (const auto& [pass, summary] : m.gpuMs)
-            if (pass != "frame" && pass != "main") shadowMs += summary.median;
-        std::printf("%-16s %12.3f %12.3f %12.3f %12.3f %10.2f  %s\n", info.id.c_str(), m.gpuMs["frame"].median, shadowMs,
-                    m.gpuMs["main"].median, m.cpuMs.median, double(m.gpuBytes) / (1024.0 * 1024.0), file.c_str());
-    }
-    std::printf("medians of 30 frames after 5 warm-up frames; on llvmpipe (CPU) timings show relative cost only\n");
-    return failures ? kExitFailure : 0;
+    std::vector<nlohmann::json> rows;
+    std::string error;
+    for (const BenchSpec& spec : specs)
+        if (!runBench(app, spec, rows, error, printRowLine)) return fail(error, kExitBadInput);
+    if (!writeBenchResults(out, rows, error)) return fail(error, kExitFailure);
+    logInfo("wrote " + std::to_string(rows.size()) + " rows to " + out);
+    return 0;
+}
+
+// The report: the default sweep measured, charted and written up into `outDir`. Without a display
+// this is the main job.
+int commandReport(const CommonOptions& common, const std::string& specFile, const std::string& outDir) {
+    App app;
+    if (int code = startApp(app, common, false)) return code;
+    const bool software = glRendererString().find("llvmpipe") != std::string::npos;
+    const std::filesystem::path spec = specFile.empty() ? defaultReportSpec(software) : std::filesystem::path(specFile);
+    std::vector<BenchSpec> specs;
+    std::string error;
+    if (!loadSpecs(spec, specs, error)) return fail(error, kExitBadInput);
+    std::printf("shadowlab report: sweep %s on %s\n", spec.string().c_str(), glRendererString().c_str());
+    const int code = runReport(app, specs, outDir, error);
+    if (code) return fail(error, code);
+    return 0;
 }
 
 } // namespace
@@ -335,7 +373,7 @@ int main(int argc, char** argv) {
     std::string screenshot, outDir = "out";
     cli.add_option("--smoke-test", smokeFrames, "window: draw N frames cycling every technique, then exit");
     cli.add_option("--screenshot", screenshot, "window: save a screenshot at the end of the smoke test");
-    cli.add_option("--out-dir", outDir, "headless main job: folder for the PNG files (default out)");
+    cli.add_option("--out-dir", outDir, "headless main job: folder of the report (default out)");
 
     auto* list = cli.add_subcommand("list", "list techniques and their parameters");
     bool listJson = false;
@@ -352,6 +390,28 @@ int main(int argc, char** argv) {
     int referenceSamples = 64;
     render->add_option("--reference", reference, "--view error/reference: hard | soft (default hard)");
     render->add_option("--samples", referenceSamples, "soft reference: rays per pixel (default 64)")->check(CLI::Range(1, 4096));
+
+    auto* bench = cli.add_subcommand("bench", "measure sweeps of techniques, scenes and parameters into CSV or JSON");
+    BenchSpec benchSpec;
+    std::string benchTechniques, benchScenes, benchSpecFile, benchOut;
+    std::vector<std::string> benchSweeps, benchSizes;
+    bench->add_option("--techniques", benchTechniques, "comma-separated technique ids (default: all but the reference)");
+    bench->add_option("--scenes", benchScenes, "comma-separated scenes (default: cube)");
+    bench->add_option("--sweep", benchSweeps, "key=v1,v2,...: technique parameter, scene.<param> or light.size (repeatable)");
+    bench->add_option("--size", benchSizes, "output size WxH (repeatable; default 1280x720)");
+    bench->add_option("--frames", benchSpec.frames, "timed frames per combination (default 200)")->check(CLI::Range(1, 100000));
+    bench->add_option("--warmup", benchSpec.warmupFrames, "warm-up frames (default 20)")->check(CLI::Range(0, 100000));
+    bench->add_flag("--accuracy", benchSpec.accuracy, "add the ground-truth metrics of each combination's last frame");
+    bench->add_option("--reference", benchSpec.reference, "with --accuracy: hard | soft | both | auto");
+    bench->add_option("--samples", benchSpec.referenceSamples, "soft reference rays per pixel (default 64)");
+    bench->add_flag("--depth-floor", benchSpec.depthFloor, "add a bare depth-only pass per shadow-map resolution");
+    bench->add_option("--spec", benchSpecFile, "JSON spec (one object or an array); command-line lists are ignored then");
+    bench->add_option("--out,-o", benchOut, "results file: .csv or .json")->required();
+
+    auto* report = cli.add_subcommand("report", "run the default sweep and write charts, images and a Markdown page");
+    std::string reportSpec, reportOut = "out";
+    report->add_option("--spec", reportSpec, "benchmark spec (default assets/bench/default.json; quick.json on llvmpipe)");
+    report->add_option("--out,-o", reportOut, "output folder (default out)");
 
     auto* eval = cli.add_subcommand("eval", "accuracy against the ray-traced reference, with the frame timing of the same run");
     bool evalJson = false;
@@ -370,11 +430,41 @@ int main(int argc, char** argv) {
 
     if (*list) return commandList(listJson);
     if (*render) return commandRender(common, renderOut, renderView, renderFrames, reference, referenceSamples);
+    if (*bench) {
+        std::vector<BenchSpec> specs;
+        std::string error;
+        if (!benchSpecFile.empty()) {
+            if (!loadSpecs(benchSpecFile, specs, error)) return fail(error, kExitBadInput);
+        } else {
+            auto split = [](const std::string& text) {
+                std::vector<std::string> items;
+                std::stringstream in(text);
+                std::string item;
+                while (std::getline(in, item, ','))
+                    if (!item.empty()) items.push_back(item);
+                return items;
+            };
+            benchSpec.techniques = split(benchTechniques);
+            if (!benchScenes.empty()) benchSpec.scenes = split(benchScenes);
+            for (const auto& sweep : benchSweeps)
+                if (!addSweep(benchSpec, sweep, error)) return fail(error, kExitBadInput);
+            if (!benchSizes.empty()) benchSpec.sizes.clear();
+            for (const auto& text : benchSizes) {
+                glm::ivec2 size;
+                if (!parseSize(text, size, error)) return fail(error, kExitBadInput);
+                benchSpec.sizes.push_back(size);
+            }
+            benchSpec.base = common.sets;
+            specs.push_back(benchSpec);
+        }
+        return commandBench(common, specs, benchOut);
+    }
+    if (*report) return commandReport(common, reportSpec, reportOut);
     if (*eval) return commandEval(common, reference, referenceSamples, evalFrames, evalJson);
 
     // The main job.
     const bool windowed = common.backend.empty() ? defaultBackend() == BackendKind::Glfw : common.backend == "glfw";
-    if (!windowed) return commandShowcase(common, outDir);
+    if (!windowed) return commandReport(common, "", outDir);
     App app;
     if (int code = startApp(app, common, true)) return code;
     std::string error;
