@@ -22,8 +22,9 @@ int GpuTimer::nextQuery() {
 void GpuTimer::beginFrame() {
     current_ = (current_ + 1) % kFramesInFlight;
     FrameSlot& slot = slots_[size_t(current_)];
-    if (slot.pending) collect(slot, false);
-    // A slot whose results are still not ready is dropped rather than waited for.
+    // Results of the frame kFramesInFlight back. Normally ready; if the GPU is that far behind,
+    // waiting here is what the driver's frame throttling would do anyway, and no frame is lost.
+    if (slot.pending) collect(slot, true);
     slot.scopes.clear();
     slot.used = 0;
     slot.pending = false;
