@@ -6,6 +6,7 @@
 // Exit codes: 0 success, 1 failure of the machine (no GL, ...), 2 bad input (with a message).
 #include <algorithm>
 #include <cmath>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -345,6 +346,43 @@ int commandBench(const CommonOptions& common, std::vector<BenchSpec> specs, cons
     return 0;
 }
 
+// Hot-reload latency: the plugin library is rewritten on disk (as a rebuild does) and the time to
+// the end of the first frame drawn with the new library is measured, `trials` times.
+int commandReloadLatency(const CommonOptions& common, int trials) {
+    App app;
+    if (int code = startApp(app, common, false)) return code;
+    const std::string technique = common.technique.empty() ? "shadowmap" : common.technique;
+    const TechniqueInfo* info = app.techniques().find(technique);
+    if (!info || info->library.empty()) return fail("--technique '" + technique + "': no plugin library", kExitBadInput);
+    std::string error;
+    std::ifstream in(info->library, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<double> latencies;
+    for (int trial = 0; trial < trials; ++trial) {
+        for (int i = 0; i < 5; ++i)
+            if (!app.renderFrame(technique, error)) return fail(error, kExitFailure);
+        glFinish();
+        {
+            std::ofstream out(info->library, std::ios::binary | std::ios::trunc);
+            out.write(bytes.data(), std::streamsize(bytes.size()));
+        }
+        const auto start = std::chrono::steady_clock::now();
+        bool reloaded = false;
+        while (!reloaded && std::chrono::steady_clock::now() - start < std::chrono::seconds(5)) {
+            if (!app.renderFrame(technique, error)) return fail(error, kExitFailure);
+            reloaded = std::find(app.lastReloaded().begin(), app.lastReloaded().end(), technique) != app.lastReloaded().end();
+        }
+        glFinish();   // the frame drawn with the new library has completed
+        if (!reloaded) return fail("the rewritten library was not reloaded within 5 s", kExitFailure);
+        latencies.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    const TimingSummary s = summarize(latencies);
+    std::printf("hot reload of %s: median %.1f ms, p5 %.1f, p95 %.1f over %d trials (file written -> first frame drawn "
+                "with it; polling every 50 ms and waiting for two equal polls)\n",
+                technique.c_str(), s.median, s.p5, s.p95, trials);
+    return 0;
+}
+
 // The report: the default sweep measured, charted and written up into `outDir`. Without a display
 // this is the main job.
 int commandReport(const CommonOptions& common, const std::string& specFile, const std::string& outDir) {
@@ -413,6 +451,10 @@ int main(int argc, char** argv) {
     report->add_option("--spec", reportSpec, "benchmark spec (default assets/bench/default.json; quick.json on llvmpipe)");
     report->add_option("--out,-o", reportOut, "output folder (default out)");
 
+    auto* reloadLatency = cli.add_subcommand("reload-latency", "measure hot-reload latency of a plugin library");
+    int reloadTrials = 10;
+    reloadLatency->add_option("--trials", reloadTrials, "number of reloads (default 10)")->check(CLI::Range(1, 1000));
+
     auto* eval = cli.add_subcommand("eval", "accuracy against the ray-traced reference, with the frame timing of the same run");
     bool evalJson = false;
     int evalFrames = 50;
@@ -459,6 +501,7 @@ int main(int argc, char** argv) {
         }
         return commandBench(common, specs, benchOut);
     }
+    if (*reloadLatency) return commandReloadLatency(common, reloadTrials);
     if (*report) return commandReport(common, reportSpec, reportOut);
     if (*eval) return commandEval(common, reference, referenceSamples, evalFrames, evalJson);
 

@@ -130,7 +130,7 @@ public:
     // Hot reload: a library rebuilt on disk replaces the loaded one in place (values kept by
     // parameter id); a failed load or init keeps the old one. Returns ids reloaded this call.
     std::vector<std::string> pollForChanges(ParamStore& params,
-                                            std::chrono::milliseconds interval = std::chrono::milliseconds(100));
+                                            std::chrono::milliseconds interval = std::chrono::milliseconds(50));
     const std::string& lastReloadError() const { return lastReloadError_; }
     void unloadAll() { loaded_.clear(); }
     using BuiltinFactory = std::function<std::unique_ptr<IShadowTechnique>()>;
