@@ -2,12 +2,12 @@
 // map and at which depth, and the Chebyshev bound with its light-bleeding reduction.
 //
 // Depth convention: every moment map stores a depth that is LINEAR in world space along the light's
-// viewing axis, mapped to [0, 1] over the depth range of the shadow casters
-// (d = dot(uLightDepthPlane, vec4(p, 1)), see plugins/vsm/moment_light_space.h). Linear depth keeps
-// the statistics of a filter window meaningful for perspective (spot) lights too, and fitting the
-// casters, not the whole scene, spends the precision of the moments (and the exponent range of
-// ESM/EVSM) where occluders are. Receivers outside that range are clamped: nothing lies in front
-// of depth 0 or behind depth 1 that could occlude them, so the clamped test gives the same answer.
+// viewing axis, mapped to [0, 1] over the depth range of the shadow casters and some room behind
+// them (d = dot(uLightDepthPlane, vec4(p, 1)), see plugins/vsm/moment_light_space.h). Linear depth
+// keeps the statistics of a filter window meaningful for perspective (spot) lights too, and fitting
+// the casters, not the whole scene, spends the precision of the moments (and the exponent range of
+// ESM/EVSM) where occluders are. Receivers outside that range are clamped: no occluder lies in
+// front of depth 0 or behind depth 1, so the clamped test gives the same answer.
 #ifndef SHADOWLAB_MOMENT_SHADOWS_GLSL
 #define SHADOWLAB_MOMENT_SHADOWS_GLSL
 

@@ -1,0 +1,67 @@
+// Exponential shadow maps (Annen, Mertens, Seidel, Bekaert, Kautz 2008, "Exponential Shadow
+// Maps"). The light stores exp(c d) of its depth d, a single "exponential moment" that can be
+// blurred and mipmapped like VSM's moments (one 32-bit channel instead of two); the shadow test
+// exp(-c d_r) E[exp(c d)], clamped to [0, 1], approximates the filtered step function, exactly in
+// the limit of large c where the receiver lies behind every occluder of the window.
+// Known artefacts: light leaks where receiver and occluder are close in depth (contact shadows
+// fade in, exp(-c (d_r - d)) is far from 0 when d_r - d < a few 1/c); a larger c helps until
+// 32-bit floats overflow (c <= 85 here); c is relative to the map's depth range, so the leaks grow
+// with the extent of the casters (a shadow-casting ground plane makes it the whole scene). Where the filter window also sees lit texels, their
+// large exp(c d) weights dominate and the penumbra shrinks towards the shadow (one-sided
+// filtering); receivers inside the window's depth range (non-planar receivers) break the
+// assumption d_r >= d and are lit by the clamp.
+#include <glad/gl.h>
+#include <shadowlab/technique.h>
+
+#include "../vsm/moment_map.h"   // header-only helper shared with vsm, evsm and msm
+
+namespace {
+
+using namespace shadowlab;
+using namespace shadowlab::moments;
+
+enum Param : uint32_t { kExponent = kCommonParamCount, kParamCount };
+
+const ParamDesc kParams[] = {
+    SHADOWLAB_MOMENT_MAP_PARAMS(1024),
+    {"exponent", "exponent c", ParamType::Float, 1, 85, 80, "",
+     "Sharpness c of exp(c d), depth d normalised to [0, 1] over the casters (Annen et al use about 80 for "
+     "32-bit floats). Small c leaks light wherever receiver and occluder are close (contact shadows fade, "
+     "penumbrae widen into the shadow); the maximum is where exp(c) nears the 32-bit float limit.", nullptr},
+};
+
+const TechniqueDesc kDescriptor{
+    "esm",
+    "Exponential shadow maps",
+    "filtered",
+    "Stores exp(c d) of the light depth instead of the depth: the shadow test becomes a product, "
+    "exp(-c d_receiver) times the filtered map, so the map can be blurred and mipmapped like a texture "
+    "with one channel. Cheaper than VSM and free of its overlap light bleeding, but shadows leak light "
+    "where receiver and occluder nearly touch (contact shadows fade in; raise c) and the clamp makes "
+    "penumbrae one-sided.",
+    "esm.glsl",
+    kParams,
+    kParamCount,
+};
+
+class ExponentialShadowMaps final : public FilteredMomentTechnique {
+public:
+    ExponentialShadowMaps() : FilteredMomentTechnique("esm_moments.frag") {}
+
+    void renderShadows(const ParamValues& params) override {
+        MomentMapConfig config = readCommonParams(params);
+        config.format = GL_R32F;
+        config.clearValue = glm::vec4(1.0f);   // exp(c (1 - 1)): depth 1, nothing occludes
+        map_.render(config, [&] { glUniform1f(21, params.asFloat(kExponent)); });
+    }
+
+    void bindMainPass(uint32_t program, const ParamValues& params) override {
+        (void)program;
+        map_.bindMainPass();
+        glUniform1f(21, params.asFloat(kExponent));
+    }
+};
+
+} // namespace
+
+SHADOWLAB_PLUGIN(ExponentialShadowMaps, kDescriptor)
