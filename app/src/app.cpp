@@ -134,15 +134,20 @@ bool App::applyAssignments(const std::vector<std::string>& assignments, const st
 }
 
 bool App::renderFrame(const std::string& technique, std::string& error) {
+    // May wait for the GPU to finish the frame 4 back (when it is the bottleneck); that wait is
+    // not host work, so the CPU clock starts after it.
+    timer_->beginFrame();
     const auto cpuStart = std::chrono::steady_clock::now();
     shaders_->pollForChanges();
     lastReloaded_ = techniques_->pollForChanges(params_);
     LoadedTechnique* loaded = techniques_->get(technique, error);
-    if (!loaded) return false;
+    if (!loaded) {
+        timer_->endFrame();
+        return false;
+    }
     const std::vector<double>& values = params_.values(loaded->info());
     const ParamValues params(values.data(), uint32_t(values.size()));
 
-    timer_->beginFrame();
     renderer_->setView(camera_.info(renderer_->size()), light_);
     loaded->technique().renderShadows(params);
     timer_->begin("main");
