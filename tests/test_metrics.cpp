@@ -155,3 +155,19 @@ TEST(Metrics, JsonCarriesEveryField) {
     EXPECT_EQ(json["comparedPixels"].get<size_t>(), 7u);
     EXPECT_EQ(json["penumbraPixels"].get<size_t>(), 4u);
 }
+
+TEST(Metrics, NoiseEnergySeparatesNoiseFromSmoothError) {
+    const int w = 16, h = 16;
+    const std::vector<glm::vec3> reference(size_t(w * h), glm::vec3(0.5f));
+    const std::vector<uint8_t> mask(size_t(w * h), 1);
+    // A constant offset (a smooth bias) has no high-frequency part.
+    const std::vector<glm::vec3> offset(size_t(w * h), glm::vec3(0.6f));
+    EXPECT_NEAR(compareVisibility(offset, reference, mask, w, h).noiseEnergy, 0.0, 1e-9);
+    // A checkerboard of +-0.1 is all high frequency: |e - mean(neighbours)| = 0.2 everywhere.
+    std::vector<glm::vec3> checker(size_t(w * h));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) checker[size_t(y * w + x)] = glm::vec3((x + y) % 2 ? 0.6f : 0.4f);
+    const AccuracyMetrics m = compareVisibility(checker, reference, mask, w, h);
+    EXPECT_NEAR(m.noiseEnergy, 0.2, 1e-6);
+    EXPECT_NEAR(m.techniquePenumbraFraction, 1.0, 1e-12) << "every technique value is between 0.02 and 0.98";
+}

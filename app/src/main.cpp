@@ -284,11 +284,11 @@ int commandEval(const CommonOptions& common, const std::string& reference, int s
     std::printf("  host CPU per frame   median %8.3f ms;  GPU memory %.2f MiB\n", m.cpuMs.median, double(m.gpuBytes) / 1048576.0);
     for (const auto& [name, metrics] : out["accuracy"].items()) {
         std::printf("  vs %s reference: MAE %.4f  RMSE %.4f  false shadow %.3f%%  false light %.3f%%  "
-                    "MAE penumbra %.4f  MAE elsewhere %.4f  compared %.1f%% of pixels\n",
+                    "MAE penumbra %.4f  MAE elsewhere %.4f  noise %.4f  compared %.1f%% of pixels\n",
                     name.c_str(), metrics["mae"].get<double>(), metrics["rmse"].get<double>(),
                     100.0 * metrics["falseShadowRate"].get<double>(), 100.0 * metrics["falseLightRate"].get<double>(),
                     metrics["maePenumbra"].get<double>(), metrics["maeOutsidePenumbra"].get<double>(),
-                    100.0 * metrics["comparedFraction"].get<double>());
+                    metrics["noiseEnergy"].get<double>(), 100.0 * metrics["comparedFraction"].get<double>());
     }
     return 0;
 }

@@ -311,6 +311,8 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                                 row[prefix + "mae_penumbra"] = a.maePenumbra;
                                 row[prefix + "mae_outside_penumbra"] = a.maeOutsidePenumbra;
                                 row[prefix + "compared_fraction"] = a.comparedFraction;
+                                row[prefix + "noise"] = a.noiseEnergy;
+                                row["technique_penumbra_fraction"] = a.techniquePenumbraFraction;
                             }
                         }
                         rows.push_back(row);

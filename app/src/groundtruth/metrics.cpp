@@ -96,6 +96,33 @@ AccuracyMetrics compareVisibility(const std::vector<glm::vec3>& technique, const
     const size_t outside = m.comparedPixels - m.penumbraPixels;
     m.maePenumbra = m.penumbraPixels ? sumPenumbra / static_cast<double>(m.penumbraPixels) : 0.0;
     m.maeOutsidePenumbra = outside ? sumOutside / static_cast<double>(outside) : 0.0;
+
+    size_t techniquePenumbra = 0, noiseSamples = 0;
+    double noiseSum = 0.0;
+    auto signedError = [&](size_t i) {
+        return static_cast<double>(scalarVisibility(technique[i])) - static_cast<double>(scalarVisibility(reference[i]));
+    };
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const size_t i = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+            if (!mask[i]) continue;
+            const float tech = scalarVisibility(technique[i]);
+            if (tech > kPenumbraLow && tech < kPenumbraHigh) ++techniquePenumbra;
+            if (x == 0 || y == 0 || x + 1 == width || y + 1 == height) continue;
+            const size_t neighbours[4] = {i - 1, i + 1, i - static_cast<size_t>(width), i + static_cast<size_t>(width)};
+            double mean = 0.0;
+            bool all = true;
+            for (size_t j : neighbours) {
+                all = all && mask[j];
+                mean += signedError(j);
+            }
+            if (!all) continue;
+            noiseSum += std::abs(signedError(i) - 0.25 * mean);
+            ++noiseSamples;
+        }
+    }
+    m.techniquePenumbraFraction = static_cast<double>(techniquePenumbra) / compared;
+    m.noiseEnergy = noiseSamples ? noiseSum / static_cast<double>(noiseSamples) : 0.0;
     return m;
 }
 
@@ -130,6 +157,8 @@ std::string metricsToJson(const AccuracyMetrics& m, int indent) {
         {"comparedFraction", m.comparedFraction},
         {"comparedPixels", m.comparedPixels},
         {"penumbraPixels", m.penumbraPixels},
+        {"techniquePenumbraFraction", m.techniquePenumbraFraction},
+        {"noiseEnergy", m.noiseEnergy},
     };
     return json.dump(indent);
 }

@@ -32,6 +32,13 @@ struct AccuracyMetrics {
     double maeOutsidePenumbra = 0.0;  // mean error over the rest: acne, leaks, aliasing far from edges
     glm::dvec3 maePerChannel{0.0};    // mean |error| of r, g, b: coloured techniques
     double comparedFraction = 0.0;    // compared pixels / all pixels of the image
+    // Fraction of compared pixels where the technique itself is between 0.02 and 0.98: how much
+    // penumbra it draws (contact hardening compares this across caster heights).
+    double techniquePenumbraFraction = 0.0;
+    // High-frequency error: mean |e - mean of e over the 4 neighbours| with e = technique -
+    // reference, over compared pixels whose 4 neighbours are compared. Noise, dithering and
+    // banding raise it; a smooth bias or blur barely does.
+    double noiseEnergy = 0.0;
     size_t comparedPixels = 0;
     size_t penumbraPixels = 0;
 };
