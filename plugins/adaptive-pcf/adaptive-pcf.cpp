@@ -1,0 +1,199 @@
+// Adaptive percentage-closer filtering with jittered disc samples (Uralsky, "Efficient Soft-Edged
+// Shadows Using Pixel Shader Branching", GPU Gems 2 ch. 17; seed 000 sections 2.2.7, 3.2.4 and
+// 4.3.2). The n x n samples of a jittered grid are mapped to a disc (eq. 3.11-3.12) and ordered
+// outermost first; m x m such sets, one per pixel modulo m, live in an m x m x n^2/2 RGBA32F 3D
+// texture. The main pass tests the outer ring first and stops when it agrees (fully lit or fully
+// shadowed), so only penumbra pixels pay for all n^2 taps; the per-pixel sets turn PCF's banding
+// into fine noise. The share of pixels that stopped early is counted with atomic counters and
+// reported a few frames late ("early-out rate") without stalling.
+// Known artefacts: noise in the penumbra (m too small shows a repeating pattern, seed 000
+// Fig. 4.10), lit gaps narrower than the disc classified as shadowed by the early out, the same
+// penumbra width everywhere (no light size), acne under wide discs without the cone bias, and
+// bad bias also costs speed (acne pixels look like penumbra and take the full kernel).
+// Shares its shadow-map code with pcf (../pcf/kernel_shadow_map.h) and its disc sets with pcss
+// (jittered_disk.h, disc_offset_texture.h; GLSL in shaders/disc_sampling.glsl).
+#include <array>
+
+#include <glad/gl.h>
+#include <shadowlab/technique.h>
+
+#include "../pcf/kernel_shadow_map.h"
+#include "disc_offset_texture.h"
+
+namespace {
+
+using namespace shadowlab;
+
+enum Param : uint32_t {
+    kResolution,
+    kGrid,
+    kSets,
+    kRadius,
+    kHardwareFilter,
+    kConeBias,
+    kConstantBias,
+    kSlopeBias,
+    kParamCount
+};
+
+const ParamDesc kParams[] = {
+    kernel_filtering::kResolutionParam,
+    {"grid", "samples n", ParamType::Int, 2, 16, 8, "",
+     "Each set is an n x n jittered grid mapped to a disc (n^2 taps in the penumbra, n in the outer "
+     "ring tested first). Small n gives coarse, noisy penumbrae and an unreliable early out; large n is "
+     "smooth but penumbra pixels cost n^2 lookups and the offset texture grows with n^2.", nullptr},
+    {"sets", "sets m", ParamType::Int, 1, 32, 16, "",
+     "m x m different sample sets tiled over the screen (pixel mod m). 1 brings PCF's banding back; "
+     "below about 14 the noise repeats visibly in motion; memory grows with m^2 (m x m x n^2/2 texels).",
+     nullptr},
+    {"radius", "offset scale (radius)", ParamType::Float, 0.5, 32, 4, "texels",
+     "Filter radius: the unit-disc offsets are scaled by it. Small radii leave hard, aliased edges; large "
+     "ones give wide penumbrae, more noise, more bias needed and fewer early outs (slower).", nullptr},
+    {"hardware_filter", "bilinear taps", ParamType::Bool, 0, 1, 0, "",
+     "Each tap is the texture unit's 2x2 bilinear comparison: smoother penumbrae at small radii for "
+     "almost no cost, but fractional taps rarely agree exactly, so the early out is taken less often.",
+     nullptr},
+    kernel_filtering::kConeBiasParam,
+    kernel_filtering::kConstantBiasParam,
+    kernel_filtering::kSlopeBiasParam,
+};
+
+const TechniqueDesc kDescriptor{
+    "adaptive-pcf",
+    "Adaptive PCF (jittered disc)",
+    "filtered",
+    "PCF with n x n jittered samples spread over a disc, a different set in each pixel of an m x m tile, "
+    "so the penumbra becomes fine noise instead of bands. The outermost samples come first: when they "
+    "all agree the pixel is fully lit or fully shadowed and the rest is skipped, so only penumbra pixels "
+    "pay for the whole kernel (see the early-out rate). The radius sets the penumbra width, the same "
+    "everywhere: filtering, not a physically soft shadow.",
+    "adaptive-pcf.glsl",
+    kParams,
+    kParamCount,
+};
+
+// Counts of the main pass (shadowTerm calls, early outs) in a ring of small atomic-counter buffers,
+// read back only once a fence says the frame that wrote them has finished: never a stall. Both
+// count fragments (overdraw included, helper invocations not); points outside the map count as
+// calls but not as early outs. "early-out rate" = early outs / calls.
+// Atomic counter binding 4 (the host uses none; 4 keeps to the "techniques use 4+" rule).
+// Cost: two atomics per fragment, about 10% of adaptive-pcf's main pass on llvmpipe.
+class EarlyOutCounters {
+public:
+    static constexpr GLuint kBinding = 4;   // layout(binding = 4) atomic_uint in adaptive-pcf.glsl
+
+    void init(IHost& host) {
+        host_ = &host;
+        const GLuint zero[2] = {0, 0};
+        for (GLuint& buffer : buffers_)
+            buffer = host.createBuffer(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "early-out counters");
+    }
+
+    // Start of a frame: fence the previous frame's counters, collect finished ones, and clear the
+    // slot this frame's main pass will count into.
+    void beginFrame() {
+        if (pending_ >= 0) {
+            // Makes the shader's atomic writes visible to glGetBufferSubData / glClearBufferSubData.
+            glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+            fences_[size_t(pending_)] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+            pending_ = -1;
+        }
+        for (int k = 1; k <= kRing; ++k) collect((frame_ + k) % kRing);   // oldest first
+        current_ = frame_ % kRing;
+        if (fences_[size_t(current_)]) {   // still in flight after kRing frames: drop it
+            glDeleteSync(fences_[size_t(current_)]);
+            fences_[size_t(current_)] = nullptr;
+        }
+        const GLuint zero = 0;
+        glClearNamedBufferSubData(buffers_[size_t(current_)], GL_R32UI, 0, 2 * sizeof(GLuint), GL_RED_INTEGER,
+                                  GL_UNSIGNED_INT, &zero);
+        ++frame_;
+    }
+
+    void bindMainPass() {
+        glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, kBinding, buffers_[size_t(current_)]);
+        pending_ = current_;
+    }
+
+    void shutdown() {
+        for (GLsync& fence : fences_) {
+            if (fence) glDeleteSync(fence);
+            fence = nullptr;
+        }
+        for (GLuint& buffer : buffers_) {
+            if (buffer && host_) host_->destroyBuffer(buffer);
+            buffer = 0;
+        }
+        pending_ = -1;
+    }
+
+private:
+    static constexpr int kRing = 4;
+
+    void collect(int slot) {
+        GLsync& fence = fences_[size_t(slot)];
+        if (!fence) return;
+        const GLenum status = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 0);   // poll, no wait
+        if (status != GL_ALREADY_SIGNALED && status != GL_CONDITION_SATISFIED) return;
+        glDeleteSync(fence);
+        fence = nullptr;
+        GLuint counts[2] = {0, 0};
+        glGetNamedBufferSubData(buffers_[size_t(slot)], 0, sizeof(counts), counts);
+        if (counts[0] == 0) return;
+        host_->reportStatistic("early-out rate", double(counts[1]) / double(counts[0]));
+        host_->reportStatistic("shaded fragments", double(counts[0]));
+    }
+
+    IHost* host_ = nullptr;
+    std::array<GLuint, kRing> buffers_{};
+    std::array<GLsync, kRing> fences_{};
+    int frame_ = 0;
+    int current_ = 0;
+    int pending_ = -1;
+};
+
+class AdaptivePcf final : public IShadowTechnique {
+public:
+    bool init(IHost& host, std::string& error) override {
+        host_ = &host;
+        if (!gladLoadGL(host.glLoader())) {
+            error = "could not load OpenGL entry points";
+            return false;
+        }
+        if (!shadowMap_.init(host, true, error)) return false;
+        counters_.init(host);
+        return true;
+    }
+
+    void renderShadows(const ParamValues& params) override {
+        offsets_.ensure(*host_, params.asInt(kGrid), params.asInt(kSets), "disc offsets (m x m x n^2/2)");
+        counters_.beginFrame();
+        shadowMap_.render(params.asInt(kResolution), params.asFloat(kConstantBias), params.asFloat(kSlopeBias));
+    }
+
+    void bindMainPass(uint32_t program, const ParamValues& params) override {
+        (void)program;
+        shadowMap_.bindMainPass(4, params.asBool(kHardwareFilter));
+        glBindTextureUnit(5, offsets_.texture());
+        glUniform1i(23, offsets_.n());
+        glUniform1f(24, params.asFloat(kRadius));
+        glUniform1f(25, params.asBool(kConeBias) ? 1.0f : 0.0f);
+        counters_.bindMainPass();
+    }
+
+    void shutdown() override {
+        shadowMap_.shutdown();
+        if (host_) offsets_.release(*host_);
+        counters_.shutdown();
+    }
+
+private:
+    IHost* host_ = nullptr;
+    kernel_filtering::KernelShadowMap shadowMap_;
+    jittered_disk::DiscOffsetTexture offsets_;
+    EarlyOutCounters counters_;
+};
+
+} // namespace
+
+SHADOWLAB_PLUGIN(AdaptivePcf, kDescriptor)

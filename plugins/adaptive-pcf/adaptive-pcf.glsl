@@ -1,0 +1,33 @@
+// Adaptive PCF, main-pass side (seed 000 sec. 3.2.4; GPU Gems 2 ch. 17): the pixel picks one of
+// m x m jittered disc sets (pixel mod m), tests the outer ring first and stops there when the
+// ring agrees; only penumbra pixels pay for all n^2 taps. Two atomic counters count the calls and
+// the early outs; the technique reads them back a few frames later ("early-out rate").
+#include "light_space.glsl"
+#include "disc_sampling.glsl"
+
+layout(location = 16) uniform mat4 uShadowMatrix;
+layout(location = 20) uniform vec4 uLightDepth;      // near, far, perspective, resolution
+layout(location = 21) uniform vec2 uLightWorldSize;
+layout(location = 22) uniform vec3 uLightAxis;       // depth axis of the map (world)
+layout(location = 23) uniform int uGrid;             // n: n x n samples per set
+layout(location = 24) uniform float uRadius;         // filter radius in texels
+layout(location = 25) uniform float uConeBias;       // 0 off, else multiplier of the receiver slope
+layout(binding = 4) uniform sampler2DShadow uShadowMap;
+layout(binding = 5) uniform sampler3D uDiscOffsets;
+layout(binding = 4, offset = 0) uniform atomic_uint uShadedCount;
+layout(binding = 4, offset = 4) uniform atomic_uint uEarlyOutCount;
+
+float discTap(vec2 uv, float ref) { return texture(uShadowMap, vec3(uv, ref)); }
+
+vec3 shadowTerm(ShadowInput s) {
+    atomicCounterIncrement(uShadedCount);
+    vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
+    if (!insideShadowMap(coord)) return vec3(1.0);
+    float rimBias = uConeBias * receiverDepthSlope(s.worldNormal, uLightAxis, coord.z, uLightDepth, uLightWorldSize) * uRadius;
+    bool earlyOut;
+    // The offsets are unit-disc positions: scaled by the radius they stay texel-independent.
+    float lit = adaptiveDiscPcf(uDiscOffsets, ivec2(s.fragCoord), uGrid, coord, vec2(uRadius / uLightDepth.w),
+                                rimBias, earlyOut);
+    if (earlyOut) atomicCounterIncrement(uEarlyOutCount);
+    return vec3(lit);
+}

@@ -1,0 +1,216 @@
+// Percentage-closer soft shadows (Fernando 2005; seed 000 sections 2.2.8, 3.2.6 and 4.3.3). One
+// shadow map; per pixel a blocker search averages the depths of the occluders inside the cone
+// from the shaded point to the light (eq. 3.17-3.18), the penumbra width follows from similar
+// triangles (eq. 3.19-3.20), and PCF with that radius filters the shadow, so shadows harden near
+// contacts and soften with the caster's height. Both the search and the filter use the jittered
+// disc sets of adaptive PCF (m x m sets, outer ring first, early out in the filter).
+// Light size: host.light().size is a world radius for spot and point lights (eq. 3.17 as is,
+// s_lw = radius, s_lf = the map's width at the near plane) and an angular radius alpha in
+// radians for directional lights, whose map is orthographic and has no light position: the
+// shader uses the limit of a light of radius D tan(alpha) at distance D -> infinity, i.e. a
+// light-space width of tan(alpha) per unit of depth: penumbra radius (z_r - z_b) tan(alpha) world
+// units, search radius (z_r - z_near) tan(alpha), both divided by the map's world width for uv.
+// Deviation from eq. 3.18 (parameter search_bound, on by default): its n (the near plane) is
+// replaced, per pixel, by the nearest depth stored in the search region, read from min-depth mips
+// built after the shadow pass: the same cone, bounded where a blocker can actually be. With the
+// map fitted around a large ground, a spot or point light's near plane sits almost at the light
+// and the printed formula spreads the n_s^2 search samples over half the map, missing the casters.
+// Known artefacts: the average blocker depth flattens overlapping occluders at different heights
+// (scene `overlap`: penumbrae too wide under the high plate's edge or too narrow), the search
+// undersamples small or thin blockers (light leaks, popping), samples stretch outside the
+// blockers' region of the map, the search and filter cost two kernels per pixel, noise from the
+// jittered sets, and acne under large kernels without the cone bias. Not physically correct: it
+// assumes blocker, receiver and light planar and parallel.
+// Shares code with pcf (../pcf/kernel_shadow_map.h) and adaptive-pcf (../adaptive-pcf/
+// disc_offset_texture.h, jittered_disk.h); GLSL in shaders/disc_sampling.glsl.
+#include <algorithm>
+#include <cmath>
+
+#include <glad/gl.h>
+#include <shadowlab/technique.h>
+
+#include "../adaptive-pcf/disc_offset_texture.h"
+#include "../pcf/kernel_shadow_map.h"
+
+namespace {
+
+using namespace shadowlab;
+
+enum Param : uint32_t {
+    kResolution,
+    kSearchGrid,
+    kFilterGrid,
+    kSets,
+    kBilinear,
+    kSearchBound,
+    kConeBias,
+    kConstantBias,
+    kSlopeBias,
+    kParamCount
+};
+
+const ParamDesc kParams[] = {
+    kernel_filtering::kResolutionParam,
+    {"search_grid", "search samples n_s", ParamType::Int, 2, 16, 6, "",
+     "Blocker search: n_s x n_s jittered disc samples. Few samples miss small or thin blockers (light "
+     "leaks, flickering penumbra widths); many cost n_s^2 depth reads in every pixel, lit or not.", nullptr},
+    {"filter_grid", "filter samples n_f", ParamType::Int, 2, 16, 8, "",
+     "Filtering: n_f x n_f jittered disc samples scaled to the estimated penumbra. Few samples give "
+     "coarse, noisy penumbrae; many cost n_f^2 lookups in penumbra pixels (the outer ring decides elsewhere).",
+     nullptr},
+    {"sets", "sets m", ParamType::Int, 1, 32, 16, "",
+     "m x m different sample sets tiled over the screen (pixel mod m). 1 shows banding; small values a "
+     "repeating noise pattern; memory grows with m^2.", nullptr},
+    {"bilinear", "bilinear taps", ParamType::Bool, 0, 1, 1, "",
+     "Each filter tap compares the 2x2 nearest texels and blends them (what the texture unit's GL_LINEAR "
+     "comparison does). Off: narrow penumbrae near contacts alias and the noise is coarser.", nullptr},
+    {"search_bound", "blocker search bound", ParamType::Enum, 0, 1, 1, "",
+     "Where the blocker search assumes the nearest blocker can be. 'near plane' is eq. 3.18 as printed: "
+     "fine for a tight orthographic map, but a spot or point light whose map reaches close to the light "
+     "searches half the map and misses small casters (missing or blotchy shadows). 'min-depth' narrows the "
+     "search to the cone at the nearest depth stored in the region (min-depth mips, one extra pass).",
+     "near plane|min-depth"},
+    kernel_filtering::kConeBiasParam,
+    kernel_filtering::kConstantBiasParam,
+    kernel_filtering::kSlopeBiasParam,
+};
+
+const TechniqueDesc kDescriptor{
+    "pcss",
+    "Percentage-closer soft shadows",
+    "soft",
+    "Soft shadows from one shadow map: each pixel first searches the map for occluders between it and the "
+    "light, averages their depth, estimates the penumbra width from the light's size by similar triangles, "
+    "and then filters with a kernel of that width (PCF). Shadows are hard where a caster touches the "
+    "receiver and soften with distance (contact hardening). The light size comes from the scene "
+    "(--light-size). Plausible rather than correct: overlapping blockers at different depths are averaged.",
+    "pcss.glsl",
+    kParams,
+    kParamCount,
+};
+
+class PercentageCloserSoftShadows final : public IShadowTechnique {
+public:
+    bool init(IHost& host, std::string& error) override {
+        host_ = &host;
+        if (!gladLoadGL(host.glLoader())) {
+            error = "could not load OpenGL entry points";
+            return false;
+        }
+        // Raw depths (no comparison mode): the blocker search reads them.
+        if (!shadowMap_.init(host, false, error)) return false;
+        minDepthProgram_ = host.buildProgram({"fullscreen.vert", "pcss_min_depth.frag", nullptr}, error);
+        if (!minDepthProgram_) return false;
+        minDepthFbo_ = host.createFramebuffer("min-depth mips");
+        return true;
+    }
+
+    void renderShadows(const ParamValues& params) override {
+        const int sets = params.asInt(kSets);
+        searchOffsets_.ensure(*host_, params.asInt(kSearchGrid), sets, "search disc offsets (m x m x n_s^2/2)", 2);
+        filterOffsets_.ensure(*host_, params.asInt(kFilterGrid), sets, "filter disc offsets (m x m x n_f^2/2)");
+        shadowMap_.render(params.asInt(kResolution), params.asFloat(kConstantBias), params.asFloat(kSlopeBias));
+        if (params.asInt(kSearchBound) == 1) {
+            ensureMinDepth(shadowMap_.resolution());
+            buildMinDepthMips();
+        } else {
+            releaseMinDepth();   // eq. 3.18 as printed needs no mips
+        }
+    }
+
+    void bindMainPass(uint32_t program, const ParamValues& params) override {
+        (void)program;
+        shadowMap_.bindMainPass(4, false);
+        glBindTextureUnit(5, searchOffsets_.texture());
+        glBindTextureUnit(6, filterOffsets_.texture());
+        glUniform1i(23, searchOffsets_.n());
+        glUniform1i(24, filterOffsets_.n());
+        glUniform1f(25, params.asBool(kConeBias) ? 1.0f : 0.0f);
+        glUniform1f(26, lightSizeInLightSpace());
+        glUniform1i(27, params.asBool(kBilinear) ? 1 : 0);
+        glUniform1i(28, params.asInt(kSearchBound));
+        glBindTextureUnit(7, minDepth_);
+    }
+
+    void shutdown() override {
+        shadowMap_.shutdown();
+        if (!host_) return;
+        searchOffsets_.release(*host_);
+        filterOffsets_.release(*host_);
+        releaseMinDepth();
+        if (minDepthFbo_) host_->destroyFramebuffer(minDepthFbo_);
+        minDepthFbo_ = 0;
+    }
+
+private:
+    // What pcss.glsl's uLightSize holds: the world radius for a perspective map (spot, point); for
+    // an orthographic map (directional light) tan(angular radius), the light's width per unit of
+    // depth in the limit described at the top of this file. Capped below 90 degrees.
+    float lightSizeInLightSpace() const {
+        const LightInfo& light = host_->light();
+        if (shadowMap_.lightSpace().perspective) return light.size;
+        return std::tan(std::min(light.size, 1.4f));
+    }
+
+    // Min-depth mips of the shadow map: level 0 is half the map's size, each texel the minimum of
+    // (a little more than) 2 x 2 texels below; reallocated with the map only.
+    void ensureMinDepth(int resolution) {
+        const int size = std::max(resolution / 2, 1);
+        if (minDepth_ && size == minDepthSize_) return;
+        releaseMinDepth();
+        minDepthSize_ = size;
+        minDepthLevels_ = 1;
+        while ((size >> minDepthLevels_) > 0) ++minDepthLevels_;
+        minDepth_ = host_->createTexture({GL_TEXTURE_2D, GL_R32F, size, size, 1, minDepthLevels_, "min-depth mips"});
+        glTextureParameteri(minDepth_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+        glTextureParameteri(minDepth_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        host_->registerDebugImage("min-depth mips", minDepth_, DebugImageKind::Depth);
+    }
+
+    void releaseMinDepth() {
+        if (minDepth_) host_->destroyTexture(minDepth_);
+        minDepth_ = 0;
+        minDepthSize_ = minDepthLevels_ = 0;
+    }
+
+    void buildMinDepthMips() {
+        GpuPass pass(*host_, "min-depth mips");
+        glBindFramebuffer(GL_FRAMEBUFFER, minDepthFbo_);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        glUseProgram(host_->glProgram(minDepthProgram_));
+        for (int level = 0; level < minDepthLevels_; ++level) {
+            glNamedFramebufferTexture(minDepthFbo_, GL_COLOR_ATTACHMENT0, minDepth_, level);
+            glNamedFramebufferDrawBuffer(minDepthFbo_, GL_COLOR_ATTACHMENT0);
+            const int size = std::max(minDepthSize_ >> level, 1);
+            glViewport(0, 0, size, size);
+            if (level == 0) {
+                glBindTextureUnit(4, shadowMap_.texture());
+                glUniform1i(16, 0);
+            } else {
+                // Level - 1 of the same texture, fetched by explicit lod: written by the previous
+                // draw (made visible by the barrier), disjoint from the level being written.
+                glTextureBarrier();
+                glBindTextureUnit(4, minDepth_);
+                glUniform1i(16, level - 1);
+            }
+            host_->drawFullscreenTriangle();
+        }
+        glBindTextureUnit(4, 0);
+        glEnable(GL_DEPTH_TEST);
+    }
+
+    IHost* host_ = nullptr;
+    ProgramId minDepthProgram_ = 0;
+    GLuint minDepthFbo_ = 0;
+    GLuint minDepth_ = 0;
+    int minDepthSize_ = 0;
+    int minDepthLevels_ = 0;
+    kernel_filtering::KernelShadowMap shadowMap_;
+    jittered_disk::DiscOffsetTexture searchOffsets_;
+    jittered_disk::DiscOffsetTexture filterOffsets_;
+};
+
+} // namespace
+
+SHADOWLAB_PLUGIN(PercentageCloserSoftShadows, kDescriptor)

@@ -1,0 +1,126 @@
+// Percentage-closer soft shadows, main-pass side (Fernando 2005; seed 000 sec. 3.2.6):
+//   1. blocker search: average the depths closer than the receiver inside the search radius,
+//   2. penumbra estimate from the average blocker depth by similar triangles,
+//   3. adaptive PCF (shaders/disc_sampling.glsl) with that radius.
+// Both sample sets are jittered discs (seed 000 sec. 4.3.3: "adaptive techniques for both").
+// Depths z below are linear: distance from the light along its axis (spot/point, perspective map)
+// or from the map's near plane (directional, orthographic map).
+#include "light_space.glsl"
+#include "disc_sampling.glsl"
+
+layout(location = 16) uniform mat4 uShadowMatrix;
+layout(location = 20) uniform vec4 uLightDepth;      // near, far, perspective, resolution
+layout(location = 21) uniform vec2 uLightWorldSize;
+layout(location = 22) uniform vec3 uLightAxis;       // depth axis of the map (world)
+layout(location = 23) uniform int uSearchGrid;       // n_s: n_s x n_s blocker-search samples
+layout(location = 24) uniform int uFilterGrid;       // n_f: n_f x n_f filter samples
+layout(location = 25) uniform float uConeBias;       // 0 off, else multiplier of the receiver slope
+layout(location = 26) uniform float uLightSize;      // perspective: world radius; orthographic: tan(angular radius)
+layout(location = 27) uniform int uBilinear;         // filter taps: 1 bilinear comparison, 0 nearest
+layout(location = 28) uniform int uSearchBound;      // 0: near plane (eq. 3.18 as printed), 1: min-depth mips
+layout(binding = 4) uniform sampler2D uShadowDepth;  // raw depths: the search reads them, the filter compares
+layout(binding = 5) uniform sampler3D uSearchOffsets;
+layout(binding = 6) uniform sampler3D uFilterOffsets;
+layout(binding = 7) uniform sampler2D uMinDepth;     // level k texel: min depth over 2^(k+1) x 2^(k+1) map texels
+
+// One filter tap: lit when ref <= stored depth (GL_LEQUAL, as the texture unit compares). The
+// bilinear variant does what GL_LINEAR does on a sampler2DShadow: four comparisons, then weights.
+float discTap(vec2 uv, float ref) {
+    if (uBilinear == 0) return step(ref, textureLod(uShadowDepth, uv, 0.0).r);
+    vec2 f = fract(uv * uLightDepth.w - 0.5);
+    vec4 lit = step(vec4(ref), textureGather(uShadowDepth, uv, 0));   // (i0,j1) (i1,j1) (i1,j0) (i0,j0)
+    return mix(mix(lit.w, lit.z, f.x), mix(lit.x, lit.y, f.x), f.y);
+}
+
+// Step 1: mean linear depth of the samples closer to the light than the receiver (minus the cone
+// bias, so the receiver's own tilted surface is not taken for a blocker); 0 blockers: lit.
+float blockerSearch(ivec2 pixel, vec3 coord, vec2 radiusUv, float rimBias, out int blockers) {
+    int count = uSearchGrid * uSearchGrid;
+    float depthSum = 0.0;
+    blockers = 0;
+    for (int k = 0; k < count; ++k) {
+        vec4 pair = discOffsetPair(uSearchOffsets, pixel, k / 2);
+        vec2 offset = (k & 1) == 0 ? pair.xy : pair.zw;
+        float d = textureLod(uShadowDepth, coord.xy + offset * radiusUv, 0.0).r;
+        if (d < coord.z - rimBias * length(offset)) {
+            depthSum += lightLinearDepth(d, uLightDepth);
+            ++blockers;
+        }
+    }
+    return blockers > 0 ? depthSum / float(blockers) : 0.0;
+}
+
+// Light cone from the receiver at depth zReceiver, at the depth zNear of the nearest possible
+// blocker: its radius in uv. eq. 3.17-3.18 with n = zNear: s_lv = s_lw / s_lf where s_lf = W n is
+// the frustum's width at n (W: width at unit depth), r = s_lv (z_r - n) / z_r. Orthographic: the
+// limit of a light of radius D tan(alpha) at D -> infinity: r = tan(alpha) (z_r - n) / W.
+vec2 searchRadius(float zReceiver, float zNear, bool perspective) {
+    return perspective ? uLightSize / (uLightWorldSize * zNear) * (zReceiver - zNear) / zReceiver
+                       : uLightSize * (zReceiver - zNear) / uLightWorldSize;
+}
+
+// Nearest stored depth (map depth, not linear) anywhere within radiusUv of uv: the 2 x 2 texels
+// of the first min-depth level whose texels span the whole region (texel x of level k covers map
+// texels [x 2^(k+1), (x + 1) 2^(k+1)), and a little more).
+float nearestDepthIn(vec2 uv, vec2 radiusUv) {
+    float resolution = uLightDepth.w;
+    float radiusTexels = max(radiusUv.x, radiusUv.y) * resolution;
+    int top = textureQueryLevels(uMinDepth) - 1;
+    int level = clamp(int(ceil(log2(max(radiusTexels, 1.0)))), 0, top);
+    // Level sizes from level 0 (the levels halve with floor, as GL's do); llvmpipe (Mesa 22.3)
+    // returned the size of the next level down for textureSize with a non-constant lod.
+    ivec2 size = max(textureSize(uMinDepth, 0) >> level, ivec2(1));
+    int span = 2 << level;   // map texels per texel of this level
+    ivec2 lo = clamp(ivec2(floor((uv - radiusUv) * resolution)) / span, ivec2(0), size - 1);
+    ivec2 hi = clamp(ivec2(floor((uv + radiusUv) * resolution)) / span, ivec2(0), size - 1);
+    float nearest = 1.0;
+    for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) nearest = min(nearest, texelFetch(uMinDepth, ivec2(x, y), level).r);
+    return nearest;
+}
+
+vec3 shadowTerm(ShadowInput s) {
+    vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
+    if (!insideShadowMap(coord)) return vec3(1.0);
+    float resolution = uLightDepth.w;
+    bool perspective = uLightDepth.z > 0.5;
+    float zReceiver = lightLinearDepth(coord.z, uLightDepth);
+    float slope = uConeBias * receiverDepthSlope(s.worldNormal, uLightAxis, coord.z, uLightDepth, uLightWorldSize);   // per texel
+    ivec2 pixel = ivec2(s.fragCoord);
+
+    // Step 1a: the search region. eq. 3.18 as printed takes n = the near plane. Where the map's near
+    // plane sits close to the light (spot and point lights fitted around a large ground), that
+    // region covers half the map and n_s^2 samples miss the casters; with search_bound = 1 the
+    // region shrinks twice to the cone at the nearest depth stored within it (a lower bound on
+    // any blocker's depth, read from the min-depth mips). Deviation from the seed, same cone.
+    float zNear = perspective ? uLightDepth.x : 0.0;
+    vec2 searchUv = searchRadius(zReceiver, zNear, perspective);
+    if (uSearchBound == 1) {
+        for (int i = 0; i < 2; ++i) {
+            zNear = max(zNear, lightLinearDepth(nearestDepthIn(coord.xy, searchUv), uLightDepth));
+            if (zNear >= zReceiver) return vec3(1.0);   // nothing nearer to the light than this point
+            searchUv = searchRadius(zReceiver, zNear, perspective);
+        }
+    }
+
+    // Step 1b: blocker search.
+    int blockers;
+    float zBlocker = blockerSearch(pixel, coord, searchUv, slope * max(searchUv.x, searchUv.y) * resolution, blockers);
+    if (blockers == 0) return vec3(1.0);
+
+    // Step 2: penumbra. eq. 3.19 s_p = (z_r - z_avg) / z_avg * s_lv and eq. 3.20 s_f = n / z_r * s_p
+    // (re-derived by similar triangles: the penumbra's world width at the receiver is
+    // (z_r - z_b) / z_b * s_lw; n / z_r projects it onto the near plane, where s_lv = s_lw / (W n)
+    // is measured, so s_f = (z_r - z_b) / z_b * s_lw / (W z_r): n cancels). Orthographic: the same
+    // with the light at distance D -> infinity and s_lw = D tan(alpha):
+    // (z_r - z_b) / z_b * s_lw -> (z_r - z_b) tan(alpha), and no perspective shrink (n / z_r -> 1).
+    vec2 filterUv = perspective ? (zReceiver - zBlocker) / zBlocker * uLightSize / (uLightWorldSize * zReceiver)
+                                : (zReceiver - zBlocker) * uLightSize / uLightWorldSize;
+    // At least one texel: contacts stay hard but anti-aliased instead of jittered nearest taps.
+    filterUv = max(filterUv, vec2(1.0 / resolution));
+
+    // Step 3: PCF with the estimated kernel, adaptive (outer ring first).
+    bool earlyOut;
+    return vec3(adaptiveDiscPcf(uFilterOffsets, pixel, uFilterGrid, coord, filterUv,
+                                slope * max(filterUv.x, filterUv.y) * resolution, earlyOut));
+}

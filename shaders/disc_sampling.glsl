@@ -1,0 +1,98 @@
+// Kernel filtering of a shadow map, shared by pcf, adaptive-pcf and pcss:
+//   1. light-space depth helpers and the cone bias (receiver bias growing with the kernel offset),
+//   2. the jittered disc sets of adaptive PCF (seed 000 sec. 3.2.4; GPU Gems 2 ch. 17), stored
+//      by plugins/adaptive-pcf/jittered_disk.h in an m x m x ceil(n^2/2) RGBA32F 3D texture,
+//   3. the adaptive filter itself: outer ring first, stop when it agrees.
+// The uniforms stay in each technique's GLSL; everything here takes them as arguments.
+// `lightDepth` is (near, far, 1 perspective / 0 orthographic, map resolution) and `worldSize` the
+// map's extent in world units (orthographic) or at unit distance (perspective), as set by
+// plugins/pcf/kernel_shadow_map.h.
+#ifndef SHADOWLAB_DISC_SAMPLING_GLSL
+#define SHADOWLAB_DISC_SAMPLING_GLSL
+
+#include "common.glsl"
+
+// ---------------------------------------------------------------------------------------------
+// 1. Depth in light space
+
+// Stored map depth d in [0,1] -> linear depth: distance from the light along its axis
+// (perspective) or from the near plane (orthographic). Perspective, from GL's projection and the
+// 0.5 * ndc + 0.5 of light_space.glsl: d = f (1 - n / z) / (f - n), so z = n f / (f - d (f - n)).
+float lightLinearDepth(float d, vec4 lightDepth) {
+    float n = lightDepth.x, f = lightDepth.y;
+    return lightDepth.z > 0.5 ? n * f / (f - d * (f - n)) : d * (f - n);
+}
+
+// Map depth per texel of lateral offset on a planar receiver with normal N. The map's depth runs
+// along the light's axis `lightAxis` (the view direction of the light camera; the travel direction
+// for a directional light), and a texel is a step perpendicular to that axis. Across such a step
+// of length l the receiver's axial depth changes by l tan(theta), theta the angle between N and
+// the axis (not the ray to the light: they differ off-axis in a perspective map). A texel spans
+// worldSize / res world units (orthographic) or worldSize * z / res (perspective, at axial depth
+// z), and the stored depth changes by 1 / (f - n) (orthographic) or dd/dz = n f / ((f - n) z^2)
+// (perspective) per world unit of axial depth. tan(theta) is capped at 10 (theta < 84 degrees):
+// receivers edge-on to the light would need unbounded bias.
+float receiverDepthSlope(vec3 normal, vec3 lightAxis, float d, vec4 lightDepth, vec2 worldSize) {
+    float cosTheta = clamp(abs(dot(normal, lightAxis)), 0.0995, 1.0);
+    float tanTheta = sqrt(1.0 - cosTheta * cosTheta) / cosTheta;
+    float n = lightDepth.x, f = lightDepth.y, resolution = lightDepth.w;
+    float texelWorld = max(worldSize.x, worldSize.y) / resolution;
+    if (lightDepth.z > 0.5) {
+        float z = lightLinearDepth(d, lightDepth);
+        return tanTheta * texelWorld * z * n * f / ((f - n) * z * z);
+    }
+    return tanTheta * texelWorld / (f - n);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 2. Jittered disc sets: texel t of the set chosen by the pixel holds samples 2t (xy) and
+//    2t + 1 (zw); the first ceil(n/2) texels are the outer ring. Sets repeat every m pixels.
+
+vec4 discOffsetPair(sampler3D offsets, ivec2 pixel, int texel) {
+    ivec2 sets = textureSize(offsets, 0).xy;
+    return texelFetch(offsets, ivec3(pixel % sets, texel), 0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 3. Adaptive PCF over one disc set. The including technique defines how one tap compares
+//    (hardware sampler2DShadow, or a raw depth read and a compare in the shader):
+float discTap(vec2 uv, float ref);
+
+// Sum of the taps of one texel (one or two samples); `taken` counts them.
+float discTapPair(vec4 pair, bool second, vec3 coord, vec2 radiusUv, float rimBias, inout int taken) {
+    // Cone bias: the receiver depth tolerance grows with the offset's distance from the centre
+    // (rimBias at the rim, |offset| = 1).
+    float lit = discTap(coord.xy + pair.xy * radiusUv, coord.z - rimBias * length(pair.xy));
+    ++taken;
+    if (second) {
+        lit += discTap(coord.xy + pair.zw * radiusUv, coord.z - rimBias * length(pair.zw));
+        ++taken;
+    }
+    return lit;
+}
+
+// Lit fraction over the n x n set of this pixel, scaled to `radiusUv` around coord.xy.
+// The outer ring (first n samples, rounded up to whole texels) is tested first; when all its
+// taps agree (all lit or all shadowed) the point is taken to be outside any penumbra and the
+// rest is skipped (`earlyOut`). Known artefact (seed 000 sec. 4.3.2): a lit gap narrower than
+// the disc, surrounded by shadow, is classified shadowed.
+float adaptiveDiscPcf(sampler3D offsets, ivec2 pixel, int n, vec3 coord, vec2 radiusUv, float rimBias,
+                      out bool earlyOut) {
+    int count = n * n;
+    int texels = (count + 1) / 2;
+    int ringTexels = (n + 1) / 2;
+    float lit = 0.0;
+    int taken = 0;
+    earlyOut = false;
+    for (int t = 0; t < ringTexels; ++t)
+        lit += discTapPair(discOffsetPair(offsets, pixel, t), 2 * t + 1 < count, coord, radiusUv, rimBias, taken);
+    if (ringTexels < texels && (lit == 0.0 || lit == float(taken))) {
+        earlyOut = true;
+        return lit / float(taken);
+    }
+    for (int t = ringTexels; t < texels; ++t)
+        lit += discTapPair(discOffsetPair(offsets, pixel, t), 2 * t + 1 < count, coord, radiusUv, rimBias, taken);
+    return lit / float(taken);
+}
+
+#endif

@@ -1,0 +1,626 @@
+// Filtered and soft shadow-map techniques (pcf, adaptive-pcf, pcss, area-reference): the disc
+// sample sets of jittered_disk.h, then rendered visibility on the built-in scenes against
+// `shadowmap`, the analytic shadow of the cube, and each technique's own claims (penumbra that
+// widens with the kernel, acne without the cone bias, contact hardening, N = 1 equals a hard map,
+// the early-out statistic, the documented offset-texture size, memory released on unload).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+
+#include "../plugins/adaptive-pcf/jittered_disk.h"
+#include "test_support.h"
+#include "util/log.h"
+
+using namespace shadowlab;
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Helpers
+
+const SceneObject& objectNamed(App& app, const std::string& name) {
+    for (const auto& object : app.scene().objects)
+        if (object.name == name) return object;
+    ADD_FAILURE() << "no object named " << name;
+    return app.scene().objects.front();
+}
+
+void meshBounds(App& app, const SceneObject& object, glm::vec3& lo, glm::vec3& hi) {
+    lo = glm::vec3(1e30f);
+    hi = glm::vec3(-1e30f);
+    for (const Vertex& v : app.scene().meshes[object.mesh].vertices) {
+        lo = glm::min(lo, v.position);
+        hi = glm::max(hi, v.position);
+    }
+}
+
+// Class of pixel (x, y): -1 not ground, 0 lit, 1 inside the cube's analytic shadow.
+int classAt(const test::GroundClassification& ground, int x, int y) {
+    return ground.analytic[size_t(y) * size_t(ground.size.x) + size_t(x)];
+}
+
+// One frame of `technique` after `sets` (values persist in the App); its visibility target.
+std::vector<glm::vec4> render(App& app, const std::string& technique, const std::vector<std::string>& sets = {}) {
+    return test::renderVisibility(app, technique, sets);
+}
+
+bool inPenumbra(float v, float margin = 0.1f) { return v > margin && v < 1.0f - margin; }
+
+// Modest maps keep llvmpipe fast.
+const std::vector<std::string> kMap = {"resolution=1024"};
+
+const char* const kTechniques[] = {"pcf", "adaptive-pcf", "pcss", "area-reference"};
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+// jittered_disk.h: the disc mapping, the ordering, the texture layout
+
+TEST(JitteredDisk, DiscMappingPreservesArea) {
+    // A fine regular grid over the square lands uniformly on the disc: the count in each annulus is
+    // proportional to its area (eq. 3.11-3.12 with r = sqrt(y): area element pi dx dy).
+    // The grid is fine in y (the radial coordinate) so that row quantisation stays far below the
+    // area of the innermost annulus (1/576 of the disc).
+    constexpr int kColumns = 64, kRows = 20000, kRings = 24;
+    std::vector<int> counts(kRings, 0);
+    for (int j = 0; j < kRows; ++j)
+        for (int i = 0; i < kColumns; ++i) {
+            const glm::vec2 p = jittered_disk::squareToDisc({(i + 0.5f) / kColumns, (j + 0.5f) / kRows});
+            const float r = glm::length(p);
+            ASSERT_LE(r, 1.0f + 1e-6f);
+            ++counts[size_t(std::min(int(r * kRings), kRings - 1))];
+        }
+    for (int k = 0; k < kRings; ++k) {
+        const double r0 = double(k) / kRings, r1 = double(k + 1) / kRings;
+        const double expected = (r1 * r1 - r0 * r0) * kColumns * kRows;   // share of the disc's area
+        EXPECT_NEAR(counts[size_t(k)] / expected, 1.0, 0.01) << "annulus " << k;
+    }
+    // Angular uniformity: equal counts per sector (192 columns: 12 per sector, no quantisation).
+    constexpr int kSectors = 16, kAngles = 192, kRadii = 200;
+    std::vector<int> sectors(kSectors, 0);
+    for (int j = 0; j < kRadii; ++j)
+        for (int i = 0; i < kAngles; ++i) {
+            const glm::vec2 p = jittered_disk::squareToDisc({(i + 0.5f) / kAngles, (j + 0.5f) / kRadii});
+            double angle = std::atan2(double(p.y), double(p.x));
+            if (angle < 0.0) angle += 2.0 * std::numbers::pi;
+            ++sectors[std::min(size_t(angle / (2.0 * std::numbers::pi) * kSectors), size_t(kSectors - 1))];
+        }
+    for (int count : sectors) EXPECT_EQ(count, kAngles * kRadii / kSectors);
+}
+
+TEST(JitteredDisk, JacobianIsPiEverywhere) {
+    jittered_disk::Rng rng(7);
+    const float h = 1e-3f;
+    for (int k = 0; k < 200; ++k) {
+        const glm::vec2 p{0.01f + 0.98f * rng.uniform(), 0.05f + 0.9f * rng.uniform()};
+        const glm::vec2 dx = (jittered_disk::squareToDisc(p + glm::vec2(h, 0)) - jittered_disk::squareToDisc(p - glm::vec2(h, 0))) / (2 * h);
+        const glm::vec2 dy = (jittered_disk::squareToDisc(p + glm::vec2(0, h)) - jittered_disk::squareToDisc(p - glm::vec2(0, h))) / (2 * h);
+        // |det J| = pi (the sign only says x -> angle, y -> radius reverses the orientation).
+        EXPECT_NEAR(std::abs(dx.x * dy.y - dx.y * dy.x), std::numbers::pi, 2e-2) << p.x << ", " << p.y;
+    }
+}
+
+TEST(JitteredDisk, SetsAreStratifiedAndOutermostFirst) {
+    for (int n : {2, 3, 5, 8, 16}) {
+        jittered_disk::Rng rng{uint64_t(n)};
+        const auto set = jittered_disk::makeSet(n, rng);
+        ASSERT_EQ(set.size(), size_t(n * n));
+        for (int ring = 0; ring < n; ++ring) {
+            // Ring k is grid row n-1-k: radii in [sqrt(row / n), sqrt((row + 1) / n)].
+            const int row = n - 1 - ring;
+            for (int s = 0; s < n; ++s) {
+                const float r = glm::length(set[size_t(ring * n + s)]);
+                EXPECT_GE(r, std::sqrt(float(row) / n) - 1e-5f) << "n " << n << " ring " << ring;
+                EXPECT_LE(r, std::sqrt(float(row + 1) / n) + 1e-5f) << "n " << n << " ring " << ring;
+            }
+        }
+        // Outermost first: every sample of the first ring is at least as far out as every later one.
+        float firstRingMin = 2.0f, laterMax = 0.0f;
+        for (size_t k = 0; k < set.size(); ++k) {
+            if (k < size_t(n))
+                firstRingMin = std::min(firstRingMin, glm::length(set[k]));
+            else
+                laterMax = std::max(laterMax, glm::length(set[k]));
+        }
+        EXPECT_GE(firstRingMin, laterMax) << "n " << n;
+        // One sample per angular column: the n samples of a ring cover n different sectors.
+        std::set<int> sectors;
+        for (int s = 0; s < n; ++s) {
+            const double angle = std::atan2(double(set[size_t(s)].y), double(set[size_t(s)].x));
+            sectors.insert(int(std::floor((angle < 0 ? angle + 2 * std::numbers::pi : angle) / (2 * std::numbers::pi) * n)) % n);
+        }
+        EXPECT_EQ(sectors.size(), size_t(n)) << "n " << n;
+    }
+}
+
+TEST(JitteredDisk, OffsetTextureHasTheDocumentedLayout) {
+    for (int n : {3, 8}) {
+        const int m = 4;
+        const auto size = jittered_disk::offsetTextureSize(n, m);
+        EXPECT_EQ(size.width, m);
+        EXPECT_EQ(size.height, m);
+        EXPECT_EQ(size.depth, (n * n + 1) / 2) << "m x m x n^2/2, rounded up for odd n";
+        const auto texels = jittered_disk::makeOffsetTexture(n, m, 3);
+        ASSERT_EQ(texels.size(), size_t(m * m * size.depth));
+        // Texel (x, y, z) holds samples 2z and 2z + 1 of set (x, y): reproduce the sets in order.
+        jittered_disk::Rng rng(3);
+        for (int y = 0; y < m; ++y)
+            for (int x = 0; x < m; ++x) {
+                const auto set = jittered_disk::makeSet(n, rng);
+                for (int z = 0; z < size.depth; ++z) {
+                    const glm::vec4 t = texels[(size_t(z) * m + size_t(y)) * m + size_t(x)];
+                    EXPECT_EQ(glm::vec2(t.x, t.y), set[size_t(2 * z)]);
+                    EXPECT_EQ(glm::vec2(t.z, t.w), set[size_t(std::min(2 * z + 1, n * n - 1))]);
+                }
+            }
+        // Different pixels get different sets; the same seed gives the same texture.
+        EXPECT_NE(texels[0], texels[1]);
+        EXPECT_EQ(texels, jittered_disk::makeOffsetTexture(n, m, 3));
+        EXPECT_NE(texels, jittered_disk::makeOffsetTexture(n, m, 4));
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Every technique on every scene: sane values, and agreement with `shadowmap` wherever the hard
+// shadow does not change within `band` pixels (penumbrae are narrower than that at these sizes).
+
+class SoftScenes : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SoftScenes, EveryTechniqueAgreesWithShadowMapAwayFromEdges) {
+    auto app = test::makeHeadlessApp(GetParam(), {384, 288});
+    ASSERT_TRUE(app);
+    const auto hard = render(*app, "shadowmap", {"resolution=1024", "cull=none"});
+    const glm::ivec2 size = app->renderer().size();
+    // Pixels whose hard-shadow class is the same in a (2 band + 1)^2 neighbourhood.
+    constexpr int kBand = 4;
+    std::vector<int> stable(hard.size(), -1);
+    int stableShadowed = 0;
+    for (int y = kBand; y < size.y - kBand; ++y)
+        for (int x = kBand; x < size.x - kBand; ++x) {
+            const size_t i = size_t(y) * size_t(size.x) + size_t(x);
+            if (hard[i].a < 0.5f) continue;
+            const int cls = hard[i].r < 0.5f ? 1 : 0;
+            bool same = true;
+            for (int dy = -kBand; dy <= kBand && same; ++dy)
+                for (int dx = -kBand; dx <= kBand && same; ++dx) {
+                    const auto& v = hard[size_t(y + dy) * size_t(size.x) + size_t(x + dx)];
+                    same = v.a > 0.5f && (v.r < 0.5f ? 1 : 0) == cls;
+                }
+            if (!same) continue;
+            stable[i] = cls;
+            stableShadowed += cls;
+        }
+    ASSERT_GT(stableShadowed, 200) << "shadows must be in view";
+    for (const char* technique : kTechniques) {
+        const auto v = render(*app, technique, kMap);
+        int compared = 0, disagree = 0, outOfRange = 0;
+        for (size_t i = 0; i < v.size(); ++i) {
+            outOfRange += v[i].r < 0.0f || v[i].r > 1.0f || !std::isfinite(v[i].r);
+            if (stable[i] < 0) continue;
+            ++compared;
+            disagree += std::abs(v[i].r - (stable[i] ? 0.0f : 1.0f)) > 0.5f;
+        }
+        EXPECT_EQ(outOfRange, 0) << technique << " on " << GetParam();
+        EXPECT_GT(compared, 5000) << technique;
+        EXPECT_LT(double(disagree), 0.002 * compared)
+            << technique << " on " << GetParam() << ": " << disagree << " of " << compared << " stable pixels";
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(BuiltIn, SoftScenes, ::testing::Values("cube", "contact", "overlap"));
+
+// ---------------------------------------------------------------------------------------------
+// The cube under its directional light: analytic shadow polygon
+
+class SoftCube : public ::testing::Test {
+protected:
+    void SetUp() override {
+        app_ = test::makeHeadlessApp("cube", {320, 240});
+        ASSERT_TRUE(app_);
+    }
+    // Fractions of ground pixels away from the analytic boundary (by `band` pixels) that are dark
+    // (< 0.1) inside and bright (> 0.9) outside.
+    void expectAnalytic(const std::string& technique, const std::vector<std::string>& sets, int band) {
+        const auto v = render(*app_, technique, sets);
+        const test::GroundClassification ground = test::classifyGround(*app_);
+        int inside = 0, outside = 0, darkInside = 0, brightOutside = 0;
+        for (int y = 0; y < ground.size.y; ++y)
+            for (int x = 0; x < ground.size.x; ++x) {
+                const int cls = classAt(ground, x, y);
+                if (cls < 0 || ground.nearBoundary(x, y, band)) continue;
+                const float r = v[size_t(y) * size_t(ground.size.x) + size_t(x)].r;
+                if (cls == 1) {
+                    ++inside;
+                    darkInside += r < 0.1f;
+                } else {
+                    ++outside;
+                    brightOutside += r > 0.9f;
+                }
+            }
+        EXPECT_GT(inside, 100) << technique;
+        EXPECT_GT(outside, 5000) << technique;
+        EXPECT_GE(double(darkInside), 0.995 * inside) << technique << ": deep inside the analytic shadow";
+        EXPECT_GE(double(brightOutside), 0.999 * outside) << technique << ": far outside it";
+    }
+    // Ground pixels within `band` pixels of the analytic boundary with 0.1 < v < 0.9.
+    int penumbraPixels(const std::vector<glm::vec4>& v, int band) {
+        const test::GroundClassification ground = test::classifyGround(*app_);
+        int count = 0;
+        for (int y = 0; y < ground.size.y; ++y)
+            for (int x = 0; x < ground.size.x; ++x)
+                if (classAt(ground, x, y) >= 0 && ground.nearBoundary(x, y, band))
+                    count += inPenumbra(v[size_t(y) * size_t(ground.size.x) + size_t(x)].r);
+        return count;
+    }
+    std::unique_ptr<App> app_;
+};
+
+TEST_F(SoftCube, EveryTechniqueIsDarkInsideAndLitOutsideTheAnalyticShadow) {
+    expectAnalytic("pcf", {"resolution=1024", "kernel=5"}, 6);
+    expectAnalytic("pcf", {"resolution=1024", "kernel=9", "hardware_filter=1"}, 8);
+    expectAnalytic("adaptive-pcf", {"resolution=1024", "radius=3"}, 6);
+    expectAnalytic("pcss", {"resolution=1024"}, 6);
+    expectAnalytic("area-reference", {"resolution=1024", "samples=16"}, 6);
+}
+
+TEST_F(SoftCube, PcfPenumbraExistsAndWidensWithTheKernel) {
+    const int hard = penumbraPixels(render(*app_, "pcf", {"resolution=512", "kernel=1"}), 16);
+    const int n3 = penumbraPixels(render(*app_, "pcf", {"kernel=3"}), 16);
+    const int n7 = penumbraPixels(render(*app_, "pcf", {"kernel=7"}), 16);
+    const int n13 = penumbraPixels(render(*app_, "pcf", {"kernel=13"}), 16);
+    EXPECT_EQ(hard, 0) << "n = 1 without bilinear taps is a hard shadow";
+    EXPECT_GT(n3, 100) << "a penumbra band for n > 1";
+    EXPECT_GT(n7, 1.6 * n3) << "wider for larger n";
+    EXPECT_GT(n13, 1.4 * n7) << "wider for larger n";
+}
+
+TEST_F(SoftCube, PcfBilinearTapsRemoveTheBanding) {
+    // Without bilinear taps an n x n box can only produce n^2 + 1 shades (seed 000 Fig. 3.11b);
+    // with them the ramp is continuous (Fig. 3.11c).
+    auto shades = [&](bool bilinear) {
+        const auto v = render(*app_, "pcf", {"resolution=512", "kernel=3", bilinear ? "hardware_filter=1" : "hardware_filter=0"});
+        std::set<int> levels;
+        for (const auto& p : v)
+            if (p.a > 0.5f && inPenumbra(p.r, 0.01f)) levels.insert(int(std::lround(p.r * 1000.0f)));
+        return levels.size();
+    };
+    EXPECT_LE(shades(false), 3u * 3u + 1u - 2u) << "the 8 shades strictly between 0 and 1";
+    EXPECT_GT(shades(true), 50u);
+}
+
+TEST_F(SoftCube, PcfWithoutConeBiasShowsAcneAtLargeKernels) {
+    // The cube's faces that face the light are entirely lit (a convex caster cannot shadow itself).
+    // Far taps of a 15 x 15 kernel see the tilted face itself closer to the light than the shaded
+    // point; without the cone bias that reads as shadow.
+    const SceneObject& cube = objectNamed(*app_, "cube");
+    glm::vec3 lo, hi;
+    meshBounds(*app_, cube, lo, hi);
+    auto litFaceAcne = [&](bool cone, int& litFace) {
+        const auto v = render(*app_, "pcf", {"resolution=1024", "kernel=15", cone ? "cone_bias=1" : "cone_bias=0"});
+        const auto positions = app_->renderer().readTarget(MainTarget::Position);
+        const auto normals = app_->renderer().readTarget(MainTarget::Normal);
+        const glm::vec3 toLight = -glm::normalize(app_->light().direction);
+        const glm::mat4 worldToCube = glm::inverse(cube.transform);
+        int dark = 0;
+        litFace = 0;
+        for (size_t i = 0; i < v.size(); ++i) {
+            if (positions[i].w < 0.5f || glm::dot(glm::vec3(normals[i]), toLight) < 0.3f) continue;
+            const glm::vec3 local = glm::vec3(worldToCube * glm::vec4(glm::vec3(positions[i]), 1.0f));
+            // On the cube, and more than 0.15 from any face edge (taps there cross onto other faces).
+            const glm::vec3 inset = glm::min(local - lo, hi - local);
+            int onFace = 0, interior = 0;
+            for (int a = 0; a < 3; ++a) {
+                onFace += inset[a] < 1e-3f;
+                interior += inset[a] > 0.15f;
+            }
+            if (onFace != 1 || interior != 2) continue;
+            ++litFace;
+            dark += v[i].r < 0.9f;
+        }
+        return dark;
+    };
+    int litWithout = 0, litWith = 0;
+    const int acneWithout = litFaceAcne(false, litWithout);
+    const int acneWith = litFaceAcne(true, litWith);
+    ASSERT_GT(litWithout, 1000);
+    EXPECT_GT(double(acneWithout), 0.3 * litWithout) << "cone bias off: false shadow on lit faces";
+    EXPECT_LT(double(acneWith), 0.005 * litWith) << "cone bias on: clean";
+}
+
+TEST_F(SoftCube, AdaptivePcfReportsItsEarlyOutRate) {
+    std::string error;
+    ASSERT_TRUE(app_->applyAssignments({"resolution=1024", "radius=4"}, "adaptive-pcf", error)) << error;
+    for (int frame = 0; frame < 6; ++frame) ASSERT_TRUE(app_->renderFrame("adaptive-pcf", error)) << error;
+    (void)app_->renderer().readTarget(MainTarget::Visibility);   // the GPU finishes the frames
+    ASSERT_TRUE(app_->renderFrame("adaptive-pcf", error)) << error;   // and the plugin collects them
+    const auto& stats = app_->techniques().get("adaptive-pcf", error)->host().statistics();
+    ASSERT_TRUE(stats.count("early-out rate")) << "reported a few frames late";
+    const double rate = stats.at("early-out rate");
+    EXPECT_GE(rate, 0.0);
+    EXPECT_LE(rate, 1.0);
+    EXPECT_GT(rate, 0.5) << "most of the cube scene is far from a shadow edge";
+    ASSERT_TRUE(stats.count("shaded fragments"));
+    EXPECT_GT(stats.at("shaded fragments"), 10000.0);
+
+    // A wider disc puts more pixels into the penumbra: fewer early outs.
+    ASSERT_TRUE(app_->applyAssignments({"radius=24"}, "adaptive-pcf", error)) << error;
+    for (int frame = 0; frame < 6; ++frame) ASSERT_TRUE(app_->renderFrame("adaptive-pcf", error)) << error;
+    (void)app_->renderer().readTarget(MainTarget::Visibility);
+    ASSERT_TRUE(app_->renderFrame("adaptive-pcf", error)) << error;
+    EXPECT_LT(app_->techniques().get("adaptive-pcf", error)->host().statistics().at("early-out rate"), rate);
+}
+
+TEST_F(SoftCube, OffsetTexturesHaveTheDocumentedSize) {
+    auto offsetBytes = [&](const std::string& technique, const std::string& label) {
+        std::string error;
+        size_t bytes = 0;
+        int count = 0;
+        for (const auto& [name, allocation] : app_->techniques().get(technique, error)->host().textures())
+            if (allocation.label.find(label) != std::string::npos) {
+                bytes += allocation.bytes;
+                ++count;
+            }
+        EXPECT_EQ(count, 1) << technique << ": one texture labelled " << label;
+        return bytes;
+    };
+    render(*app_, "adaptive-pcf", {"resolution=256", "grid=8", "sets=16"});
+    EXPECT_EQ(offsetBytes("adaptive-pcf", "disc offsets"), size_t(16 * 16 * (8 * 8 / 2)) * 16) << "m x m x n^2/2 RGBA32F";
+    render(*app_, "adaptive-pcf", {"grid=5", "sets=4"});
+    EXPECT_EQ(offsetBytes("adaptive-pcf", "disc offsets"), size_t(4 * 4 * 13) * 16) << "odd n rounds n^2/2 up; old one released";
+    render(*app_, "pcss", {"resolution=256", "search_grid=6", "filter_grid=8", "sets=16"});
+    EXPECT_EQ(offsetBytes("pcss", "search disc offsets"), size_t(16 * 16 * 18) * 16);
+    EXPECT_EQ(offsetBytes("pcss", "filter disc offsets"), size_t(16 * 16 * 32) * 16);
+}
+
+TEST_F(SoftCube, AreaReferenceWithOneSampleIsAHardShadowMap) {
+    const auto hard = render(*app_, "shadowmap", {"resolution=1024", "cull=none"});
+    const auto area = render(*app_, "area-reference", {"resolution=1024", "samples=1"});
+    int compared = 0, different = 0;
+    for (size_t i = 0; i < hard.size(); ++i) {
+        if (hard[i].a < 0.5f) continue;
+        ++compared;
+        different += hard[i].r != area[i].r;
+    }
+    ASSERT_GT(compared, 10000);
+    EXPECT_EQ(different, 0) << "the centre sample is the host's light space, bias and comparison";
+}
+
+TEST_F(SoftCube, AreaReferencePenumbraGrowsWithTheLight) {
+    // The scene's sun (0.5 degrees) gives a thin penumbra; a larger one a wider one.
+    const int small = penumbraPixels(render(*app_, "area-reference", {"resolution=1024", "samples=32"}), 20);
+    app_->light().size = glm::radians(4.0f);
+    const int large = penumbraPixels(render(*app_, "area-reference", {}), 20);
+    EXPECT_GT(large, 3 * small);
+}
+
+TEST_F(SoftCube, PerspectiveLightsWork) {
+    // Spot and point lights: the perspective branches (cone bias along the light axis, eq. 3.17-3.20
+    // with the min-depth search bound, disc samples over the emitter).
+    for (LightType type : {LightType::Point, LightType::Spot}) {
+        app_->light().type = type;
+        app_->light().position = {2.0f, 4.0f, 1.5f};
+        app_->light().direction = glm::normalize(glm::vec3(0.0f, 0.5f, 0.0f) - app_->light().position);
+        app_->light().spotOuterAngle = glm::radians(50.0f);
+        app_->light().spotInnerAngle = glm::radians(40.0f);
+        app_->light().size = 0.1f;
+        const auto hard = render(*app_, "shadowmap", {"resolution=1024", "cull=none"});
+        for (const char* technique : kTechniques) {
+            const auto v = render(*app_, technique, kMap);
+            int compared = 0, agree = 0, penumbra = 0;
+            for (size_t i = 0; i < v.size(); ++i) {
+                if (hard[i].a < 0.5f) continue;
+                ++compared;
+                agree += std::abs(v[i].r - hard[i].r) < 0.5f;
+                penumbra += inPenumbra(v[i].r);
+            }
+            EXPECT_GT(compared, 5000);
+            EXPECT_GT(double(agree), 0.97 * compared) << technique << " light type " << int(type);
+            EXPECT_GT(penumbra, 20) << technique << " light type " << int(type) << ": a soft edge exists";
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// `contact`: penumbrae widen with the caster's height (PCSS and the reference), not with PCF
+
+class SoftContact : public ::testing::Test {
+protected:
+    void SetUp() override {
+        // 16:9 keeps the outermost boxes and their shadows in view.
+        app_ = test::makeHeadlessApp("contact", {384, 216});
+        ASSERT_TRUE(app_);
+        app_->light().size = glm::radians(6.0f);   // a large sun: penumbrae several pixels wide
+    }
+    // Penumbra pixels (0.05 < v < 0.95) on the ground whose ray to the light passes next to
+    // `box` (within 0.6 of its footprint, at the height of its centre).
+    int penumbraOf(const std::vector<glm::vec4>& v, const std::string& box) {
+        const SceneObject& object = objectNamed(*app_, box);
+        const glm::vec3 centre = glm::vec3(object.transform[3]);
+        const glm::vec3 toLight = -glm::normalize(app_->light().direction);
+        const auto positions = app_->renderer().readTarget(MainTarget::Position);
+        int count = 0;
+        for (size_t i = 0; i < v.size(); ++i) {
+            if (positions[i].w < 0.5f || std::abs(positions[i].y) > 1e-3f) continue;
+            const glm::vec3 q = glm::vec3(positions[i]) + toLight * (centre.y / toLight.y);
+            if (std::abs(q.x - centre.x) > 1.0f || std::abs(q.z - centre.z) > 1.0f) continue;
+            count += inPenumbra(v[i].r, 0.05f);
+        }
+        return count;
+    }
+    std::unique_ptr<App> app_;
+};
+
+TEST_F(SoftContact, PcssPenumbraWidensWithCasterHeight) {
+    // Penumbra pixel counts also depend on how much of each shadow's outline is visible (the
+    // touching box hides part of its own), so each is compared with PCF's, whose width is fixed.
+    const auto pcf = render(*app_, "pcf", {"resolution=1024", "kernel=5"});
+    const double pcfTouching = penumbraOf(pcf, "box at 0"), pcfHovering = penumbraOf(pcf, "box at 1.5");
+    ASSERT_GT(pcfTouching, 20.0);
+    ASSERT_GT(pcfHovering, 20.0);
+    const auto pcss = render(*app_, "pcss", {"resolution=1024"});
+    const double touching = penumbraOf(pcss, "box at 0") / pcfTouching;
+    const double hovering = penumbraOf(pcss, "box at 1.5") / pcfHovering;
+    EXPECT_GT(hovering, 1.6 * touching) << "contact hardening: relative width " << touching << " touching, "
+                                        << hovering << " hovering";
+    // The reference agrees on the trend.
+    const auto reference = render(*app_, "area-reference", {"resolution=1024", "samples=32"});
+    const double refTouching = penumbraOf(reference, "box at 0") / pcfTouching;
+    const double refHovering = penumbraOf(reference, "box at 1.5") / pcfHovering;
+    EXPECT_GT(refHovering, 1.6 * refTouching) << refTouching << " vs " << refHovering;
+}
+
+TEST_F(SoftContact, NoLightLeaksInsideTheUmbra) {
+    // Where the ray-traced soft reference is fully shadowed and stays so for 2 pixels around, every
+    // technique must be dark. (A min-depth lookup that missed the receiver's own texel once leaked a
+    // one-pixel lit line through a box's umbra here.)
+    auto app = test::makeHeadlessApp("contact", {640, 360});   // the scene's own 1-degree sun
+    ASSERT_TRUE(app);
+    const auto reference = render(*app, "reference", {"mode=soft", "samples=16"});
+    const glm::ivec2 size = app->renderer().size();
+    std::vector<bool> umbra(reference.size(), false);
+    int umbraPixels = 0;
+    for (int y = 2; y < size.y - 2; ++y)
+        for (int x = 2; x < size.x - 2; ++x) {
+            bool dark = true;
+            for (int dy = -2; dy <= 2 && dark; ++dy)
+                for (int dx = -2; dx <= 2 && dark; ++dx) {
+                    const auto& v = reference[size_t(y + dy) * size_t(size.x) + size_t(x + dx)];
+                    dark = v.a > 0.5f && v.r == 0.0f;
+                }
+            umbra[size_t(y) * size_t(size.x) + size_t(x)] = dark;
+            umbraPixels += dark;
+        }
+    ASSERT_GT(umbraPixels, 1000);
+    for (const char* technique : kTechniques) {
+        const auto v = render(*app, technique, kMap);
+        int leaks = 0;
+        for (size_t i = 0; i < v.size(); ++i) leaks += umbra[i] && v[i].r > 0.5f;
+        EXPECT_EQ(leaks, 0) << technique << ": lit pixels inside the reference's umbra";
+    }
+}
+
+TEST_F(SoftContact, PcssApproximatesTheAreaReference) {
+    const auto reference = render(*app_, "area-reference", {"resolution=1024", "samples=64"});
+    const auto pcss = render(*app_, "pcss", {"resolution=1024", "filter_grid=10"});
+    const auto hard = render(*app_, "shadowmap", {"resolution=1024", "cull=none"});
+    double pcssError = 0.0, hardError = 0.0;
+    int compared = 0;
+    for (size_t i = 0; i < reference.size(); ++i) {
+        if (reference[i].a < 0.5f) continue;
+        ++compared;
+        pcssError += std::abs(pcss[i].r - reference[i].r);
+        hardError += std::abs(hard[i].r - reference[i].r);
+    }
+    ASSERT_GT(compared, 10000);
+    EXPECT_LT(pcssError, 0.7 * hardError) << "PCSS is closer to the soft reference than a hard shadow";
+}
+
+// ---------------------------------------------------------------------------------------------
+
+TEST(SoftTechniques, ReleaseEverythingOnUnload) {
+    {
+        auto app = test::makeHeadlessApp("cube", {160, 120});
+        ASSERT_TRUE(app);
+        for (const char* technique : kTechniques) {
+            render(*app, technique, {"resolution=256"});
+            render(*app, technique, {"resolution=512"});   // reallocation releases the old map
+        }
+        std::string error;
+        for (const char* technique : kTechniques)
+            EXPECT_GE(app->techniques().get(technique, error)->host().gpuBytes(), size_t(512 * 512 * 4)) << technique;
+    }
+    // The host warns "<id>: N GL object(s) still alive after shutdown()" for whatever is left.
+    for (const auto& entry : recentLog())
+        for (const char* technique : kTechniques)
+            EXPECT_FALSE(entry.message.starts_with(std::string(technique) + ": ") &&
+                         entry.message.find("still alive") != std::string::npos)
+                << entry.message;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Accuracy against the ray-traced soft reference (tests/test_support.h measureAccuracy), at the
+// scene's own light size and at a 4-degree sun. Stated bounds at 320x240 with 1024 maps and
+// default parameters (measured on llvmpipe, then given about 2x headroom):
+//   area-reference (32 samples)  MAE < 0.003, penumbra MAE < 0.15
+//   pcss                         MAE < 0.004, penumbra MAE < 0.18
+//   pcf (5 x 5), adaptive-pcf    MAE < 0.012, penumbra MAE < 0.5 (fixed width: too wide under the
+//                                scenes' small suns, too narrow at contacts' far ends)
+// (the penumbra class includes the one-to-two-pixel band around hard edges, so a thin penumbra
+// keeps its MAE high: 0.09 for area-reference on cube at 0.5 degrees)
+//   all                          false shadow < 0.4 %, false light < 0.2 % of compared pixels
+// and, under the large light, pcss and area-reference beat the hard shadow map.
+
+class SoftAccuracy : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SoftAccuracy, WithinStatedBoundsOfTheSoftReference) {
+    using Mode = ReferenceOptions::Mode;
+    auto app = test::makeHeadlessApp(GetParam(), {320, 240});
+    ASSERT_TRUE(app);
+    struct Bound {
+        const char* technique;
+        double mae, maePenumbra;
+    };
+    const Bound bounds[] = {{"area-reference", 0.003, 0.15}, {"pcss", 0.004, 0.18}, {"pcf", 0.012, 0.5},
+                            {"adaptive-pcf", 0.012, 0.5}};
+    const float sceneSize = app->light().size;
+    for (const float size : {sceneSize, glm::radians(4.0f)}) {
+        app->light().size = size;
+        SCOPED_TRACE(std::string(GetParam()) + ", light angular radius " + std::to_string(glm::degrees(size)) + " deg");
+        std::map<std::string, double> mae;
+        for (const Bound& bound : bounds) {
+            SCOPED_TRACE(bound.technique);
+            const AccuracyMetrics m = test::measureAccuracy(*app, bound.technique, {"resolution=1024"}, Mode::Soft, 32);
+            EXPECT_LT(m.mae, bound.mae);
+            EXPECT_LT(m.maePenumbra, bound.maePenumbra);
+            EXPECT_LT(m.falseShadowRate, 0.004);
+            EXPECT_LT(m.falseLightRate, 0.002);
+            EXPECT_GT(m.comparedFraction, 0.3);
+            mae[bound.technique] = m.mae;
+        }
+        if (size > sceneSize) {
+            const double hard = test::measureAccuracy(*app, "shadowmap", {"resolution=1024"}, Mode::Soft, 32).mae;
+            EXPECT_LT(mae["pcss"], 0.6 * hard) << "PCSS is closer to the soft reference than a hard map";
+            EXPECT_LT(mae["area-reference"], 0.6 * hard);
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(BuiltIn, SoftAccuracy, ::testing::Values("cube", "contact", "overlap"));
+
+TEST(SoftTechniques, PcssMinDepthMipsAreConservative) {
+    // Every texel of level k must be <= each shadow-map texel it stands for
+    // ([x 2^(k+1), (x + 1) 2^(k+1)) in each direction), or the bounded blocker search leaks light.
+    auto app = test::makeHeadlessApp("contact", {320, 180});
+    ASSERT_TRUE(app);
+    render(*app, "pcss", {"resolution=1000"});   // not a power of two: odd sizes on the way down
+    std::string error;
+    GLuint map = 0, mips = 0;
+    for (const auto& [name, allocation] : app->techniques().get("pcss", error)->host().textures()) {
+        if (allocation.label == "pcss: shadow map") map = name;
+        if (allocation.label == "pcss: min-depth mips") mips = name;
+    }
+    ASSERT_TRUE(map && mips);
+    std::vector<float> depth(1000 * 1000);
+    glGetTextureImage(map, 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(depth.size() * sizeof(float)), depth.data());
+    GLint levels = 0;
+    glGetTextureParameteriv(mips, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
+    ASSERT_GT(levels, 5);
+    int violations = 0;
+    for (int level = 0; level < levels; ++level) {
+        GLint w = 0, h = 0;
+        glGetTextureLevelParameteriv(mips, level, GL_TEXTURE_WIDTH, &w);
+        glGetTextureLevelParameteriv(mips, level, GL_TEXTURE_HEIGHT, &h);
+        std::vector<float> texels(size_t(w) * size_t(h));
+        glGetTextureImage(mips, level, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
+        for (int y = 0; y < 1000; ++y)
+            for (int x = 0; x < 1000; ++x) {
+                const int mx = std::min(x >> (level + 1), w - 1), my = std::min(y >> (level + 1), h - 1);
+                violations += texels[size_t(my) * size_t(w) + size_t(mx)] > depth[size_t(y) * 1000 + size_t(x)];
+            }
+    }
+    EXPECT_EQ(violations, 0);
+}
