@@ -19,6 +19,7 @@
 #include "app.h"
 #include "bench/bench.h"
 #include "bench/report.h"
+#include "reference/reference_technique.h"
 #include "util/log.h"
 #include "util/paths.h"
 
@@ -130,6 +131,7 @@ int startApp(App& app, const CommonOptions& common, bool windowed) {
 int commandList(bool json) {
     PluginScan scan = scanPlugins(pluginDir());
     for (const auto& error : scan.errors) logWarning("skipped plugin: " + error);
+    scan.techniques.push_back(copyDescriptor(referenceDescriptor(), {}));   // built into the host
     if (json) {
         nlohmann::json out = nlohmann::json::array();
         for (const auto& t : scan.techniques) {

@@ -206,4 +206,19 @@ Mesh makeTree(float height, float crownRadius, int segments) {
     return tree;
 }
 
+Mesh makeBumpySphere(float radius, float amplitude, float frequency, int segments) {
+    // Same topology as makeSphere (closed, poles included); each vertex moves along its normal by
+    // two crossed ridge patterns, then normals are recomputed from the displaced surface.
+    Mesh mesh = makeSphere(radius, segments, std::max(segments / 2, 2));
+    for (Vertex& v : mesh.vertices) {
+        const glm::vec3 d = glm::normalize(v.position);
+        const float ridges = std::sin(frequency * d.x * 3.1f + 1.3f * std::sin(frequency * d.z)) *
+                                 std::cos(frequency * d.y * 2.3f) +
+                             0.5f * std::sin(2.7f * frequency * d.z + 2.0f * d.y);
+        v.position = d * radius * (1.0f + amplitude * ridges);
+    }
+    generateNormals(mesh);
+    return mesh;
+}
+
 } // namespace shadowlab

@@ -34,7 +34,7 @@ using nlohmann::json;
 constexpr float kRadiansPerDegree = glm::pi<float>() / 180.0f;
 constexpr int kMaxInstances = 1'000'000;   // a typo like count=5000000 should fail, not swap
 constexpr int kMaxSegments = 4096;
-constexpr const char* kShapes = "plane, box, sphere, cylinder, torus, tree, obj";
+constexpr const char* kShapes = "plane, box, sphere, cylinder, torus, tree, bumpy, obj";
 
 std::string formatNumber(double value, int precision = 6) {
     std::ostringstream text;
@@ -292,6 +292,14 @@ MeshRecipe readShape(FieldReader& fields, const std::string& shape, const std::f
         const int segments = fields.integer("segments", 12, 3, kMaxSegments);
         return {recipeKey(shape, {height, crownRadius, double(segments)}),
                 [=] { return makeTree(height, crownRadius, segments); }};
+    }
+    if (shape == "bumpy") {
+        const float radius = fields.number("radius", 0.5f, Range::Positive);
+        const float amplitude = fields.number("amplitude", 0.15f, Range::NonNegative);
+        const float frequency = fields.number("frequency", 6.0f, Range::Positive);
+        const int segments = fields.integer("segments", 96, 3, kMaxSegments);
+        return {recipeKey(shape, {radius, amplitude, frequency, double(segments)}),
+                [=] { return makeBumpySphere(radius, amplitude, frequency, segments); }};
     }
     if (shape == "obj") {
         const json& value = fields.required("file", "an obj object needs a file, relative to the scene file");

@@ -108,6 +108,9 @@ Mesh makeSphere(float radius, int segments, int rings);             // centred a
 Mesh makeCylinder(float radius, float height, int segments);        // base on y = 0, capped
 Mesh makeTorus(float majorRadius, float minorRadius, int segments, int sides); // in xz plane
 Mesh makeTree(float height, float crownRadius, int segments);       // trunk + cone crown, base y = 0
+// A closed, detailed blob: a sphere displaced radially by ridges of the given frequency, so it
+// shadows itself at small scale (the role of the Chinese Dragon in seed 000's tests).
+Mesh makeBumpySphere(float radius, float amplitude, float frequency, int segments);
 
 // OBJ through tinyobjloader; smooth normals generated when the file has none.
 Mesh loadObj(const std::filesystem::path& path);
