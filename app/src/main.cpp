@@ -341,8 +341,16 @@ int commandBench(const CommonOptions& common, std::vector<BenchSpec> specs, cons
     if (int code = startApp(app, common, false)) return code;
     std::vector<nlohmann::json> rows;
     std::string error;
+    // The file is rewritten after every row, so a run cut short keeps what it measured.
+    std::vector<nlohmann::json> written;
+    auto onRow = [&](const nlohmann::json& row) {
+        printRowLine(row);
+        written.push_back(row);
+        std::string writeError;
+        if (!writeBenchResults(out, written, writeError)) logWarning(writeError);
+    };
     for (const BenchSpec& spec : specs)
-        if (!runBench(app, spec, rows, error, printRowLine)) return fail(error, kExitBadInput);
+        if (!runBench(app, spec, rows, error, onRow)) return fail(error, kExitBadInput);
     if (!writeBenchResults(out, rows, error)) return fail(error, kExitFailure);
     logInfo("wrote " + std::to_string(rows.size()) + " rows to " + out);
     return 0;

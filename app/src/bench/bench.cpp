@@ -96,7 +96,7 @@ bool addSweep(BenchSpec& spec, const std::string& text, std::string& error) {
 
 bool parseBenchSpec(const nlohmann::json& json, BenchSpec& spec, std::string& error) {
     static const std::set<std::string> known{"techniques", "scenes", "sizes", "sweep", "base", "frames", "warmup",
-                                             "accuracy", "reference", "referenceSamples", "depthFloor", "description"};
+                                             "accuracy", "reference", "referenceSamples", "depthFloor", "description", "tag"};
     if (!json.is_object()) {
         error = "a benchmark spec is a JSON object";
         return false;
@@ -137,6 +137,7 @@ bool parseBenchSpec(const nlohmann::json& json, BenchSpec& spec, std::string& er
         spec.reference = json.value("reference", spec.reference);
         spec.referenceSamples = json.value("referenceSamples", spec.referenceSamples);
         spec.depthFloor = json.value("depthFloor", spec.depthFloor);
+        spec.tag = json.value("tag", spec.tag);
     } catch (const nlohmann::json::exception& e) {
         error = std::string("wrong type: ") + e.what();
         return false;
@@ -228,6 +229,7 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
             for (const glm::ivec2 size : spec.sizes) {
                 if (!app.setRenderSize(size, error)) return false;
                 nlohmann::json common = environment;
+                if (!spec.tag.empty()) common["spec"] = spec.tag;
                 common["scene"] = app.scene().name;
                 common["triangles"] = app.scene().triangleCount();
                 for (const auto& [key, value] : sceneSettings) common[key] = std::stod(value);

@@ -17,6 +17,7 @@ namespace shadowlab {
 class App;
 
 struct BenchSpec {
+    std::string tag;                         // copied into every row as "spec" (which sweep it came from)
     std::vector<std::string> techniques;     // empty: every technique except the reference
     std::vector<std::string> scenes{"cube"};
     std::vector<glm::ivec2> sizes{{1280, 720}};
