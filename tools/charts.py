@@ -4,7 +4,7 @@
     python3 tools/charts.py results.json OUT_DIR
 
 Writes PNG files into OUT_DIR:
-  pareto-<scene>-<WxH>.png         error against GPU milliseconds, one point per (technique, parameters),
+  pareto-<scene>-<WxH>-<hard|soft>.png         error against GPU milliseconds, one point per (technique, parameters),
                               the Pareto front drawn (lower left is better)
   sweep-<key>-<scene>.png     milliseconds against each swept parameter (shadow-map resolution,
                               kernel sizes, light size, ...): the sweeps of seed 000 Fig. 4.1-4.11
@@ -77,10 +77,7 @@ def varying_keys(rows, prefix):
     return sorted(k for k, v in values.items() if len(v) > 1)
 
 
-def chart_pareto(rows, scene, out_dir, size_name):
-    error_key = next((k for k in ("soft_mae", "hard_mae") if any(k in r for r in rows)), None)
-    if not error_key:
-        return None
+def chart_pareto(rows, scene, out_dir, size_name, error_key):
     rows = [r for r in rows if error_key in r and FRAME in r]
     if not rows:
         return None
@@ -89,8 +86,10 @@ def chart_pareto(rows, scene, out_dir, size_name):
     by_technique = defaultdict(list)
     for row in rows:
         by_technique[row["technique"]].append(row)
-    for technique, items in sorted(by_technique.items()):
-        ax.scatter([r[FRAME] for r in items], [r[error_key] for r in items], label=technique, s=28)
+    colours = plt.get_cmap("tab20").colors
+    for index, (technique, items) in enumerate(sorted(by_technique.items())):
+        ax.scatter([r[FRAME] for r in items], [r[error_key] for r in items], label=technique, s=28,
+                   color=colours[(2 * index) % 20 + (index // 10)], marker="osD^vPX*h<>"[index % 11])
     front = pareto_front([(r[FRAME], r[error_key]) for r in rows])
     ax.plot([p[0] for p in front], [p[1] for p in front], "k--", lw=1, label="Pareto front")
     for row in rows:
@@ -103,7 +102,7 @@ def chart_pareto(rows, scene, out_dir, size_name):
     ax.set_title(f"Speed against accuracy: {scene} at {size_name} ({rows[0].get('gpu', '')})", fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, ncol=2)
-    path = os.path.join(out_dir, f"pareto-{scene}-{size_name}.png")
+    path = os.path.join(out_dir, f"pareto-{scene}-{size_name}-{reference}.png")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -155,7 +154,8 @@ def main(argv):
         scene_rows = [r for r in rows if r["scene"] == scene]
         for size in sorted({(int(r["width"]), int(r["height"])) for r in scene_rows if "width" in r}):
             sized = [r for r in scene_rows if (int(r.get("width", 0)), int(r.get("height", 0))) == size]
-            written.append(chart_pareto(sized, scene, out_dir, f"{size[0]}x{size[1]}"))
+            for error_key in ("hard_mae", "soft_mae"):
+                written.append(chart_pareto(sized, scene, out_dir, f"{size[0]}x{size[1]}", error_key))
         for key in varying_keys(scene_rows, "param.") + (["light_size"] if len({r.get("light_size") for r in scene_rows}) > 1 else []):
             name = "sweep-" + key.replace("param.", "").replace("_", "-")
             written.append(chart_against(scene_rows, key, scene, out_dir, key.replace("param.", ""), name,
