@@ -20,8 +20,20 @@ layout(std140, binding = 0) uniform Frame {
     vec4 uViewport;             // width, height, 1/width, 1/height
 };
 
-layout(location = 0) uniform mat4 uModel;
-layout(location = 1) uniform mat3 uNormalMatrix;
+// Per-object transforms live in one buffer; the host draws runs of objects that share a mesh and
+// a material as one instanced draw (5000 trees: a few draws, not 5000). uFirstObject is the first
+// object of the draw, gl_InstanceID the object within it. Use uModel and uNormalMatrix in vertex
+// stages only (gl_InstanceID exists there alone).
+struct ObjectTransform {
+    mat4 model;
+    mat4 normalMatrix;   // mat3 in a mat4, for std430 layout
+};
+layout(std430, binding = 0) readonly buffer ObjectTransforms {
+    ObjectTransform uObjectTransforms[];
+};
+layout(location = 0) uniform int uFirstObject;
+#define uModel (uObjectTransforms[uFirstObject + gl_InstanceID].model)
+#define uNormalMatrix (mat3(uObjectTransforms[uFirstObject + gl_InstanceID].normalMatrix))
 layout(location = 2) uniform vec4 uBaseColor;      // rgb, a = alpha
 layout(location = 3) uniform vec4 uTransmission;   // rgb transmission colour
 layout(location = 4) uniform vec4 uSpecular;       // rgb, a = shininess

@@ -162,8 +162,9 @@ public:
     virtual LightSpace fitLightSpace(DrawSet set) const = 0;
     virtual uint32_t objectCount() const = 0;
     virtual ObjectInfo objectInfo(uint32_t index) const = 0;
-    // Draws with `program` bound; the host sets the per-object uniforms (see shaders/common.glsl:
-    // location 0 uModel, 1 uNormalMatrix, 2 uBaseColor, 3 uTransmission) and the frame UBO.
+    // Draws with `program` bound; the host sets the per-object data (see shaders/common.glsl:
+    // uModel and uNormalMatrix from its transform buffer, uBaseColor, uTransmission, uSpecular),
+    // drawing objects that share mesh and material as one instanced draw, and the frame UBO.
     virtual void drawScene(DrawSet set, uint32_t glProgram) = 0;
     virtual void drawObject(uint32_t index, uint32_t glProgram) = 0;
     virtual void drawFullscreenTriangle() = 0;

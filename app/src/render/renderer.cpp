@@ -110,15 +110,41 @@ void Renderer::setScene(const Scene& scene) {
     glVertexArrayAttribFormat(name, 2, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
     for (GLuint attribute = 0; attribute < 3; ++attribute) glVertexArrayAttribBinding(name, attribute, 0);
 
-    objectDraws_.clear();
-    opaqueObjects_.clear();
+    // Transforms of every object in one buffer (std430 mirror of ObjectTransform in common.glsl).
+    struct ObjectTransform {
+        glm::mat4 model;
+        glm::mat4 normalMatrix;
+    };
+    std::vector<ObjectTransform> transforms;
+    transforms.reserve(scene.objects.size());
+    batches_.clear();
+    opaqueBatches_.clear();
     translucentObjects_.clear();
     for (uint32_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& object = scene.objects[i];
-        objectDraws_.push_back({object.transform, glm::transpose(glm::inverse(glm::mat3(object.transform))),
-                                object.mesh, object.material});
-        (scene.materials[object.material].translucent() ? translucentObjects_ : opaqueObjects_).push_back(i);
+        transforms.push_back({object.transform, glm::mat4(glm::transpose(glm::inverse(glm::mat3(object.transform))))});
+        if (scene.materials[object.material].translucent()) {
+            translucentObjects_.push_back(i);
+            batches_.push_back({i, 1, object.mesh, object.material});
+            continue;
+        }
+        const bool extends = !batches_.empty() && batches_.back().mesh == object.mesh &&
+                             batches_.back().material == object.material &&
+                             batches_.back().firstObject + batches_.back().count == i &&
+                             scene.objects[batches_.back().firstObject].castsShadow == object.castsShadow &&
+                             scene.objects[batches_.back().firstObject].receivesShadow == object.receivesShadow &&
+                             !scene.materials[scene.objects[batches_.back().firstObject].material].translucent();
+        if (extends) {
+            ++batches_.back().count;
+        } else {
+            batches_.push_back({i, 1, object.mesh, object.material});
+            opaqueBatches_.push_back(uint32_t(batches_.size() - 1));
+        }
     }
+    glCreateBuffers(1, &name);
+    objectTransforms_.reset(name);
+    glNamedBufferStorage(name, GLsizeiptr(std::max<size_t>(1, transforms.size()) * sizeof(ObjectTransform)),
+                         transforms.empty() ? nullptr : transforms.data(), 0);
     translucentOrder_.reserve(translucentObjects_.size());
 }
 
@@ -205,40 +231,35 @@ ObjectInfo Renderer::objectInfo(uint32_t index) const {
     return {o.castsShadow, o.receivesShadow, scene_->materials[o.material].translucent(), o.isPlane, o.plane};
 }
 
-void Renderer::setObjectUniforms(const ObjectDraw& draw) {
-    const Material& m = scene_->materials[draw.material];
-    glUniformMatrix4fv(0, 1, GL_FALSE, glm::value_ptr(draw.model));
-    glUniformMatrix3fv(1, 1, GL_FALSE, glm::value_ptr(draw.normalMatrix));
+void Renderer::drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, uint32_t material) {
+    const Material& m = scene_->materials[material];
+    glUniform1i(0, GLint(firstObject));
     glUniform4f(2, m.baseColor.r, m.baseColor.g, m.baseColor.b, m.alpha);
     glUniform4f(3, m.transmission.r, m.transmission.g, m.transmission.b, 1.0f);
     glUniform4f(4, m.specular.r, m.specular.g, m.specular.b, m.shininess);
+    const MeshRange& range = meshRanges_[mesh];
+    glDrawElementsInstancedBaseVertex(GL_TRIANGLES, GLsizei(range.indexCount), GL_UNSIGNED_INT,
+                                      reinterpret_cast<const void*>(uintptr_t(range.firstIndex) * sizeof(uint32_t)),
+                                      GLsizei(count), range.baseVertex);
 }
 
 void Renderer::drawObject(uint32_t index, GLuint program) {
-    if (!scene_ || index >= objectDraws_.size()) return;
+    if (!scene_ || index >= scene_->objects.size()) return;
     glUseProgram(program);
     glBindVertexArray(sceneVao_.get());
-    const ObjectDraw& draw = objectDraws_[index];
-    setObjectUniforms(draw);
-    const MeshRange& range = meshRanges_[draw.mesh];
-    glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(range.indexCount), GL_UNSIGNED_INT,
-                             reinterpret_cast<const void*>(uintptr_t(range.firstIndex) * sizeof(uint32_t)),
-                             range.baseVertex);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objectTransforms_.get());
+    const SceneObject& object = scene_->objects[index];
+    drawBatch(index, 1, object.mesh, object.material);
 }
 
 void Renderer::drawScene(DrawSet set, GLuint program) {
     if (!scene_) return;
     glUseProgram(program);
     glBindVertexArray(sceneVao_.get());
-    for (uint32_t i = 0; i < objectDraws_.size(); ++i) {
-        if (!scene_->inSet(scene_->objects[i], set)) continue;
-        const ObjectDraw& draw = objectDraws_[i];
-        setObjectUniforms(draw);
-        const MeshRange& range = meshRanges_[draw.mesh];
-        glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(range.indexCount), GL_UNSIGNED_INT,
-                                 reinterpret_cast<const void*>(uintptr_t(range.firstIndex) * sizeof(uint32_t)),
-                                 range.baseVertex);
-    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objectTransforms_.get());
+    // A batch shares its objects' flags, so its first object decides for all of it.
+    for (const Batch& batch : batches_)
+        if (scene_->inSet(scene_->objects[batch.firstObject], set)) drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
 }
 
 void Renderer::drawFullscreenTriangle() {
@@ -274,13 +295,17 @@ void Renderer::beginMainPass(GLuint program) {
 void Renderer::drawMainPassObjects(GLuint program) {
     if (!scene_) return;
     glBindVertexArray(sceneVao_.get());
-    for (uint32_t i : opaqueObjects_) drawObject(i, program);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objectTransforms_.get());
+    for (uint32_t index : opaqueBatches_) {
+        const Batch& batch = batches_[index];
+        drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
+    }
     if (translucentObjects_.empty()) return;
     // Translucent surfaces: blended colour, back to front, without touching the G-buffer or
     // depth, so accuracy is measured on the opaque surface behind them.
     translucentOrder_.clear();
     for (uint32_t i : translucentObjects_) {
-        const glm::vec3 center = glm::vec3(objectDraws_[i].model[3]);
+        const glm::vec3 center = glm::vec3(scene_->objects[i].transform[3]);
         translucentOrder_.push_back({glm::length(center - camera_.position), i});
     }
     std::sort(translucentOrder_.begin(), translucentOrder_.end(), [](auto& a, auto& b) { return a.first > b.first; });

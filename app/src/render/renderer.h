@@ -73,24 +73,26 @@ private:
         uint32_t indexCount;
         int32_t baseVertex;
     };
-    struct ObjectDraw {
-        glm::mat4 model;
-        glm::mat3 normalMatrix;
+    // A run of consecutive objects with the same mesh, material and shadow flags: one instanced draw.
+    struct Batch {
+        uint32_t firstObject;
+        uint32_t count;
         uint32_t mesh;
         uint32_t material;
     };
     void beginMainPass(GLuint program);
     void drawMainPassObjects(GLuint program);
     void endMainPass();
-    void setObjectUniforms(const ObjectDraw& draw);
+    void drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, uint32_t material);
 
     ShaderLibrary& shaders_;
     const Scene* scene_ = nullptr;
-    GlBuffer vertexBuffer_, indexBuffer_, frameUniforms_;
+    GlBuffer vertexBuffer_, indexBuffer_, frameUniforms_, objectTransforms_;
     GlVertexArray sceneVao_, emptyVao_;
     std::vector<MeshRange> meshRanges_;
-    std::vector<ObjectDraw> objectDraws_;
-    std::vector<uint32_t> opaqueObjects_, translucentObjects_;
+    std::vector<Batch> batches_;                 // every object, in scene order
+    std::vector<uint32_t> opaqueBatches_;        // indices into batches_
+    std::vector<uint32_t> translucentObjects_;   // drawn one by one, sorted
     std::vector<std::pair<float, uint32_t>> translucentOrder_;  // reused each frame
 
     glm::ivec2 size_{0};
