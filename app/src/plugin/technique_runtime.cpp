@@ -269,7 +269,7 @@ std::vector<std::string> TechniqueManager::pollForChanges(ParamStore& params, st
     for (auto& [id, loaded] : loaded_) {
         if (!loaded->library()) continue;   // built into the host
         const PluginLibrary& library = *loaded->library();
-        const auto& file = library.file();
+        const std::filesystem::path file = library.file();   // a copy: the library may be replaced below
         std::error_code ec;
         const auto time = std::filesystem::last_write_time(file, ec);
         const auto size = ec ? 0 : std::filesystem::file_size(file, ec);
