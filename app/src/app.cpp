@@ -332,7 +332,7 @@ Image Evaluation::heatmap() const {
     return image;
 }
 
-int App::runInteractive(const std::string& initialTechnique, int smokeFrames, const std::string& screenshot) {
+int App::runInteractive(const std::string& initialTechnique, int smokeFrames, const std::string& screenshot, bool cycle) {
     GLFWwindow* window = backend_->window();
     Ui ui;
     if (!ui.init(window)) {
@@ -377,7 +377,7 @@ int App::runInteractive(const std::string& initialTechnique, int smokeFrames, co
             camera_.fly(move, seconds);
         }
 
-        if (smokeFrames > 0 && !all.empty()) {
+        if (cycle && smokeFrames > 0 && !all.empty()) {
             // Smoke test: cycle through every technique and every view while drawing the UI.
             const int perTechnique = std::max(1, smokeFrames / int(all.size()));
             state.technique = all[size_t(std::min(frame / perTechnique, int(all.size()) - 1))].id;

@@ -82,9 +82,9 @@ public:
     Image readDisplay() { return renderer_->readDisplay(); }
     // Warm-up frames, then `frames` timed frames; waits for the GPU only at the end.
     bool measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error);
-    // Interactive window; smokeFrames > 0 runs that many frames cycling techniques, then saves
-    // `screenshot` (if given) and returns.
-    int runInteractive(const std::string& technique, int smokeFrames, const std::string& screenshot);
+    // Interactive window. frames > 0 runs that many frames, then saves `screenshot` (if given) and
+    // returns; with `cycle` (the smoke test) it switches through every technique and view meanwhile.
+    int runInteractive(const std::string& technique, int frames, const std::string& screenshot, bool cycle = true);
     // Headless: a new size for the main targets (the camera's aspect follows).
     bool setRenderSize(glm::ivec2 size, std::string& error);
     // Ids hot-reloaded during the last renderFrame() (for reload-latency measurement).

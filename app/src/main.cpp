@@ -420,7 +420,9 @@ int main(int argc, char** argv) {
     int smokeFrames = 0;
     std::string screenshot, outDir = "out";
     cli.add_option("--smoke-test", smokeFrames, "window: draw N frames cycling every technique, then exit");
-    cli.add_option("--screenshot", screenshot, "window: save a screenshot at the end of the smoke test");
+    int windowFrames = 0;
+    cli.add_option("--frames", windowFrames, "window: draw N frames of the technique, save --screenshot, exit (slides)");
+    cli.add_option("--screenshot", screenshot, "window: save a screenshot at the end of --smoke-test or --frames");
     cli.add_option("--out-dir", outDir, "headless main job: folder of the report (default out)");
 
     auto* list = cli.add_subcommand("list", "list techniques and their parameters");
@@ -524,5 +526,6 @@ int main(int argc, char** argv) {
     const std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;
     if (!app.techniques().find(technique)) return fail("--technique '" + technique + "': no such technique", kExitBadInput);
     if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
+    if (windowFrames > 0) return app.runInteractive(technique, windowFrames, screenshot, false);
     return app.runInteractive(technique, smokeFrames, screenshot);
 }
