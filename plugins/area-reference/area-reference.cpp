@@ -76,58 +76,6 @@ void perpendicularBasis(glm::vec3 axis, glm::vec3& tangent, glm::vec3& bitangent
     bitangent = glm::cross(axis, tangent);
 }
 
-glm::vec3 upFor(glm::vec3 forward) {
-    return std::abs(forward.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
-}
-
-// The host's light-space fit (app/src/render/light_space.cpp), for a light moved to one sample:
-// the same rules, so that the centre sample reproduces the host's (and `shadowmap`'s) map exactly.
-LightSpace fitSample(const LightInfo& light, const Bounds& bounds) {
-    glm::vec3 corners[8];
-    for (int i = 0; i < 8; ++i)
-        corners[i] = {i & 1 ? bounds.max.x : bounds.min.x, i & 2 ? bounds.max.y : bounds.min.y,
-                      i & 4 ? bounds.max.z : bounds.min.z};
-    const glm::vec3 center = 0.5f * (bounds.min + bounds.max);
-    const float radius = std::max(0.5f * glm::length(bounds.max - bounds.min), 1e-3f);
-    LightSpace ls{};
-    if (light.type == LightType::Directional) {
-        const glm::vec3 dir = glm::normalize(light.direction);
-        ls.view = glm::lookAt(center - dir * (2.0f * radius), center, upFor(dir));
-        glm::vec3 lo(1e30f), hi(-1e30f);
-        for (const auto& c : corners) {
-            const glm::vec3 v = glm::vec3(ls.view * glm::vec4(c, 1.0f));
-            lo = glm::min(lo, v);
-            hi = glm::max(hi, v);
-        }
-        const float margin = 0.01f * radius;
-        ls.nearPlane = -hi.z - margin;
-        ls.farPlane = -lo.z + margin;
-        ls.projection = glm::ortho(lo.x, hi.x, lo.y, hi.y, ls.nearPlane, ls.farPlane);
-    } else {
-        const glm::vec3 eye = light.position;
-        const glm::vec3 forward = light.type == LightType::Spot ? glm::normalize(light.direction)
-                                                                : glm::normalize(center - eye);
-        ls.view = glm::lookAt(eye, eye + forward, upFor(forward));
-        float nearest = 1e30f, farthest = 0.0f, maxTan = 0.0f;
-        for (const auto& c : corners) {
-            const glm::vec3 v = glm::vec3(ls.view * glm::vec4(c, 1.0f));
-            const float depth = -v.z;
-            farthest = std::max(farthest, depth);
-            nearest = std::min(nearest, depth);
-            if (depth > 1e-4f) maxTan = std::max({maxTan, std::abs(v.x) / depth, std::abs(v.y) / depth});
-        }
-        const float halfFov =
-            light.type == LightType::Spot
-                ? std::min(light.spotOuterAngle * 1.02f, glm::radians(85.0f))
-                : std::clamp(std::atan(maxTan > 0 ? maxTan : 1.0f) * 1.02f, glm::radians(5.0f), glm::radians(80.0f));
-        ls.farPlane = std::max(farthest * 1.01f, 1e-2f);
-        ls.nearPlane = std::clamp(nearest * 0.99f, ls.farPlane * 1e-3f, ls.farPlane * 0.99f);
-        ls.projection = glm::perspective(2.0f * halfFov, 1.0f, ls.nearPlane, ls.farPlane);
-        ls.perspective = true;
-    }
-    ls.viewProjection = ls.projection * ls.view;
-    return ls;
-}
 
 // Light sample i of n: the light moved to one point of its disc (spot, point) or turned to one
 // direction of its cone (directional).
@@ -256,7 +204,7 @@ private:
         glClearNamedFramebufferfv(accumulationFbo_, GL_COLOR, 0, zero);
         const GLuint accumulateProgram = host_->glProgram(accumulateProgram_);
         for (int i = 0; i < samples; ++i) {
-            const LightSpace lightSpace = fitSample(sampleLight(light, bounds, i, samples), bounds);
+            const LightSpace lightSpace = host_->fitLightSpaceFor(sampleLight(light, bounds, i, samples), DrawSet::All);
             sampleMap_.drawDepth(lightSpace, params.asFloat(kConstantBias), params.asFloat(kSlopeBias));
 
             glBindFramebuffer(GL_FRAMEBUFFER, accumulationFbo_);

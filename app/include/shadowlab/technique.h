@@ -26,7 +26,7 @@
 
 #include <glm/glm.hpp>
 
-#define SHADOWLAB_ABI_VERSION 1u
+#define SHADOWLAB_ABI_VERSION 2u
 
 namespace shadowlab {
 
@@ -160,6 +160,8 @@ public:
     virtual const LightInfo& light() const = 0;
     virtual Bounds sceneBounds(DrawSet set) const = 0;
     virtual LightSpace fitLightSpace(DrawSet set) const = 0;
+    // The same fit for another light, e.g. one sample of an area light (ABI 2).
+    virtual LightSpace fitLightSpaceFor(const LightInfo& light, DrawSet set) const = 0;
     virtual uint32_t objectCount() const = 0;
     virtual ObjectInfo objectInfo(uint32_t index) const = 0;
     // Draws with `program` bound; the host sets the per-object data (see shaders/common.glsl:

@@ -31,8 +31,10 @@ PluginHost::~PluginHost() { releaseAll(); }
 
 void PluginHost::log(LogLevel level, const char* message) { logMessage(level, techniqueId_ + ": " + message); }
 
-LightSpace PluginHost::fitLightSpace(DrawSet set) const {
-    return shadowlab::fitLightSpace(context_.renderer.light(), context_.renderer.bounds(set));
+LightSpace PluginHost::fitLightSpace(DrawSet set) const { return fitLightSpaceFor(context_.renderer.light(), set); }
+
+LightSpace PluginHost::fitLightSpaceFor(const LightInfo& light, DrawSet set) const {
+    return shadowlab::fitLightSpace(light, context_.renderer.bounds(set));
 }
 
 ProgramId PluginHost::buildProgram(const ProgramDesc& desc, std::string& error) {

@@ -49,6 +49,7 @@ public:
     const LightInfo& light() const override { return context_.renderer.light(); }
     Bounds sceneBounds(DrawSet set) const override { return context_.renderer.bounds(set); }
     LightSpace fitLightSpace(DrawSet set) const override;
+    LightSpace fitLightSpaceFor(const LightInfo& light, DrawSet set) const override;
     uint32_t objectCount() const override { return context_.renderer.objectCount(); }
     ObjectInfo objectInfo(uint32_t index) const override { return context_.renderer.objectInfo(index); }
     void drawScene(DrawSet set, uint32_t glProgram) override { context_.renderer.drawScene(set, glProgram); }
