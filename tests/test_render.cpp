@@ -96,3 +96,30 @@ TEST_F(CubeScene, ShadowMapMemoryIsAccounted) {
     EXPECT_EQ(app_->techniques().get("shadowmap", error)->host().gpuBytes(), size_t(512) * 512 * 2)
         << "the old map is released when the resolution changes";
 }
+
+TEST(Msaa, MultisampledMainPassResolvesAndStillShadowsTheCube) {
+    auto app = std::make_unique<App>();
+    AppOptions options;
+    options.scene = "cube";
+    options.size = {320, 240};
+    options.backend = BackendKind::OSMesa;
+    options.msaaSamples = 4;
+    std::string error;
+    bool badInput = false;
+    ASSERT_TRUE(app->init(options, false, error, badInput)) << error;
+    EXPECT_EQ(app->renderer().msaaSamples(), 4);
+    const auto visibility = test::renderVisibility(*app, "shadowmap");
+    const test::GroundClassification ground = test::classifyGround(*app);
+    int inside = 0, dark = 0;
+    for (size_t i = 0; i < visibility.size(); ++i) {
+        if (ground.analytic[i] != 1 || ground.nearBoundary(int(i % 320), int(i / 320), 3)) continue;
+        ++inside;
+        dark += visibility[i].r < 0.5f;
+    }
+    EXPECT_GT(inside, 500);
+    EXPECT_EQ(dark, inside);
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    ASSERT_TRUE(app->presentView("shadowmap", {}, ~0u, {}, error)) << error;
+    const Image image = app->readDisplay();
+    EXPECT_EQ(image.width, 320);
+}
