@@ -332,7 +332,8 @@ Image Evaluation::heatmap() const {
     return image;
 }
 
-int App::runInteractive(const std::string& initialTechnique, int smokeFrames, const std::string& screenshot, bool cycle) {
+int App::runInteractive(const std::string& initialTechnique, int smokeFrames, const std::string& screenshot, bool cycle,
+                        const std::string& compareTechnique) {
     GLFWwindow* window = backend_->window();
     Ui ui;
     if (!ui.init(window)) {
@@ -341,6 +342,7 @@ int App::runInteractive(const std::string& initialTechnique, int smokeFrames, co
     }
     UiState state;
     state.technique = initialTechnique.empty() ? firstTechnique() : initialTechnique;
+    state.compareTechnique = compareTechnique;
     state.msaaSamples = renderer_->msaaSamples();
     int frame = 0;
     auto last = std::chrono::steady_clock::now();
@@ -385,6 +387,8 @@ int App::runInteractive(const std::string& initialTechnique, int smokeFrames, co
             // Once, the accuracy measurement and its heatmap view, as the button does.
             if (frame == smokeFrames / 2) state.measureRequested = true;
             if (frame > smokeFrames / 2 && frame < smokeFrames / 2 + 5) state.view.kind = ViewSelection::Kind::ErrorHeatmap;
+            // And the side-by-side comparison for a while.
+            state.compareTechnique = (frame % 50) >= 40 ? firstTechnique() : std::string();
         }
 
         const glm::ivec2 fb = backend_->framebufferSize();
@@ -401,6 +405,24 @@ int App::runInteractive(const std::string& initialTechnique, int smokeFrames, co
                 } else {
                     state.view = {};   // the window changed size since the measurement
                 }
+            } else if (!state.compareTechnique.empty()) {
+                // Side by side: the left half of the first technique's frame, the right half of the
+                // second's, same view; the timings shown are the right-hand technique's.
+                state.frameError.clear();
+                glEnable(GL_SCISSOR_TEST);
+                glScissor(0, 0, fb.x / 2, fb.y);
+                if (!presentView(state.technique, state.view, 0, fb, error)) state.view = {};
+                glDisable(GL_SCISSOR_TEST);   // the second frame's clears must cover everything
+                if (renderFrame(state.compareTechnique, error)) {
+                    glEnable(GL_SCISSOR_TEST);
+                    glScissor(fb.x / 2, 0, fb.x - fb.x / 2, fb.y);
+                    const ViewSelection view = state.view.kind == ViewSelection::Kind::Visibility ? state.view : ViewSelection{};
+                    presentView(state.compareTechnique, view, 0, fb, error);
+                } else {
+                    state.frameError = error;
+                    state.compareTechnique.clear();
+                }
+                glDisable(GL_SCISSOR_TEST);
             } else {
                 state.frameError.clear();
                 if (!presentView(state.technique, state.view, 0, fb, error)) {

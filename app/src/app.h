@@ -84,7 +84,8 @@ public:
     bool measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error);
     // Interactive window. frames > 0 runs that many frames, then saves `screenshot` (if given) and
     // returns; with `cycle` (the smoke test) it switches through every technique and view meanwhile.
-    int runInteractive(const std::string& technique, int frames, const std::string& screenshot, bool cycle = true);
+    int runInteractive(const std::string& technique, int frames, const std::string& screenshot, bool cycle = true,
+                       const std::string& compareTechnique = "");
     // Headless: a new size for the main targets (the camera's aspect follows).
     bool setRenderSize(glm::ivec2 size, std::string& error);
     // Ids hot-reloaded during the last renderFrame() (for reload-latency measurement).

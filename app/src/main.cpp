@@ -421,6 +421,8 @@ int main(int argc, char** argv) {
     std::string screenshot, outDir = "out";
     cli.add_option("--smoke-test", smokeFrames, "window: draw N frames cycling every technique, then exit");
     int windowFrames = 0;
+    std::string compareWith;
+    cli.add_option("--compare", compareWith, "window: show this technique side by side with --technique");
     cli.add_option("--frames", windowFrames, "window: draw N frames of the technique, save --screenshot, exit (slides)");
     cli.add_option("--screenshot", screenshot, "window: save a screenshot at the end of --smoke-test or --frames");
     cli.add_option("--out-dir", outDir, "headless main job: folder of the report (default out)");
@@ -526,6 +528,8 @@ int main(int argc, char** argv) {
     const std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;
     if (!app.techniques().find(technique)) return fail("--technique '" + technique + "': no such technique", kExitBadInput);
     if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
-    if (windowFrames > 0) return app.runInteractive(technique, windowFrames, screenshot, false);
-    return app.runInteractive(technique, smokeFrames, screenshot);
+    if (!compareWith.empty() && !app.techniques().find(compareWith))
+        return fail("--compare '" + compareWith + "': no such technique", kExitBadInput);
+    if (windowFrames > 0) return app.runInteractive(technique, windowFrames, screenshot, false, compareWith);
+    return app.runInteractive(technique, smokeFrames, screenshot, true, compareWith);
 }

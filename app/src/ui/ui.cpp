@@ -177,6 +177,25 @@ void Ui::draw(App& app, UiState& state, float frameSeconds) {
         }
         ImGui::EndCombo();
     }
+    if (ImGui::BeginCombo("compare with", state.compareTechnique.empty() ? "(nothing)" : state.compareTechnique.c_str())) {
+        if (ImGui::Selectable("(nothing)", state.compareTechnique.empty())) state.compareTechnique.clear();
+        for (const auto& t : app.techniques().techniques())
+            if (ImGui::Selectable((t.displayName + "##compare" + t.id).c_str(), t.id == state.compareTechnique))
+                state.compareTechnique = t.id;
+        ImGui::EndCombo();
+    }
+    helpMarker("Side by side: the technique above on the left half of the view, this one on the right, "
+               "same camera and light. Timings shown are the right-hand one's.");
+    if (!state.compareTechnique.empty()) {
+        // Divider and labels over the scene.
+        ImDrawList* background = ImGui::GetBackgroundDrawList();
+        const ImVec2 size = ImGui::GetIO().DisplaySize;
+        background->AddLine(ImVec2(size.x * 0.5f, 0), ImVec2(size.x * 0.5f, size.y), IM_COL32(255, 255, 255, 200), 2.0f);
+        background->AddText(ImVec2(size.x * 0.5f - 8.0f - ImGui::CalcTextSize(state.technique.c_str()).x, size.y - 24.0f),
+                            IM_COL32(255, 255, 255, 255), state.technique.c_str());
+        background->AddText(ImVec2(size.x * 0.5f + 8.0f, size.y - 24.0f), IM_COL32(255, 255, 255, 255),
+                            state.compareTechnique.c_str());
+    }
     info = app.techniques().find(state.technique);
     if (info) {
         ImGui::TextDisabled("%s  |  %s", info->category.c_str(), info->id.c_str());

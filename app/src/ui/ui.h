@@ -13,6 +13,7 @@ namespace shadowlab {
 
 struct UiState {
     std::string technique;
+    std::string compareTechnique;     // non-empty: side by side, `technique` left, this one right
     ViewSelection view;
     int msaaSamples = 0;
     float scroll = 0.0f;              // mouse wheel since last frame
