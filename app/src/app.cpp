@@ -400,10 +400,12 @@ int App::runInteractive(const std::string& initialTechnique, int smokeFrames, co
             } else if (state.view.kind == ViewSelection::Kind::ErrorHeatmap) {
                 state.frameError.clear();
                 if (state.heatmap.width == renderer_->size().x && state.heatmap.height == renderer_->size().y) {
-                    renderer_->uploadDisplay(state.heatmap);
+                    if (!state.heatmapUploaded) renderer_->uploadDisplay(state.heatmap);
+                    state.heatmapUploaded = true;
                     renderer_->present(PresentMode::Color, renderer_->displayTexture(), 0, fb);
                 } else {
                     state.view = {};   // the window changed size since the measurement
+                    state.heatmapUploaded = false;
                 }
             } else if (!state.compareTechnique.empty()) {
                 // Side by side: the left half of the first technique's frame, the right half of the

@@ -319,6 +319,7 @@ void Ui::draw(App& app, UiState& state, float frameSeconds) {
                               m.maeOutsidePenumbra, 100.0 * m.comparedFraction, evaluation.traceSeconds);
                 state.accuracyText = text;
                 state.heatmap = evaluation.heatmap();
+                state.heatmapUploaded = false;
                 state.view = {ViewSelection::Kind::ErrorHeatmap, ""};
                 const auto frame = app.timer().latest().find("frame");
                 const TechniqueInfo* measuredInfo = app.techniques().find(state.technique);

@@ -30,6 +30,7 @@ struct UiState {
     int referenceSamples = 64;
     std::string accuracyText;
     Image heatmap;                    // shown by the ErrorHeatmap view while the size matches
+    bool heatmapUploaded = false;     // in the display texture already (uploaded once, not per frame)
     struct MeasuredPoint {
         std::string label;
         double gpuMs;
