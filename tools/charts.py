@@ -109,14 +109,31 @@ def chart_pareto(rows, scene, out_dir, size_name, error_key):
     return path
 
 
+def follows(rows, key, other):
+    """True when `other` is a function of `key` over rows (swept together, like a radius with a grid)."""
+    seen = {}
+    for row in rows:
+        if key in row:
+            value = str(row.get(other))
+            if seen.setdefault(str(row[key]), value) != value:
+                return False
+    return len(seen) > 1
+
+
 def chart_against(rows, key, scene, out_dir, xlabel, name, logx=False):
     series = defaultdict(list)
+    by_technique = defaultdict(list)
+    for row in rows:
+        by_technique[row["technique"]].append(row)
+    linked = {t: {k for r in items for k in r if k != key and (k.startswith("param.") or k.startswith("scene."))
+                  and follows(items, key, k)} for t, items in by_technique.items()}
     for row in rows:
         x = number(row.get(key))
         if x is None or FRAME not in row:
             continue
         others = tuple(sorted((k, str(v)) for k, v in row.items()
-                              if (k.startswith("param.") or k.startswith("scene.")) and k != key))
+                              if (k.startswith("param.") or k.startswith("scene.")) and k != key
+                              and k not in linked[row["technique"]]))
         size = (None, None) if key == "pixels" else (row.get("width"), row.get("height"))
         series[(row["technique"], *size, others)].append(
             (x, row[FRAME], row.get(TECHNIQUE_MS, 0.0)))
