@@ -150,7 +150,7 @@ TEST(BuiltinScenes, AllParseWithObjectsAndTriangles) {
         EXPECT_FALSE(scene.objects.empty());
         EXPECT_GT(scene.triangleCount(), 0u);
         EXPECT_TRUE(scene.objects.front().castsShadow) << "ground planes are in the shadow map too: acne on them is measured";
-        EXPECT_TRUE(scene.objects.front().isPlane);
+        EXPECT_TRUE(scene.objects.front().isPlane || scene.objects.front().name == "terrain") << "the ground comes first";
         for (const SceneObject& object : scene.objects) {
             ASSERT_LT(object.mesh, scene.meshes.size());
             ASSERT_LT(object.material, scene.materials.size());
@@ -615,6 +615,41 @@ TEST(SceneErrors, UnknownSceneNamesTheBuiltins) {
     EXPECT_MENTIONS(message, "/nonexistent/forest.json: cannot open scene file");
     EXPECT_MENTIONS(message, "built-in: ");
     EXPECT_MENTIONS(message, "cube");
+}
+
+TEST(Terrain, MeshFollowsTheHeightFunctionAndInstancesStandOnIt) {
+    const Scene scene = parse(R"({
+        "objects": [
+          {"name": "hills", "shape": "terrain", "size": [40, 40], "subdivisions": 40, "amplitude": 3, "wavelength": 20,
+           "translate": [0, 1, 0]},
+          {"name": "post", "shape": "box", "size": [0.2, 1, 0.2], "translate": [0, 0.5, 0],
+           "repeat": {"grid": [5, 5], "spacing": [4, 4], "jitter": 0.7, "followTerrain": true}}]})");
+    const Mesh& hills = scene.meshes[scene.objects[0].mesh];
+    EXPECT_FALSE(scene.objects[0].isPlane) << "planar receivers are planes only";
+    float highest = -1e30f, lowest = 1e30f;
+    for (const Vertex& v : hills.vertices) {
+        EXPECT_NEAR(v.position.y, terrainHeight(v.position.x, v.position.z, 3.0f, 20.0f), 1e-5f);
+        EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-4f);
+        EXPECT_GT(v.normal.y, 0.0f);
+        highest = std::max(highest, v.position.y);
+        lowest = std::min(lowest, v.position.y);
+    }
+    EXPECT_GT(highest - lowest, 2.0f) << "hills, not a plane";
+    ASSERT_EQ(scene.objects.size(), 26u);
+    for (size_t i = 1; i < scene.objects.size(); ++i) {
+        const glm::vec3 base = glm::vec3(scene.objects[i].transform * glm::vec4(0.0f, -0.5f, 0.0f, 1.0f));
+        // The post's base (0.5 below its centre) rests on the terrain, lifted 1 with it.
+        EXPECT_NEAR(base.y, 1.0f + terrainHeight(base.x, base.z, 3.0f, 20.0f), 1e-4f) << scene.objects[i].name;
+    }
+}
+
+TEST(Terrain, FollowTerrainNeedsATerrainBeforeIt) {
+    const std::string message = parseError(R"({"objects": [
+        {"shape": "box", "repeat": {"count": 3, "followTerrain": true}},
+        {"shape": "terrain"}]})");
+    EXPECT_NE(message.find("bad.json"), std::string::npos) << message;
+    EXPECT_NE(message.find("objects[0].repeat.followTerrain"), std::string::npos) << message;
+    EXPECT_NE(message.find("no terrain"), std::string::npos) << message;
 }
 
 } // namespace

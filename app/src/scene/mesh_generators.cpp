@@ -206,6 +206,19 @@ Mesh makeTree(float height, float crownRadius, int segments) {
     return tree;
 }
 
+float terrainHeight(float x, float z, float amplitude, float wavelength) {
+    // Two crossed swells of different lengths: hills without a visible period at forest scale.
+    const float k = kTwoPi / std::max(wavelength, 1e-3f);
+    return amplitude * 0.5f * (std::sin(k * x) * std::cos(0.77f * k * z) + 0.5f * std::sin(2.3f * k * (0.7f * x + 0.9f * z)));
+}
+
+Mesh makeTerrain(float sizeX, float sizeZ, int subdivisions, float amplitude, float wavelength) {
+    Mesh mesh = makePlane(sizeX, sizeZ, subdivisions);
+    for (Vertex& v : mesh.vertices) v.position.y = terrainHeight(v.position.x, v.position.z, amplitude, wavelength);
+    generateNormals(mesh);
+    return mesh;
+}
+
 Mesh makeBumpySphere(float radius, float amplitude, float frequency, int segments) {
     // Same topology as makeSphere (closed, poles included); each vertex moves along its normal by
     // two crossed ridge patterns, then normals are recomputed from the displaced surface.

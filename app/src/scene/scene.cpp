@@ -34,7 +34,7 @@ using nlohmann::json;
 constexpr float kRadiansPerDegree = glm::pi<float>() / 180.0f;
 constexpr int kMaxInstances = 1'000'000;   // a typo like count=5000000 should fail, not swap
 constexpr int kMaxSegments = 4096;
-constexpr const char* kShapes = "plane, box, sphere, cylinder, torus, tree, bumpy, obj";
+constexpr const char* kShapes = "plane, terrain, box, sphere, cylinder, torus, tree, bumpy, obj";
 
 std::string formatNumber(double value, int precision = 6) {
     std::ostringstream text;
@@ -239,6 +239,7 @@ struct MeshRecipe {
     std::string key;
     std::function<Mesh()> make;
     bool isPlane = false;
+    std::optional<glm::vec2> terrain = std::nullopt;   // amplitude and wavelength of a terrain shape
 };
 
 std::string recipeKey(const std::string& shape, std::initializer_list<double> arguments) {
@@ -293,6 +294,16 @@ MeshRecipe readShape(FieldReader& fields, const std::string& shape, const std::f
         return {recipeKey(shape, {height, crownRadius, double(segments)}),
                 [=] { return makeTree(height, crownRadius, segments); }};
     }
+    if (shape == "terrain") {
+        const glm::vec2 size = fields.vec("size", glm::vec2(100.0f), Range::Positive);
+        const int subdivisions = fields.integer("subdivisions", 128, 1, kMaxSegments);
+        const float amplitude = fields.number("amplitude", 2.0f, Range::NonNegative);
+        const float wavelength = fields.number("wavelength", 60.0f, Range::Positive);
+        MeshRecipe recipe{recipeKey(shape, {size.x, size.y, double(subdivisions), amplitude, wavelength}),
+                          [=] { return makeTerrain(size.x, size.y, subdivisions, amplitude, wavelength); }};
+        recipe.terrain = glm::vec2(amplitude, wavelength);
+        return recipe;
+    }
     if (shape == "bumpy") {
         const float radius = fields.number("radius", 0.5f, Range::Positive);
         const float amplitude = fields.number("amplitude", 0.15f, Range::NonNegative);
@@ -332,6 +343,7 @@ struct Repeat {
     glm::vec3 jitter{0.0f};
     glm::vec2 scaleRange{1.0f};
     int seed = 1;
+    bool followTerrain = false;   // stand each instance on the last terrain defined before it
 };
 
 Repeat readRepeat(const json& node, const std::string& path, const ParseContext& context) {
@@ -370,6 +382,7 @@ Repeat readRepeat(const json& node, const std::string& path, const ParseContext&
     repeat.scaleRange = fields.vec("scaleRange", repeat.scaleRange, Range::Positive);
     if (repeat.scaleRange.x > repeat.scaleRange.y) fields.fail("scaleRange", "minimum exceeds maximum");
     repeat.seed = fields.integer("seed", repeat.seed, 0, INT_MAX);
+    repeat.followTerrain = fields.boolean("followTerrain", false);
     fields.finish("a repeat block");
     return repeat;
 }
@@ -398,6 +411,12 @@ struct SceneBuilder {
     Scene scene;
     std::map<std::string, uint32_t> materialIndex;
     std::map<std::string, uint32_t> meshIndex;   // by MeshRecipe::key
+    struct Terrain {
+        glm::vec3 origin;
+        float amplitude;
+        float wavelength;
+    };
+    std::optional<Terrain> terrain;               // the last terrain object read, for followTerrain
 
     uint32_t meshFor(const MeshRecipe& recipe) {
         const auto [found, inserted] = meshIndex.try_emplace(recipe.key, static_cast<uint32_t>(scene.meshes.size()));
@@ -494,7 +513,10 @@ void readObject(const json& node, const std::string& path, size_t ordinal, Scene
     const bool receivesShadow = fields.boolean("receivesShadow", true);
     const json* repeatNode = fields.find("repeat");
     const Repeat repeat = repeatNode ? readRepeat(*repeatNode, fields.pathOf("repeat"), builder.context) : Repeat{};
+    if (repeat.followTerrain && !builder.terrain)
+        builder.context.fail(fields.pathOf("repeat") + ".followTerrain", "no terrain object comes before this one");
     fields.finish("a " + shape + " object");
+    if (recipe.terrain) builder.terrain = SceneBuilder::Terrain{translate, recipe.terrain->x, recipe.terrain->y};
 
     SceneObject object;
     object.mesh = builder.meshFor(recipe);
@@ -516,6 +538,12 @@ void readObject(const json& node, const std::string& path, size_t ordinal, Scene
         const glm::vec3 shake{uniform(), uniform(), uniform()};
         const float scaleChoice = uniform();
         offset += (2.0f * shake - 1.0f) * repeat.jitter;
+        if (repeat.followTerrain) {
+            // Only the terrain's translation is honoured: rotating or scaling hills is not modelled.
+            const SceneBuilder::Terrain& t = *builder.terrain;
+            const glm::vec3 at = translate + offset;
+            offset.y += t.origin.y + terrainHeight(at.x - t.origin.x, at.z - t.origin.z, t.amplitude, t.wavelength);
+        }
         const float instanceScale = glm::mix(repeat.scaleRange.x, repeat.scaleRange.y, scaleChoice);
 
         object.name = repeatNode ? name + "#" + std::to_string(i) : name;

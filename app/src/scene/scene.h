@@ -111,6 +111,11 @@ Mesh makeTree(float height, float crownRadius, int segments);       // trunk + c
 // A closed, detailed blob: a sphere displaced radially by ridges of the given frequency, so it
 // shadows itself at small scale (the role of the Chinese Dragon in seed 000's tests).
 Mesh makeBumpySphere(float radius, float amplitude, float frequency, int segments);
+// Rolling hills: a grid in the xz plane (centred, facing +y) lifted by terrainHeight().
+Mesh makeTerrain(float sizeX, float sizeZ, int subdivisions, float amplitude, float wavelength);
+// Height of that terrain at (x, z) in its object space; repeat blocks with "followTerrain" use it
+// to stand instances on the ground.
+float terrainHeight(float x, float z, float amplitude, float wavelength);
 
 // OBJ through tinyobjloader; smooth normals generated when the file has none.
 Mesh loadObj(const std::filesystem::path& path);
