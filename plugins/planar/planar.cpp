@@ -92,16 +92,20 @@ public:
         glStencilMask(0xFF);
         glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
         const GLuint idProgram = host_->glProgram(idProgram_);
+        // Everything first, stencil 0, in the host's instanced draws (thousands of objects cost a
+        // few calls); then each receiving plane again where it is the visible surface: the same
+        // program and vertices give the same depth, so GL_LEQUAL passes exactly there.
+        glStencilFunc(GL_ALWAYS, 0, 0xFF);
+        host_->drawScene(DrawSet::All, idProgram);
+        glDepthFunc(GL_LEQUAL);
         planes_.clear();
         for (uint32_t i = 0; i < host_->objectCount(); ++i) {
             const ObjectInfo info = host_->objectInfo(i);
-            GLint id = 0;
             // A plane receives only if the light is on its front side (dot(P, L) > 0).
-            if (info.isPlane && info.receivesShadow && planes_.size() < 255 && glm::dot(info.plane, lightHomogeneous) > 0.0f) {
-                planes_.push_back(i);
-                id = GLint(planes_.size());
-            }
-            glStencilFunc(GL_ALWAYS, id, 0xFF);
+            if (!info.isPlane || !info.receivesShadow || planes_.size() >= 255 || glm::dot(info.plane, lightHomogeneous) <= 0.0f)
+                continue;
+            planes_.push_back(i);
+            glStencilFunc(GL_ALWAYS, GLint(planes_.size()), 0xFF);
             host_->drawObject(i, idProgram);
         }
 
@@ -125,10 +129,9 @@ public:
             glUniformMatrix4fv(16, 1, GL_FALSE, glm::value_ptr(projection));
             glUniform4fv(17, 1, glm::value_ptr(plane));
             glStencilFunc(params.asBool(kStencil) ? GL_EQUAL : GL_ALWAYS, GLint(p + 1), 0xFF);
-            for (uint32_t i = 0; i < host_->objectCount(); ++i) {
-                if (i == planes_[p] || !host_->objectInfo(i).castsShadow) continue;
-                host_->drawObject(i, shadowProgram);
-            }
+            // All casters at once; the receiver itself (and anything lying in its plane) is removed
+            // by gl_ClipDistance[0] in planar_project.vert.
+            host_->drawScene(DrawSet::Casters, shadowProgram);
         }
         glDisable(GL_CLIP_DISTANCE0);
         glDisable(GL_CLIP_DISTANCE1);
