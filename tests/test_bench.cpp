@@ -63,6 +63,8 @@ TEST(Bench, TinySweepWritesOneWellFormedRowPerCombination) {
             EXPECT_TRUE(row.contains(key)) << key << " missing in " << row.dump();
         EXPECT_EQ(row["frames"], 2);
         if (row["technique"] == "shadowmap") {
+            EXPECT_NE(rowSettings(row).find("resolution=" + row["param.resolution"].get<std::string>()), std::string::npos)
+                << rowSettings(row);
             resolution256 += row["param.resolution"] == "256";
             resolution512 += row["param.resolution"] == "512";
             EXPECT_EQ(row["gpu_bytes"].get<size_t>(), row["param.resolution"] == "256" ? 256u * 256u * 4u : 512u * 512u * 4u);

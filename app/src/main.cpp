@@ -321,21 +321,6 @@ bool loadSpecs(const std::filesystem::path& file, std::vector<BenchSpec>& specs,
     return true;
 }
 
-void printRowLine(const nlohmann::json& row) {
-    std::string params;
-    for (const auto& [key, value] : row.items())
-        if (key.rfind("param.", 0) == 0 || key.rfind("scene.", 0) == 0)
-            params += " " + key.substr(key.find('.') + 1) + "=" + (value.is_string() ? value.get<std::string>() : value.dump());
-    std::printf("%-8s %-14s %5dx%-5d GPU %8.3f ms  technique %8.3f ms  %7.2f MiB", row.value("scene", "").c_str(),
-                row.value("technique", "").c_str(), row.value("width", 0), row.value("height", 0),
-                row.value("gpu_frame_ms", 0.0), row.value("gpu_technique_ms", 0.0),
-                double(row.value("gpu_bytes", size_t(0))) / 1048576.0);
-    if (row.contains("hard_mae")) std::printf("  MAE hard %.4f", row["hard_mae"].get<double>());
-    if (row.contains("soft_mae")) std::printf("  MAE soft %.4f", row["soft_mae"].get<double>());
-    std::printf(" %s\n", params.c_str());
-    std::fflush(stdout);
-}
-
 int commandBench(const CommonOptions& common, std::vector<BenchSpec> specs, const std::string& out) {
     App app;
     if (int code = startApp(app, common, false)) return code;
@@ -343,8 +328,9 @@ int commandBench(const CommonOptions& common, std::vector<BenchSpec> specs, cons
     std::string error;
     // The file is rewritten after every row, so a run cut short keeps what it measured.
     std::vector<nlohmann::json> written;
+    printBenchHeader();
     auto onRow = [&](const nlohmann::json& row) {
-        printRowLine(row);
+        printBenchRow(row);
         written.push_back(row);
         std::string writeError;
         if (!writeBenchResults(out, written, writeError)) logWarning(writeError);

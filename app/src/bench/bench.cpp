@@ -2,6 +2,7 @@
 #include "bench/bench.h"
 
 #include <chrono>
+#include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <functional>
@@ -166,6 +167,35 @@ bool loadBenchSpec(const std::filesystem::path& file, BenchSpec& spec, std::stri
         return false;
     }
     return true;
+}
+
+std::string rowSettings(const nlohmann::json& row) {
+    std::string text;
+    for (const auto& [key, value] : row.items()) {
+        if (key.rfind("param.", 0) != 0 && key.rfind("scene.", 0) != 0) continue;
+        if (!text.empty()) text += ' ';
+        text += key.substr(key.find('.') + 1) + "=" + jsonValueText(value);
+    }
+    return text;
+}
+
+void printBenchHeader() {
+    std::printf("%-10s %-16s %-11s %12s %14s %10s %10s %10s  %s\n", "scene", "technique", "size", "GPU frame ms",
+                "technique ms", "GPU MiB", "MAE hard", "MAE soft", "parameters");
+}
+
+void printBenchRow(const nlohmann::json& row) {
+    auto mae = [&](const char* key) {
+        char text[32] = "-";
+        if (row.contains(key)) std::snprintf(text, sizeof(text), "%.4f", row[key].get<double>());
+        return std::string(text);
+    };
+    const std::string size = std::to_string(row.value("width", 0)) + "x" + std::to_string(row.value("height", 0));
+    std::printf("%-10s %-16s %-11s %12.3f %14.3f %10.2f %10s %10s  %s\n", row.value("scene", "").c_str(),
+                row.value("technique", "").c_str(), size.c_str(), row.value("gpu_frame_ms", 0.0),
+                row.value("gpu_technique_ms", 0.0), double(row.value("gpu_bytes", size_t(0))) / 1048576.0,
+                mae("hard_mae").c_str(), mae("soft_mae").c_str(), rowSettings(row).c_str());
+    std::fflush(stdout);
 }
 
 nlohmann::json benchEnvironment(App& app) {

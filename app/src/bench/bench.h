@@ -48,6 +48,12 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
 // Writes rows as CSV (.csv) or JSON (anything else); CSV columns are the union of row keys.
 bool writeBenchResults(const std::filesystem::path& file, const std::vector<nlohmann::json>& rows, std::string& error);
 
+// "resolution=2048 count=400": a row's technique and scene parameters, for tables and logs.
+std::string rowSettings(const nlohmann::json& row);
+// One aligned line per row on stdout (the header first), as bench and report print progress.
+void printBenchHeader();
+void printBenchRow(const nlohmann::json& row);
+
 // Machine and build description carried by every row: gpu, driver, backend, date, commit.
 nlohmann::json benchEnvironment(App& app);
 

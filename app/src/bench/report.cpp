@@ -64,23 +64,9 @@ int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesyst
     std::filesystem::create_directories(outDir / "images", ec);
     std::filesystem::create_directories(outDir / "charts", ec);
     std::vector<nlohmann::json> rows;
-    std::printf("%-10s %-16s %-11s %12s %14s %10s %10s %10s  %s\n", "scene", "technique", "size", "GPU frame ms",
-                "technique ms", "GPU MiB", "MAE hard", "MAE soft", "parameters");
-    auto printRow = [](const nlohmann::json& row) {
-        std::string params;
-        for (const auto& [key, value] : row.items())
-            if (key.rfind("param.", 0) == 0 || key.rfind("scene.", 0) == 0)
-                params += key.substr(key.find('.') + 1) + "=" + (value.is_string() ? value.get<std::string>() : value.dump()) + " ";
-        const std::string size = std::to_string(row.value("width", 0)) + "x" + std::to_string(row.value("height", 0));
-        std::printf("%-10s %-16s %-11s %12.3f %14.3f %10.2f %10s %10s  %s\n", row.value("scene", "").c_str(),
-                    row.value("technique", "").c_str(), size.c_str(), row.value("gpu_frame_ms", 0.0),
-                    row.value("gpu_technique_ms", 0.0), double(row.value("gpu_bytes", size_t(0))) / 1048576.0,
-                    row.contains("hard_mae") ? fixed(row["hard_mae"].get<double>(), 4).c_str() : "-",
-                    row.contains("soft_mae") ? fixed(row["soft_mae"].get<double>(), 4).c_str() : "-", params.c_str());
-        std::fflush(stdout);
-    };
+    printBenchHeader();
     for (const BenchSpec& spec : specs)
-        if (!runBench(app, spec, rows, error, printRow)) return 2;
+        if (!runBench(app, spec, rows, error, printBenchRow)) return 2;
     if (!writeBenchResults(outDir / "results.csv", rows, error) || !writeBenchResults(outDir / "results.json", rows, error))
         return 1;
 
@@ -120,11 +106,7 @@ int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesyst
     page << "## Results\n\n| scene | technique | parameters | size | GPU frame ms | technique ms | GPU MiB | MAE hard | MAE soft |\n"
          << "|---|---|---|---|---:|---:|---:|---:|---:|\n";
     for (const auto& row : rows) {
-        std::string params;
-        for (const auto& [key, value] : row.items())
-            if (key.rfind("param.", 0) == 0 || key.rfind("scene.", 0) == 0)
-                params += key.substr(key.find('.') + 1) + "=" + (value.is_string() ? value.get<std::string>() : value.dump()) + " ";
-        page << "| " << row.value("scene", "") << " | " << row.value("technique", "") << " | " << params << " | "
+        page << "| " << row.value("scene", "") << " | " << row.value("technique", "") << " | " << rowSettings(row) << " | "
              << row.value("width", 0) << "x" << row.value("height", 0) << " | " << fixed(row.value("gpu_frame_ms", 0.0), 3)
              << " | " << fixed(row.value("gpu_technique_ms", 0.0), 3) << " | "
              << fixed(double(row.value("gpu_bytes", size_t(0))) / 1048576.0, 2) << " | "
