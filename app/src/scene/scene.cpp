@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene.h"
+#include "util/strings.h"
 
 namespace shadowlab {
 
@@ -45,7 +46,7 @@ std::string formatNumber(double value, int precision = 6) {
 
 std::string joined(const std::vector<std::string>& items) {
     std::string text;
-    for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+    for (const std::string& item : items) appendListItem(text, item);
     return text;
 }
 
