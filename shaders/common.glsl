@@ -1,24 +1,10 @@
 // Shared by every program: the host's per-frame uniform block and per-object uniforms.
-// Locations 0-15 and texture units 0-3 belong to the host; techniques use 16+ and 4+.
+// Locations 0-15, uniform block binding 0 and texture units 0-3 belong to the host; techniques
+// use locations 16+, blocks 1+ and units 4+.
 #ifndef SHADOWLAB_COMMON_GLSL
 #define SHADOWLAB_COMMON_GLSL
 
-layout(std140, binding = 0) uniform Frame {
-    mat4 uView;
-    mat4 uProjection;
-    mat4 uViewProjection;
-    mat4 uInvViewProjection;
-    mat4 uLightView;            // host default light space, fitted around all objects
-    mat4 uLightProjection;
-    mat4 uLightViewProjection;
-    vec4 uCameraPosition;       // xyz
-    vec4 uLightPosition;        // xyz, w = type (0 directional, 1 spot, 2 point)
-    vec4 uLightDirection;       // xyz travel direction, w = size (radius or angular radius)
-    vec4 uLightColor;           // rgb
-    vec4 uLightSpot;            // cos(outer), cos(inner), light near, light far
-    vec4 uAmbient;              // rgb
-    vec4 uViewport;             // width, height, 1/width, 1/height
-};
+#include "shadowlab/frame_block.h"
 
 // Per-object transforms live in one buffer; the host draws runs of objects that share a mesh and
 // a material as one instanced draw (5000 trees: a few draws, not 5000). uFirstObject is the first

@@ -1,10 +1,10 @@
-// Depth-only pass from a light: shadow maps. uLightMatrix is the technique's light
-// view-projection (it may fit the light differently from the host's default).
+// Depth-only pass from a light: shadow maps (kit/depth_map.h) and the bench's depth floor.
+// uShadowMatrix is the technique's light view-projection, in the depth map's block.
 #include "common.glsl"
+#include "shadowlab/kit/depth_map_shared.h"
 
 layout(location = 0) in vec3 inPosition;
-layout(location = 16) uniform mat4 uLightMatrix;
 
 void main() {
-    gl_Position = uLightMatrix * uModel * vec4(inPosition, 1.0);
+    gl_Position = uShadowMatrix * uModel * vec4(inPosition, 1.0);
 }

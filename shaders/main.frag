@@ -8,6 +8,7 @@ in VertexOut {
     vec3 worldPos;
     vec3 worldNormal;
     vec2 uv;
+    flat uint objectId;
 } vIn;
 
 layout(location = 0) out vec4 outColor;

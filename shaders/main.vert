@@ -9,12 +9,17 @@ out VertexOut {
     vec3 worldPos;
     vec3 worldNormal;
     vec2 uv;
+    flat uint objectId;   // object index + 1 (the camera pre-pass writes it)
 } vOut;
+
+// The camera pre-pass uses this stage too: both must produce the same depth, bit for bit.
+invariant gl_Position;
 
 void main() {
     vec4 world = uModel * vec4(inPosition, 1.0);
     vOut.worldPos = world.xyz;
     vOut.worldNormal = uNormalMatrix * inNormal;
     vOut.uv = inUv;
+    vOut.objectId = uint(uFirstObject + gl_InstanceID) + 1u;
     gl_Position = uViewProjection * world;
 }

@@ -3,7 +3,7 @@
 //
 // Depth convention: every moment map stores a depth that is LINEAR in world space along the light's
 // viewing axis, mapped to [0, 1] over the depth range of the shadow casters and some room behind
-// them (d = dot(uLightDepthPlane, vec4(p, 1)), see plugins/vsm/moment_light_space.h). Linear depth
+// them (d = dot(uLightDepthPlane, vec4(p, 1)), see shadowlab/kit/moment_light_space.h). Linear depth
 // keeps the statistics of a filter window meaningful for perspective (spot) lights too, and fitting
 // the casters, not the whole scene, spends the precision of the moments (and the exponent range of
 // ESM/EVSM) where occluders are. Receivers outside that range are clamped: no occluder lies in
@@ -13,15 +13,14 @@
 
 #include "light_space.glsl"
 
-layout(location = 16) uniform mat4 uShadowMatrix;      // light view-projection (locations 16-19)
-layout(location = 20) uniform vec4 uLightDepthPlane;   // world point -> linear light depth in [0, 1]
+#include "shadowlab/kit/moment_map_shared.h"   // uShadowMatrix, uLightDepthPlane, kMomentMapUnit
 
 float linearLightDepth(vec3 worldPos) {
     return clamp(dot(uLightDepthPlane, vec4(worldPos, 1.0)), 0.0, 1.0);
 }
 
 #ifndef MOMENT_DEPTH_PASS
-layout(binding = 4) uniform sampler2D uMomentMap;
+layout(binding = kMomentMapUnit) uniform sampler2D uMomentMap;
 
 struct MomentSample {
     vec4 moments;   // filtered moments (mipmapped and bilinear where enabled)

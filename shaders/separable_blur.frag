@@ -9,10 +9,9 @@
 in vec2 vUv;
 layout(location = 0) out vec4 outMoments;
 
-layout(binding = 4) uniform sampler2D uSource;
-layout(location = 16) uniform vec2 uStep;          // one texel along the blur direction, in uv
-layout(location = 17) uniform int uKernelSize;     // taps, >= 1
-layout(location = 18) uniform int uGaussian;       // 0 box, 1 Gaussian
+#include "shadowlab/kit/moment_map_shared.h"   // BlurUniforms: uStep, uKernelSize, uGaussian
+
+layout(binding = kBlurSourceUnit) uniform sampler2D uSource;
 
 void main() {
     float half_ = 0.5 * float(uKernelSize - 1);
@@ -22,7 +21,7 @@ void main() {
     for (int i = 0; i < uKernelSize; ++i) {
         float x = float(i) - half_;
         float w = uGaussian != 0 ? exp(-0.5 * x * x / (sigma * sigma)) : 1.0;
-        sum += w * textureLod(uSource, vUv + x * uStep, 0.0);
+        sum += w * textureLod(uSource, vUv + x * uStep.xy, 0.0);
         weightSum += w;
     }
     outMoments = sum / weightSum;

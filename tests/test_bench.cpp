@@ -6,9 +6,11 @@
 #include <sstream>
 
 #include "bench/bench.h"
+#include "shadowlab/kit/depth_map_shared.h"
 #include "test_support.h"
 
 using namespace shadowlab;
+namespace kit { using shadowlab::shared::depth_map::DepthMapUniforms; }
 
 TEST(GpuTimerRing, CollectsEveryFrameLateWithoutStallingAndNests) {
     auto app = test::makeHeadlessApp("cube", {64, 48});
@@ -67,7 +69,9 @@ TEST(Bench, TinySweepWritesOneWellFormedRowPerCombination) {
                 << rowSettings(row);
             resolution256 += row["param.resolution"] == "256";
             resolution512 += row["param.resolution"] == "512";
-            EXPECT_EQ(row["gpu_bytes"].get<size_t>(), row["param.resolution"] == "256" ? 256u * 256u * 4u : 512u * 512u * 4u);
+            // The map, plus the depth map's uniform block (ABI 3: a tracked buffer too).
+            EXPECT_EQ(row["gpu_bytes"].get<size_t>(), (row["param.resolution"] == "256" ? 256u * 256u * 4u : 512u * 512u * 4u) +
+                                                          sizeof(kit::DepthMapUniforms));
         }
     }
     EXPECT_EQ(resolution256, 2);
@@ -149,20 +153,35 @@ TEST(MemoryAccounting, KnownAllocationSetIsCountedExactly) {
     TechniqueInfo info;
     info.id = "memory_test";
     PluginHost host(HostContext{app->renderer(), app->shaders(), app->timer(), app->backend().loader()}, info);
-    const GLuint colour = host.createTexture({GL_TEXTURE_2D, GL_RGBA8, 256, 128, 1, 1, "colour"});
-    host.createTexture({GL_TEXTURE_2D, GL_RG32F, 64, 64, 1, 7, "moments with mips"});
-    host.createTexture({GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F, 32, 32, 4, 1, "cascades"});
-    host.createTexture({GL_TEXTURE_3D, GL_RGBA32F, 8, 8, 8, 2, "offsets"});
+    const GLuint colour = host.createTexture({.target = GL_TEXTURE_2D, .internalFormat = GL_RGBA8, .width = 256,
+                                              .height = 128, .label = "colour"});
+    host.createTexture({.target = GL_TEXTURE_2D, .internalFormat = GL_RG32F, .width = 64, .height = 64, .levels = 7,
+                        .label = "moments with mips"});
+    host.createTexture({.target = GL_TEXTURE_2D_ARRAY, .internalFormat = GL_DEPTH_COMPONENT32F, .width = 32,
+                        .height = 32, .depth = 4, .label = "cascades"});
+    host.createTexture({.target = GL_TEXTURE_3D, .internalFormat = GL_RGBA32F, .width = 8, .height = 8, .depth = 8,
+                        .levels = 2, .label = "offsets"});
+    // ABI 3: cube maps count six faces, cube-map arrays six per cube, multisample textures every sample.
+    host.createTexture({.target = GL_TEXTURE_CUBE_MAP, .internalFormat = GL_DEPTH_COMPONENT32F, .width = 16,
+                        .height = 16, .levels = 2, .label = "point light"});
+    host.createTexture({.target = GL_TEXTURE_CUBE_MAP_ARRAY, .internalFormat = GL_R32F, .width = 8, .height = 8,
+                        .depth = 3, .label = "three point lights"});
+    host.createTexture({.target = GL_TEXTURE_2D_MULTISAMPLE, .internalFormat = GL_DEPTH_COMPONENT32F, .width = 32,
+                        .height = 16, .samples = 4, .label = "msaa shadow map"});
     host.createBuffer(1000, nullptr, GL_DYNAMIC_STORAGE_BIT, "counters");
     host.createFramebuffer("target");
     const size_t colourBytes = 256 * 128 * 4;
     const size_t mipBytes = (64 * 64 + 32 * 32 + 16 * 16 + 8 * 8 + 4 * 4 + 2 * 2 + 1) * 8;
     const size_t arrayBytes = 32 * 32 * 4 * 4;
     const size_t volumeBytes = (8 * 8 * 8 + 4 * 4 * 4) * 16;
-    EXPECT_EQ(host.gpuBytes(), colourBytes + mipBytes + arrayBytes + volumeBytes + 1000);
+    const size_t cubeBytes = 6 * (16 * 16 + 8 * 8) * 4;
+    const size_t cubeArrayBytes = 3 * 6 * 8 * 8 * 4;
+    const size_t multisampleBytes = 32 * 16 * 4 * 4;
+    const size_t others = cubeBytes + cubeArrayBytes + multisampleBytes;
+    EXPECT_EQ(host.gpuBytes(), colourBytes + mipBytes + arrayBytes + volumeBytes + others + 1000);
     host.destroyTexture(colour);
-    EXPECT_EQ(host.gpuBytes(), mipBytes + arrayBytes + volumeBytes + 1000);
+    EXPECT_EQ(host.gpuBytes(), mipBytes + arrayBytes + volumeBytes + others + 1000);
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
-    EXPECT_EQ(host.releaseAll(), 5) << "3 textures, 1 buffer and 1 framebuffer were left for the host to release";
+    EXPECT_EQ(host.releaseAll(), 8) << "6 textures, 1 buffer and 1 framebuffer were left for the host to release";
     EXPECT_EQ(host.gpuBytes(), 0u);
 }

@@ -96,7 +96,7 @@ GBuffer groundGrid(float x0, float z0, float step, int width, int height) {
     return g;
 }
 
-std::vector<glm::vec3> trace(IGroundTruth& groundTruth, const GBuffer& g, const SceneLight& light,
+std::vector<glm::vec3> trace(IGroundTruth& groundTruth, const GBuffer& g, const LightInfo& light,
                              ReferenceOptions options = {}) {
     std::vector<glm::vec3> visibility;
     groundTruth.trace(g.view(), light, options, visibility);
@@ -110,7 +110,7 @@ bool identical(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b)
 // --- analytic shadow of the box -------------------------------------------------------------
 
 // Where the light projects a point onto the ground plane y = 0.
-glm::vec2 projectToGround(const SceneLight& light, glm::vec3 c) {
+glm::vec2 projectToGround(const LightInfo& light, glm::vec3 c) {
     if (light.type == LightType::Directional) {
         const glm::vec3 p = c + light.direction * (-c.y / light.direction.y);
         return {p.x, p.z};
@@ -158,7 +158,7 @@ struct AnalyticCheck {
 // Classifies every compared pixel: ground pixels farther than one pixel (screen space) from the
 // box's shadow polygon must be 0 inside and 1 outside; box pixels facing the light must be lit
 // (the box is convex and the ground lies below it).
-AnalyticCheck checkAgainstPolygon(IGroundTruth& groundTruth, const SceneLight& light, const View& view) {
+AnalyticCheck checkAgainstPolygon(IGroundTruth& groundTruth, const LightInfo& light, const View& view) {
     const Scene scene = boxOnPlane();
     groundTruth.setScene(scene);
     const GBuffer g = primary(groundTruth, view);
@@ -222,8 +222,8 @@ void expectMatchesPolygon(const AnalyticCheck& c) {
     EXPECT_EQ(c.wrongBox, 0) << "box faces facing the light not lit (acne)";
 }
 
-SceneLight directional(glm::vec3 direction, float size = 0.0f) {
-    SceneLight light;
+LightInfo directional(glm::vec3 direction, float size = 0.0f) {
+    LightInfo light;
     light.type = LightType::Directional;
     light.direction = glm::normalize(direction);
     light.size = size;
@@ -231,8 +231,8 @@ SceneLight directional(glm::vec3 direction, float size = 0.0f) {
 }
 
 // A point or spot light above and beside the box; the spot aims past the box at its shadow.
-SceneLight lampNearBox(LightType type) {
-    SceneLight light;
+LightInfo lampNearBox(LightType type) {
+    LightInfo light;
     light.type = type;
     light.position = glm::vec3(-1.5f, 4.0f, -1.2f);
     light.direction = glm::normalize(glm::vec3(1.0f, 0.0f, 0.8f) - light.position);
@@ -247,7 +247,7 @@ TEST(GroundTruth, LoadsModule) {
     auto groundTruth = loadOrFail();
     ASSERT_TRUE(groundTruth);
     std::vector<glm::vec3> visibility;
-    EXPECT_THROW(groundTruth->trace(GBufferView{}, SceneLight{}, ReferenceOptions{}, visibility), std::logic_error);
+    EXPECT_THROW(groundTruth->trace(GBufferView{}, LightInfo{}, ReferenceOptions{}, visibility), std::logic_error);
     groundTruth->setScene(boxOnPlane());
     EXPECT_GT(groundTruth->rayOffset(), 0.0f);
     EXPECT_LT(groundTruth->rayOffset(), 0.01f);
@@ -288,7 +288,7 @@ TEST(GroundTruth, HardPointMatchesShadowPolygon) {
 TEST(GroundTruth, HardSpotMatchesShadowPolygonInsideItsCone) {
     auto groundTruth = loadOrFail();
     ASSERT_TRUE(groundTruth);
-    const SceneLight light = lampNearBox(LightType::Spot);
+    const LightInfo light = lampNearBox(LightType::Spot);
     expectMatchesPolygon(checkAgainstPolygon(*groundTruth, light, View{}));
 
     // The cone leaves part of the ground out of the comparison.
@@ -309,8 +309,8 @@ TEST(GroundTruth, NoAcneAtGrazingLight) {
     ASSERT_TRUE(groundTruth);
     groundTruth->setScene(planeScene());
     const float elevation = 5.0f * std::numbers::pi_v<float> / 180.0f;
-    const SceneLight sun = directional({std::cos(elevation) * 0.8f, -std::sin(elevation), std::cos(elevation) * 0.6f});
-    SceneLight lamp;
+    const LightInfo sun = directional({std::cos(elevation) * 0.8f, -std::sin(elevation), std::cos(elevation) * 0.6f});
+    LightInfo lamp;
     lamp.type = LightType::Point;
     lamp.position = glm::vec3(-9.0f, 0.3f, -9.0f); // low over a corner: grazing across the plane
 
@@ -319,7 +319,7 @@ TEST(GroundTruth, NoAcneAtGrazingLight) {
     for (size_t i = 0; i < noisy.positions.size(); ++i) // deterministic +-1e-4 noise
         noisy.positions[i] += glm::vec4(glm::vec3(static_cast<float>((i * 7919u) % 201u) - 100.0f) * 1e-6f, 0.0f);
 
-    for (const SceneLight& light : {sun, lamp})
+    for (const LightInfo& light : {sun, lamp})
         for (const GBuffer* gbuffer : {&g, &noisy}) {
             const std::vector<glm::vec3> reference = trace(*groundTruth, *gbuffer, light);
             const std::vector<uint8_t> mask = compareMask(gbuffer->view(), light);
@@ -334,7 +334,7 @@ TEST(GroundTruth, NoAcneAtGrazingLight) {
 
     // A box under the same elevation from the other side (its 17-unit shadow then runs away from
     // the camera): its top face sees the light at 5 degrees too, and the shadow still matches.
-    const SceneLight sunBehind = directional({-std::cos(elevation) * 0.8f, -std::sin(elevation), -std::cos(elevation) * 0.6f});
+    const LightInfo sunBehind = directional({-std::cos(elevation) * 0.8f, -std::sin(elevation), -std::cos(elevation) * 0.6f});
     expectMatchesPolygon(checkAgainstPolygon(*groundTruth, sunBehind, View{}));
 }
 
@@ -344,7 +344,7 @@ TEST(GroundTruth, DeterministicAcrossRunsAndThreadCounts) {
     const Scene scene = boxOnPlane();
     groundTruth->setScene(scene);
     const GBuffer g = primary(*groundTruth, View{});
-    SceneLight light = directional({0.5f, -1.0f, 0.35f}, 0.08f);
+    LightInfo light = directional({0.5f, -1.0f, 0.35f}, 0.08f);
 
     ReferenceOptions hard;
     hard.threads = 1;
@@ -392,7 +392,7 @@ TEST(GroundTruth, SoftPenumbraWidensAwayFromContact) {
     groundTruth->setScene(scene);
 
     // Light travels towards +x and down (2 in y per 1 in x): the shadow spans x in [0.5, 2].
-    const SceneLight sun = directional({0.5f, -1.0f, 0.0f}, 0.1f);
+    const LightInfo sun = directional({0.5f, -1.0f, 0.0f}, 0.1f);
     const float step = 0.01f, x0 = -1.0f, z0 = -1.5f;
     const GBuffer g = groundGrid(x0, z0, step, 350, 300);
     ReferenceOptions options;
@@ -435,7 +435,7 @@ TEST(GroundTruth, SoftWithoutEmitterSizeIsHard) {
     ASSERT_TRUE(groundTruth);
     groundTruth->setScene(boxOnPlane());
     const GBuffer g = primary(*groundTruth, View{});
-    const SceneLight light = directional({0.5f, -1.0f, 0.35f}, 0.0f);
+    const LightInfo light = directional({0.5f, -1.0f, 0.35f}, 0.0f);
     ReferenceOptions soft;
     soft.mode = ReferenceOptions::Mode::Soft;
     EXPECT_TRUE(identical(trace(*groundTruth, g, light), trace(*groundTruth, g, light, soft)));
@@ -452,7 +452,7 @@ TEST(GroundTruth, SoftPointLightUmbraAndLit) {
     slab.transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.0f, 0.0f));
     scene.objects.push_back(slab);
     groundTruth->setScene(scene);
-    SceneLight lamp;
+    LightInfo lamp;
     lamp.type = LightType::Point;
     lamp.position = glm::vec3(0.0f, 3.0f, 0.0f);
     lamp.size = 0.3f;
@@ -492,7 +492,7 @@ TEST(GroundTruth, ColouredTransmissionMultiplies) {
     add("ghost", 2, 0, {4.0f, 2.0f, 0.0f}, false);
     groundTruth->setScene(scene);
 
-    const SceneLight sun = directional({0.0f, -1.0f, 0.0f}, 0.02f);
+    const LightInfo sun = directional({0.0f, -1.0f, 0.0f}, 0.02f);
     // Ground points: under red only, under both, open ground, under the opaque box, under the ghost,
     // and under the shared edge of the red quad's two triangles.
     const std::vector<glm::vec3> points = {{-0.5f, 0, 0.3f}, {0.5f, 0, -0.3f}, {0, 0, 3}, {-4, 0, 0}, {4, 0, 0}, {0.5f, 0, 0.5f}};
@@ -543,7 +543,7 @@ TEST(GroundTruth, InstancedMeshesCastLikeFlattenedOnes) {
         scene.objects.push_back(box);
     }
     groundTruth->setScene(scene);
-    const SceneLight sun = directional({0.0f, -1.0f, 0.0f});
+    const LightInfo sun = directional({0.0f, -1.0f, 0.0f});
     // Points under each box's top (y = 1) and beside it.
     GBuffer g = groundGrid(-3.0f, 0.0f, 1.5f, 5, 1);
     for (glm::vec4& p : g.positions) p.y = 0.0f;

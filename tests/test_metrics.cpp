@@ -105,18 +105,18 @@ TEST(Metrics, CompareMaskExcludesBackgroundBackFacesAndOutsideTheCone) {
     const std::vector<glm::vec4> positions = {{0, 0, 0, 1}, {3, 0, 0, 1}, {0, 0, 0, 0}, {0.5f, 0, 0, 1}};
     const std::vector<glm::vec4> normals = {{0, 1, 0, 0}, {0, 1, 0, 0}, {0, 1, 0, 0}, {0, -1, 0, 0}};
     const GBufferView gbuffer{4, 1, positions.data(), normals.data()};
-    SceneLight spot;
+    LightInfo spot;
     spot.type = LightType::Spot;
     spot.position = glm::vec3(0, 4, 0);
     spot.direction = glm::vec3(0, -1, 0);
     spot.spotOuterAngle = 0.5f;
     EXPECT_EQ(compareMask(gbuffer, spot), (std::vector<uint8_t>{1, 0, 0, 0}));
 
-    SceneLight point = spot;
+    LightInfo point = spot;
     point.type = LightType::Point; // no cone
     EXPECT_EQ(compareMask(gbuffer, point), (std::vector<uint8_t>{1, 1, 0, 0}));
 
-    SceneLight sun;
+    LightInfo sun;
     sun.type = LightType::Directional;
     sun.direction = glm::normalize(glm::vec3(1, -1, 0));
     EXPECT_EQ(compareMask(gbuffer, sun), (std::vector<uint8_t>{1, 1, 0, 0}));

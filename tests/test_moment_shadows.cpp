@@ -10,11 +10,16 @@
 #include <random>
 
 #include "../plugins/msm/hamburger4msm.h"
-#include "../plugins/vsm/moment_light_space.h"
+#include "shadowlab/kit/moment_light_space.h"
+#include "shadowlab/kit/moment_map_shared.h"
 #include "render/light_space.h"
 #include "test_support.h"
 
 using namespace shadowlab;
+namespace shadowlab::kit {
+using shared::moment_map::BlurUniforms;
+using shared::moment_map::MomentMapUniforms;
+}
 using Mode = ReferenceOptions::Mode;
 
 namespace {
@@ -392,7 +397,7 @@ TEST_F(MomentShadows, MsmRenderedVisibilityMatchesTheCpuReconstructionOfItsMomen
             const MomentTexture moments = readMoments(*app_, "msm");
             ASSERT_EQ(moments.width, 1024);
             // The plugin's light space, rebuilt from the host's fit and the same rule for the depth.
-            const moments::MomentLightSpace space = moments::fitMomentLightSpace(
+            const kit::MomentLightSpace space = kit::fitMomentLightSpace(
                 fitLightSpace(app_->light(), app_->renderer().bounds(DrawSet::All)),
                 app_->renderer().bounds(DrawSet::Casters), app_->renderer().bounds(DrawSet::All));
             const auto positions = app_->renderer().readTarget(MainTarget::Position);
@@ -406,7 +411,7 @@ TEST_F(MomentShadows, MsmRenderedVisibilityMatchesTheCpuReconstructionOfItsMomen
                 if (uv.x < 0.0f || uv.y < 0.0f || uv.x > 1.0f || uv.y > 1.0f) continue;
                 glm::vec4 b = moments.bilinear(uv);
                 if (quantized) b = msm::dequantizeMoments(b);
-                const float depth = moments::linearLightDepth(space, world);
+                const float depth = kit::linearLightDepth(space, world);
                 const float expected = msm::hamburger4MsmVisibility(b, depth, depthBias, momentBias);
                 const double error = std::abs(double(visibility[i].r) - double(expected));
                 ++compared;
@@ -436,16 +441,19 @@ TEST_F(MomentShadows, MemoryIsAccountedAndReleasedWhenParametersChange) {
         return app_->techniques().get(technique, error)->host().gpuBytes();
     };
     const size_t n = 512 * 512;
+    // The uniform blocks (tracked buffers): the map's, the blur's two and the technique's own (16 bytes each).
+    const size_t b = sizeof(kit::MomentMapUniforms) + 2 * sizeof(kit::BlurUniforms) + 16;
     // Moments + depth buffer, plus a scratch texture of the moments' format when blurring.
-    EXPECT_EQ(bytes("vsm", {"resolution=512", "kernel=1", "mipmaps=false"}), n * (8 + 4));
-    EXPECT_EQ(bytes("vsm", {"resolution=512", "kernel=5", "mipmaps=false"}), n * (8 + 4 + 8));
+    EXPECT_EQ(bytes("vsm", {"resolution=512", "kernel=1", "mipmaps=false"}) - b, n * (8 + 4));
+    EXPECT_EQ(bytes("vsm", {"resolution=512", "kernel=5", "mipmaps=false"}) - b, n * (8 + 4 + 8));
     size_t mipTexels = 0;
     for (int size = 512; size >= 1; size /= 2) mipTexels += size_t(size) * size_t(size);
-    EXPECT_EQ(bytes("vsm", {"resolution=512", "kernel=5", "mipmaps=true"}), mipTexels * 8 + n * (4 + 8));
-    EXPECT_EQ(bytes("esm", {"resolution=512", "kernel=5", "mipmaps=false"}), n * (4 + 4 + 4));
-    EXPECT_EQ(bytes("evsm", {"resolution=512", "kernel=5", "mipmaps=false"}), n * (16 + 4 + 16));
-    EXPECT_EQ(bytes("msm", {"resolution=512", "kernel=5", "mipmaps=false", "storage=rgba32f"}), n * (16 + 4 + 16));
-    EXPECT_EQ(bytes("msm", {"resolution=512", "kernel=5", "mipmaps=false", "storage=rgba16"}), n * (8 + 4 + 8))
+    EXPECT_EQ(bytes("vsm", {"resolution=512", "kernel=5", "mipmaps=true"}) - b, mipTexels * 8 + n * (4 + 8));
+    EXPECT_EQ(bytes("esm", {"resolution=512", "kernel=5", "mipmaps=false"}) - b, n * (4 + 4 + 4));
+    EXPECT_EQ(bytes("evsm", {"resolution=512", "kernel=5", "mipmaps=false"}) - b - 16, n * (16 + 4 + 16))
+        << "evsm's own block is 32 bytes";
+    EXPECT_EQ(bytes("msm", {"resolution=512", "kernel=5", "mipmaps=false", "storage=rgba32f"}) - b, n * (16 + 4 + 16));
+    EXPECT_EQ(bytes("msm", {"resolution=512", "kernel=5", "mipmaps=false", "storage=rgba16"}) - b, n * (8 + 4 + 8))
         << "16-bit quantised storage halves the moments";
 }
 

@@ -47,6 +47,8 @@ protected:
         fs::remove_all(root_);
         fs::create_directories(root_ / "bin");
         fs::copy(fs::path(SHADOWLAB_SOURCE_DIR) / "shaders", root_ / "shaders", fs::copy_options::recursive);
+        fs::create_directories(root_ / "app");
+        fs::copy(fs::path(SHADOWLAB_SOURCE_DIR) / "app" / "include", root_ / "app" / "include", fs::copy_options::recursive);
         writeFile(shaderFile(), kShader);
         setenv("SHADOWLAB_DATA_DIR", root_.c_str(), 1);
         setenv("SHADOWLAB_PLUGIN_DIR", (root_ / "bin").c_str(), 1);
@@ -103,6 +105,15 @@ TEST(PluginLibrary, RefusesAWrongAbiVersionNamingTheFile) {
     EXPECT_NE(error.find("host expects " + std::to_string(SHADOWLAB_ABI_VERSION)), std::string::npos) << error;
 }
 
+TEST(PluginLibrary, RefusesAnAbi2PluginNamingTheFileAndBothVersions) {
+    std::string error;
+    EXPECT_FALSE(PluginLibrary::open(kTestPlugins / "abi2.so", error));
+    EXPECT_NE(error.find("abi2.so"), std::string::npos) << error;
+    EXPECT_NE(error.find("plugin ABI version 2,"), std::string::npos) << error;
+    EXPECT_NE(error.find("host expects 3"), std::string::npos) << error;
+    EXPECT_EQ(SHADOWLAB_ABI_VERSION, 3u);
+}
+
 TEST(PluginLibrary, RefusesALibraryWithoutTheEntrySymbol) {
     std::string error;
     EXPECT_FALSE(PluginLibrary::open(kTestPlugins / "no_entry.so", error));
@@ -134,6 +145,36 @@ TEST_F(PluginSandbox, InitFailureIsReportedByNameAndTheHostKeepsRunning) {
     EXPECT_NE(error.find("init_fails.so"), std::string::npos) << error;
     EXPECT_NE(error.find("needs a feature"), std::string::npos) << error;
     EXPECT_TRUE(app->renderFrame("reload_test", error)) << error;
+}
+
+// The GL state contract: a technique that leaves every state dirty (in renderShadows and in
+// bindMainPass) must not change the host's main pass. Its shadow term is 1, so the frame must be
+// exactly `none`'s, pixel for pixel, in the colour and in the G-buffer.
+TEST_F(PluginSandbox, DirtyStateLeftByATechniqueDoesNotReachTheMainPass) {
+    fs::copy_file(kTestPlugins / "dirty_state.so", root_ / "bin" / "dirty_state.so");
+    fs::copy_file(fs::path(SHADOWLAB_BUILD_DIR) / "plugins" / "none.so", root_ / "bin" / "none.so");
+    for (const char* id : {"dirty_state", "none"})
+        writeFile(root_ / "plugins" / id / "none.glsl", "vec3 shadowTerm(ShadowInput s) { return vec3(1.0); }\n");
+    auto app = test::makeHeadlessApp("cube", {96, 64});
+    ASSERT_TRUE(app);
+    std::string error;
+    ASSERT_TRUE(app->renderFrame("none", error)) << error;
+    const auto colour = app->renderer().readTarget(MainTarget::Color);
+    const auto position = app->renderer().readTarget(MainTarget::Position);
+    for (int frame = 0; frame < 2; ++frame) {   // a second frame starts from the dirty state too
+        ASSERT_TRUE(app->renderFrame("dirty_state", error)) << error;
+        EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)) << "the dirty plugin made no GL error";
+    }
+    const auto dirtyColour = app->renderer().readTarget(MainTarget::Color);
+    const auto dirtyPosition = app->renderer().readTarget(MainTarget::Position);
+    ASSERT_EQ(colour.size(), dirtyColour.size());
+    size_t differing = 0, drawn = 0;
+    for (size_t i = 0; i < colour.size(); ++i) {
+        differing += colour[i] != dirtyColour[i] || position[i] != dirtyPosition[i];
+        drawn += position[i].w > 0.5f;
+    }
+    EXPECT_GT(drawn, colour.size() / 4) << "the scene was drawn";
+    EXPECT_EQ(differing, 0u) << "pixels changed by state the technique left behind";
 }
 
 TEST_F(PluginSandbox, HotReloadOfARebuiltLibraryKeepsParameterValues) {

@@ -2,6 +2,7 @@
 // under a directional light is the set of ground points whose ray towards the light hits the box.
 #include <gtest/gtest.h>
 
+#include "shadowlab/kit/depth_map_shared.h"
 #include "test_support.h"
 
 using namespace shadowlab;
@@ -90,10 +91,12 @@ TEST_F(CubeScene, ShadowMapMemoryIsAccounted) {
     std::string error;
     ASSERT_TRUE(app_->applyAssignments({"resolution=1024", "depth_format=32F"}, "shadowmap", error)) << error;
     ASSERT_TRUE(app_->renderFrame("shadowmap", error)) << error;
-    EXPECT_EQ(app_->techniques().get("shadowmap", error)->host().gpuBytes(), size_t(1024) * 1024 * 4);
+    // The map and the depth map's uniform block.
+    const size_t block = sizeof(shared::depth_map::DepthMapUniforms);
+    EXPECT_EQ(app_->techniques().get("shadowmap", error)->host().gpuBytes(), size_t(1024) * 1024 * 4 + block);
     ASSERT_TRUE(app_->applyAssignments({"resolution=512", "depth_format=16"}, "shadowmap", error)) << error;
     ASSERT_TRUE(app_->renderFrame("shadowmap", error)) << error;
-    EXPECT_EQ(app_->techniques().get("shadowmap", error)->host().gpuBytes(), size_t(512) * 512 * 2)
+    EXPECT_EQ(app_->techniques().get("shadowmap", error)->host().gpuBytes(), size_t(512) * 512 * 2 + block)
         << "the old map is released when the resolution changes";
 }
 

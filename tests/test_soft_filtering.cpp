@@ -11,7 +11,7 @@
 #include <numbers>
 #include <set>
 
-#include "../plugins/adaptive-pcf/jittered_disk.h"
+#include "shadowlab/kit/jittered_disk.h"
 #include "test_support.h"
 #include "util/log.h"
 

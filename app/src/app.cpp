@@ -10,24 +10,14 @@
 #include <GLFW/glfw3.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "reference/reference_technique.h"
+#include "groundtruth/reference_technique.h"
+#include "render/light_space.h"
+#include "shadowlab/kit/depth_map_shared.h"
 #include "ui/ui.h"
 #include "util/log.h"
 #include "util/paths.h"
 
 namespace shadowlab {
-
-LightInfo lightFromScene(const SceneLight& light) {
-    LightInfo info{};
-    info.type = light.type;
-    info.position = light.position;
-    info.direction = glm::normalize(light.direction);
-    info.color = light.color;
-    info.size = light.size;
-    info.spotOuterAngle = light.spotOuterAngle;
-    info.spotInnerAngle = light.spotInnerAngle;
-    return info;
-}
 
 App::~App() {
     // GL objects go while the context still exists.
@@ -52,7 +42,8 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
         return false;
     }
     const BackendKind kind = windowed ? BackendKind::Glfw : options.backend.value_or(BackendKind::Egl);
-    backend_ = createBackend(kind, options.size, "shadowlab", options.visibleWindow, error);
+    windowed_ = windowed;
+    backend_ = createBackend(kind, options.size, "shadowlab", true, error);
     if (!backend_) return false;
     if (!initGl(backend_->loader(), false, error)) {
         error = std::string(backendName(kind)) + " backend: " + error;
@@ -67,7 +58,7 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
     if (!renderer_->resize(size, options.msaaSamples, error)) return false;
     renderer_->setScene(*scene_);
     camera_.reset(scene_->camera);
-    light_ = lightFromScene(scene_->light);
+    light_ = scene_->light;
     applyLightOverrides();
     techniques_ = std::make_unique<TechniqueManager>(HostContext{*renderer_, *shaders_, *timer_, backend_->loader()}, pluginDir());
     techniques_->scan();
@@ -101,7 +92,7 @@ bool App::loadScene(const std::string& nameOrPath, const std::map<std::string, d
         ++sceneGeneration_;
         renderer_->setScene(*scene_);
         camera_.reset(scene_->camera);
-        light_ = lightFromScene(scene_->light);
+        light_ = scene_->light;
         applyLightOverrides();
         return true;
     } catch (const SceneError& e) {
@@ -133,6 +124,18 @@ bool App::applyAssignments(const std::vector<std::string>& assignments, const st
     return true;
 }
 
+namespace {
+
+// A different 32-bit seed every frame (splitmix64 of the frame index): stochastic techniques.
+uint32_t frameSeed(uint64_t frameIndex) {
+    uint64_t z = frameIndex + 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return uint32_t((z ^ (z >> 31)) >> 16);
+}
+
+} // namespace
+
 bool App::renderFrame(const std::string& technique, std::string& error) {
     // May wait for the GPU to finish the frame 4 back (when it is the bottleneck); that wait is
     // not host work, so the CPU clock starts after it.
@@ -148,10 +151,31 @@ bool App::renderFrame(const std::string& technique, std::string& error) {
     const std::vector<double>& values = params_.values(loaded->info());
     const ParamValues params(values.data(), uint32_t(values.size()));
 
-    renderer_->setView(camera_.info(renderer_->size()), light_);
-    loaded->technique().renderShadows(params);
+    // The frame context: the window runs on the wall clock, headless runs on fixed 1/60 s steps
+    // (so renders and paths are reproducible).
+    const uint64_t index = framesRendered_++;
+    const bool first = index == 0;
+    const glm::mat4 previous = frame_.camera.viewProjection;
+    const float time = windowed_ ? std::chrono::duration<float>(std::chrono::steady_clock::now() - startTime_).count()
+                                 : float(index) / 60.0f;
+    frame_.deltaTime = first ? 1.0f / 60.0f : time - frame_.time;
+    frame_.frameIndex = index;
+    frame_.time = time;
+    frame_.randomSeed = frameSeed(index);
+    frame_.camera = camera_.info(renderer_->size());
+    frame_.previousViewProjection = first ? frame_.camera.viewProjection : previous;
+    frame_.light = light_;
+
+    renderer_->setView(frame_.camera, light_);
+    if (loaded->info().flags & kTechniqueNeedsCameraPrepass) {
+        timer_->begin("camera pre-pass");
+        renderer_->cameraPrepass();
+        timer_->end();
+    }
+    renderer_->applyDefaultState();
+    loaded->technique().renderShadows(frame_, params);
     timer_->begin("main");
-    renderer_->mainPass(loaded->mainProgram(), [&](GLuint program) { loaded->technique().bindMainPass(program, params); });
+    renderer_->mainPass(loaded->mainProgram(), [&] { loaded->technique().bindMainPass(frame_, params); });
     timer_->end();
     timer_->endFrame();
     lastCpuFrameMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
@@ -240,10 +264,18 @@ bool App::measureDepthFloor(int resolution, int warmupFrames, int frames, Measur
     }
     ShaderRequest request;
     request.vertexFile = "depth_only.vert";
-    request.searchPaths = {sharedShaderDir()};
+    request.searchPaths = hostShaderPaths();
     request.label = "depth floor";
     const ProgramId program = shaders_->build(request, error);
     if (!program) return false;
+    // The depth map's block (the same shader as the techniques' depth passes), from the host's
+    // fit around the whole scene.
+    GlBuffer uniforms;
+    glCreateBuffers(1, &name);
+    uniforms.reset(name);
+    shared::depth_map::DepthMapUniforms block{};
+    block.uShadowMatrix = fitLightSpace(light_, renderer_->bounds(DrawSet::All)).viewProjection;
+    glNamedBufferStorage(name, sizeof(block), &block, 0);
     std::vector<double> cpu;
     for (int i = 0; i < warmupFrames + frames; ++i) {
         if (i == warmupFrames) {
@@ -252,16 +284,12 @@ bool App::measureDepthFloor(int resolution, int warmupFrames, int frames, Measur
         }
         timer_->beginFrame();
         renderer_->setView(camera_.info(renderer_->size()), light_);
+        renderer_->applyDefaultState();
         timer_->begin("depth floor");
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
         glViewport(0, 0, resolution, resolution);
-        glEnable(GL_DEPTH_TEST);
-        glDepthMask(GL_TRUE);
-        glDisable(GL_CULL_FACE);
-        glDisable(GL_POLYGON_OFFSET_FILL);
         glClear(GL_DEPTH_BUFFER_BIT);
-        glUseProgram(shaders_->program(program));
-        glUniformMatrix4fv(16, 1, GL_FALSE, &renderer_->defaultLightSpace().viewProjection[0][0]);
+        glBindBufferBase(GL_UNIFORM_BUFFER, shared::depth_map::DepthMapUniforms::kBinding, uniforms.get());
         renderer_->drawScene(DrawSet::OpaqueCasters, shaders_->program(program));
         timer_->end();
         timer_->endFrame();
@@ -275,18 +303,6 @@ bool App::measureDepthFloor(int resolution, int warmupFrames, int frames, Measur
     return true;
 }
 
-SceneLight App::currentLight() const {
-    SceneLight light;
-    light.type = light_.type;
-    light.position = light_.position;
-    light.direction = glm::normalize(light_.direction);
-    light.color = light_.color;
-    light.size = light_.size;
-    light.spotOuterAngle = light_.spotOuterAngle;
-    light.spotInnerAngle = light_.spotInnerAngle;
-    return light;
-}
-
 bool App::traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
                          std::string& error) {
     if (!groundTruth_) {
@@ -298,7 +314,7 @@ bool App::traceReference(const GBufferView& gbuffer, const ReferenceOptions& opt
             groundTruth_->setScene(*scene_);   // the BVH is built once per scene
             groundTruthGeneration_ = sceneGeneration_;
         }
-        groundTruth_->trace(gbuffer, currentLight(), options, visibility);
+        groundTruth_->trace(gbuffer, light_, options, visibility);
     } catch (const std::exception& e) {
         error = std::string("ground truth: ") + e.what();
         return false;
@@ -316,7 +332,7 @@ bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string
     out.height = size.y;
     out.technique.resize(visibility.size());
     for (size_t i = 0; i < visibility.size(); ++i) out.technique[i] = glm::clamp(glm::vec3(visibility[i]), 0.0f, 1.0f);
-    out.mask = compareMask(gbuffer, currentLight());
+    out.mask = compareMask(gbuffer, light_);
     const auto start = std::chrono::steady_clock::now();
     if (!traceReference(gbuffer, options, out.reference, error)) return false;
     out.traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -2,6 +2,7 @@
 // frame that ties them together. main.cpp turns command lines into calls on this class.
 #pragma once
 
+#include <chrono>
 #include <map>
 #include <memory>
 #include <optional>
@@ -31,7 +32,6 @@ struct AppOptions {
     int msaaSamples = 0;
     std::optional<glm::vec3> lightDirection;            // overrides the scene's (travel direction)
     std::optional<float> lightSize;                     // scene units (degrees for directional)
-    bool visibleWindow = true;
 };
 
 // Which image a frame shows: the lit scene, the shadow term, or one of the technique's debug images.
@@ -98,7 +98,6 @@ public:
     // Traces the current scene and light for `gbuffer` (loads the Embree module on first use).
     bool traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
                         std::string& error);
-    SceneLight currentLight() const;
 
     GlBackend& backend() { return *backend_; }
     Renderer& renderer() { return *renderer_; }
@@ -111,6 +110,7 @@ public:
     CameraController& camera() { return camera_; }
     std::string firstTechnique() const;
     double lastCpuFrameMs() const { return lastCpuFrameMs_; }
+    const FrameContext& lastFrame() const { return frame_; }
 
 private:
     void applyLightOverrides();
@@ -125,13 +125,16 @@ private:
     ParamStore params_;
     LightInfo light_{};
     CameraController camera_;
+    // What every technique call of a frame is told (shadowlab/technique.h FrameContext).
+    FrameContext frame_{};
+    uint64_t framesRendered_ = 0;
+    bool windowed_ = false;
+    std::chrono::steady_clock::time_point startTime_ = std::chrono::steady_clock::now();
     double lastCpuFrameMs_ = 0.0;
     std::vector<std::string> lastReloaded_;
     GroundTruthPtr groundTruth_;
     uint64_t sceneGeneration_ = 0;         // bumped when the scene changes
     uint64_t groundTruthGeneration_ = ~0ull;
 };
-
-LightInfo lightFromScene(const SceneLight& light);
 
 } // namespace shadowlab

@@ -36,8 +36,20 @@ CameraInfo CameraController::info(glm::ivec2 viewport) const {
     c.viewProjection = c.projection * c.view;
     c.nearPlane = near_;
     c.farPlane = far_;
+    c.fovY = fovY_;
+    c.aspect = aspect;
     c.viewport = viewport;
+    completeCameraInfo(c);
     return c;
+}
+
+void completeCameraInfo(CameraInfo& camera) {
+    camera.inverseViewProjection = glm::inverse(camera.viewProjection);
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec4 ndc{i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f : -1.0f, 1.0f};
+        const glm::vec4 world = camera.inverseViewProjection * ndc;
+        camera.frustumCorners[i] = glm::vec3(world) / world.w;
+    }
 }
 
 void CameraController::setMode(Mode mode) {

@@ -36,4 +36,8 @@ private:
     float fovY_ = 0.785f, near_ = 0.1f, far_ = 100.0f;
 };
 
+// Fills the derived fields of a camera whose view and projection are set: inverse
+// view-projection and world-space frustum corners.
+void completeCameraInfo(CameraInfo& camera);
+
 } // namespace shadowlab

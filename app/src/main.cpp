@@ -19,7 +19,7 @@
 #include "app.h"
 #include "bench/bench.h"
 #include "bench/report.h"
-#include "reference/reference_technique.h"
+#include "groundtruth/reference_technique.h"
 #include "util/log.h"
 #include "util/paths.h"
 

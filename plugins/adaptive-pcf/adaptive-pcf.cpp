@@ -10,34 +10,23 @@
 // Fig. 4.10), lit gaps narrower than the disc classified as shadowed by the early out, the same
 // penumbra width everywhere (no light size), acne under wide discs without the cone bias, and
 // bad bias also costs speed (acne pixels look like penumbra and take the full kernel).
-// Shares its shadow-map code with pcf (../pcf/kernel_shadow_map.h) and its disc sets with pcss
-// (jittered_disk.h, disc_offset_texture.h; GLSL in shaders/disc_sampling.glsl).
+// The shadow map is the kit's depth map, the disc sets the kit's (jittered_disk.h,
+// disc_offset_texture.h; GLSL in shaders/disc_sampling.glsl), shared with pcss.
 #include <array>
 
-#include <glad/gl.h>
-#include <shadowlab/technique.h>
+#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/disc_offset_texture.h>
+#include <shadowlab/kit/params.h>
+#include <shadowlab/kit/technique_base.h>
 
-#include "../pcf/kernel_shadow_map.h"
-#include "disc_offset_texture.h"
+#include "adaptive_pcf_shared.h"
 
 namespace {
 
 using namespace shadowlab;
 
-enum Param : uint32_t {
-    kResolution,
-    kGrid,
-    kSets,
-    kRadius,
-    kHardwareFilter,
-    kConeBias,
-    kConstantBias,
-    kSlopeBias,
-    kParamCount
-};
-
-const ParamDesc kParams[] = {
-    kernel_filtering::kResolutionParam,
+constexpr ParamDesc kParams[] = {
+    kit::resolutionParam(),
     {"grid", "samples n", ParamType::Int, 2, 16, 8, "",
      "Each set is an n x n jittered grid mapped to a disc (n^2 taps in the penumbra, n in the outer "
      "ring tested first). Small n gives coarse, noisy penumbrae and an unreliable early out; large n is "
@@ -53,40 +42,46 @@ const ParamDesc kParams[] = {
      "Each tap is the texture unit's 2x2 bilinear comparison: smoother penumbrae at small radii for "
      "almost no cost, but fractional taps rarely agree exactly, so the early out is taken less often.",
      nullptr},
-    kernel_filtering::kConeBiasParam,
-    kernel_filtering::kConstantBiasParam,
-    kernel_filtering::kSlopeBiasParam,
+    kit::coneBiasParam(),
+    kit::constantBiasParam(),
+    kit::slopeBiasParam(),
+};
+enum : uint32_t {
+    kResolution = kit::paramIndex(kParams, "resolution"),
+    kGrid = kit::paramIndex(kParams, "grid"),
+    kSets = kit::paramIndex(kParams, "sets"),
+    kRadius = kit::paramIndex(kParams, "radius"),
+    kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
+    kConeBias = kit::paramIndex(kParams, "cone_bias"),
+    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
+    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
 };
 
-const TechniqueDesc kDescriptor{
-    "adaptive-pcf",
-    "Adaptive PCF (jittered disc)",
-    "filtered",
-    "PCF with n x n jittered samples spread over a disc, a different set in each pixel of an m x m tile, "
-    "so the penumbra becomes fine noise instead of bands. The outermost samples come first: when they "
-    "all agree the pixel is fully lit or fully shadowed and the rest is skipped, so only penumbra pixels "
-    "pay for the whole kernel (see the early-out rate). The radius sets the penumbra width, the same "
-    "everywhere: filtering, not a physically soft shadow.",
-    "adaptive-pcf.glsl",
-    kParams,
-    kParamCount,
-};
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "adaptive-pcf",
+     .displayName = "Adaptive PCF (jittered disc)",
+     .category = "filtered",
+     .explanation = "PCF with n x n jittered samples spread over a disc, a different set in each pixel of an m x m tile, "
+                   "so the penumbra becomes fine noise instead of bands. The outermost samples come first: when they "
+                   "all agree the pixel is fully lit or fully shadowed and the rest is skipped, so only penumbra pixels "
+                   "pay for the whole kernel (see the early-out rate). The radius sets the penumbra width, the same "
+                   "everywhere: filtering, not a physically soft shadow.",
+     .shadowGlsl = "adaptive-pcf.glsl"},
+    kParams);
 
 // Counts of the main pass (shadowTerm calls, early outs) in a ring of small atomic-counter buffers,
 // read back only once a fence says the frame that wrote them has finished: never a stall. Both
 // count fragments (overdraw included, helper invocations not); points outside the map count as
 // calls but not as early outs. "early-out rate" = early outs / calls.
-// Atomic counter binding 4 (the host uses none; 4 keeps to the "techniques use 4+" rule).
+// Atomic counter binding kCounterBinding (adaptive_pcf_shared.h; the host uses none).
 // Cost: two atomics per fragment, about 10% of adaptive-pcf's main pass on llvmpipe.
 class EarlyOutCounters {
 public:
-    static constexpr GLuint kBinding = 4;   // layout(binding = 4) atomic_uint in adaptive-pcf.glsl
-
     void init(IHost& host) {
         host_ = &host;
         const GLuint zero[2] = {0, 0};
-        for (GLuint& buffer : buffers_)
-            buffer = host.createBuffer(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "early-out counters");
+        for (kit::Buffer& buffer : buffers_)
+            buffer = kit::Buffer(host, host.createBuffer(sizeof(zero), zero, GL_DYNAMIC_STORAGE_BIT, "early-out counters"));
     }
 
     // Start of a frame: fence the previous frame's counters, collect finished ones, and clear the
@@ -111,20 +106,13 @@ public:
     }
 
     void bindMainPass() {
-        glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, kBinding, buffers_[size_t(current_)]);
+        glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, shared::adaptive_pcf::kCounterBinding, buffers_[size_t(current_)]);
         pending_ = current_;
     }
 
-    void shutdown() {
-        for (GLsync& fence : fences_) {
+    ~EarlyOutCounters() {
+        for (GLsync& fence : fences_)
             if (fence) glDeleteSync(fence);
-            fence = nullptr;
-        }
-        for (GLuint& buffer : buffers_) {
-            if (buffer && host_) host_->destroyBuffer(buffer);
-            buffer = 0;
-        }
-        pending_ = -1;
     }
 
 private:
@@ -145,53 +133,39 @@ private:
     }
 
     IHost* host_ = nullptr;
-    std::array<GLuint, kRing> buffers_{};
+    std::array<kit::Buffer, kRing> buffers_{};
     std::array<GLsync, kRing> fences_{};
     int frame_ = 0;
     int current_ = 0;
     int pending_ = -1;
 };
 
-class AdaptivePcf final : public IShadowTechnique {
-public:
-    bool init(IHost& host, std::string& error) override {
-        host_ = &host;
-        if (!gladLoadGL(host.glLoader())) {
-            error = "could not load OpenGL entry points";
-            return false;
-        }
-        if (!shadowMap_.init(host, true, error)) return false;
-        counters_.init(host);
-        return true;
+class AdaptivePcf final : public kit::TechniqueBase {
+    bool setup(std::string& error) override {
+        counters_.init(host());
+        uniforms_.create(host(), "adaptive-pcf uniforms");
+        return map_.create(host(), error);
     }
 
-    void renderShadows(const ParamValues& params) override {
-        offsets_.ensure(*host_, params.asInt(kGrid), params.asInt(kSets), "disc offsets (m x m x n^2/2)");
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        offsets_.ensure(host(), params.asInt(kGrid), params.asInt(kSets), "disc offsets (m x m x n^2/2)");
         counters_.beginFrame();
-        shadowMap_.render(params.asInt(kResolution), params.asFloat(kConstantBias), params.asFloat(kSlopeBias));
+        map_.render(frame, {.resolution = params.asInt(kResolution),
+                            .constantBias = params.asFloat(kConstantBias),
+                            .slopeBias = params.asFloat(kSlopeBias)});
     }
 
-    void bindMainPass(uint32_t program, const ParamValues& params) override {
-        (void)program;
-        shadowMap_.bindMainPass(4, params.asBool(kHardwareFilter));
-        glBindTextureUnit(5, offsets_.texture());
-        glUniform1i(23, offsets_.n());
-        glUniform1f(24, params.asFloat(kRadius));
-        glUniform1f(25, params.asBool(kConeBias) ? 1.0f : 0.0f);
+    void bindMainPass(const FrameContext&, const ParamValues& params) override {
+        map_.bindMainPass(params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+        glBindTextureUnit(shared::adaptive_pcf::kDiscOffsetsUnit, offsets_.texture());
+        uniforms_.set({{}, offsets_.n(), params.asFloat(kRadius), params.asBool(kConeBias) ? 1.0f : 0.0f, 0.0f});
         counters_.bindMainPass();
     }
 
-    void shutdown() override {
-        shadowMap_.shutdown();
-        if (host_) offsets_.release(*host_);
-        counters_.shutdown();
-    }
-
-private:
-    IHost* host_ = nullptr;
-    kernel_filtering::KernelShadowMap shadowMap_;
+    kit::DepthMap map_;
     jittered_disk::DiscOffsetTexture offsets_;
     EarlyOutCounters counters_;
+    kit::UniformBlock<shared::adaptive_pcf::AdaptivePcfUniforms> uniforms_;
 };
 
 } // namespace

@@ -5,17 +5,13 @@
 #include "light_space.glsl"
 #include "disc_sampling.glsl"
 
-layout(location = 16) uniform mat4 uShadowMatrix;
-layout(location = 20) uniform vec4 uLightDepth;      // near, far, perspective, resolution
-layout(location = 21) uniform vec2 uLightWorldSize;
-layout(location = 22) uniform vec3 uLightAxis;       // depth axis of the map (world)
-layout(location = 23) uniform int uGrid;             // n: n x n samples per set
-layout(location = 24) uniform float uRadius;         // filter radius in texels
-layout(location = 25) uniform float uConeBias;       // 0 off, else multiplier of the receiver slope
-layout(binding = 4) uniform sampler2DShadow uShadowMap;
-layout(binding = 5) uniform sampler3D uDiscOffsets;
-layout(binding = 4, offset = 0) uniform atomic_uint uShadedCount;
-layout(binding = 4, offset = 4) uniform atomic_uint uEarlyOutCount;
+#include "shadowlab/kit/depth_map_shared.h"
+#include "adaptive_pcf_shared.h"
+
+layout(binding = kDepthMapUnit) uniform sampler2DShadow uShadowMap;
+layout(binding = kDiscOffsetsUnit) uniform sampler3D uDiscOffsets;
+layout(binding = kCounterBinding, offset = 0) uniform atomic_uint uShadedCount;
+layout(binding = kCounterBinding, offset = 4) uniform atomic_uint uEarlyOutCount;
 
 float discTap(vec2 uv, float ref) { return texture(uShadowMap, vec3(uv, ref)); }
 

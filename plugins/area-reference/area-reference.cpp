@@ -1,6 +1,6 @@
 // Area-light reference by accumulated shadow maps (seed 000 sec. 2.2.8: "multiple shadow maps per
 // light source, each time rendering from a different sampled point on the surface of the light").
-// A pre-pass stores the world position of every pixel of the host camera; then for each of N
+// The host's camera pre-pass gives the world position of every pixel; then for each of N
 // light samples one hard shadow map is rendered from that sample and a fullscreen pass adds the
 // sample's binary visibility of every pixel to an R32F target (blending by 1/N), so the main pass
 // reads the visible fraction of the light. Samples: a Hammersley set ((i + 1/2) / N, radical
@@ -12,28 +12,24 @@
 // aliasing and acne (averaged, so softened), the point light's disc faces the scene centre
 // rather than each shaded point, and the cost: N shadow passes and N fullscreen passes per frame.
 // It is slow by design: the upper bound of what single-map soft techniques approximate.
-// The per-sample depth pass is pcf's (../pcf/kernel_shadow_map.h); the sample disc mapping is
-// adaptive-pcf's (../adaptive-pcf/jittered_disk.h).
+// The per-sample depth pass is the kit's depth map; the sample disc mapping the kit's jittered
+// disc (eq. 3.11-3.12).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
-#include <glad/gl.h>
-#include <shadowlab/technique.h>
+#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/jittered_disk.h>
+#include <shadowlab/kit/params.h>
+#include <shadowlab/kit/technique_base.h>
 
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/type_ptr.hpp>
-
-#include "../adaptive-pcf/jittered_disk.h"
-#include "../pcf/kernel_shadow_map.h"
+#include "area_reference_shared.h"
 
 namespace {
 
 using namespace shadowlab;
 
-enum Param : uint32_t { kSamples, kResolution, kConstantBias, kSlopeBias, kParamCount };
-
-const ParamDesc kParams[] = {
+constexpr ParamDesc kParams[] = {
     {"samples", "light samples N", ParamType::Int, 1, 256, 32, "",
      "Shadow maps rendered from points spread over the light, averaged per pixel. 1 is plain shadow mapping "
      "from the light's centre; few samples show N + 1 distinct bands in the penumbra; cost grows linearly "
@@ -41,23 +37,28 @@ const ParamDesc kParams[] = {
     {"resolution", "resolution", ParamType::Int, 256, 8192, 2048, "texels",
      "Width and height of each sample's shadow map. Low values add each map's blocky edges to the penumbra; "
      "high values multiply the cost of every one of the N passes.", nullptr},
-    kernel_filtering::kConstantBiasParam,
-    kernel_filtering::kSlopeBiasParam,
+    kit::constantBiasParam(),
+    kit::slopeBiasParam(),
+};
+enum : uint32_t {
+    kSamples = kit::paramIndex(kParams, "samples"),
+    kResolution = kit::paramIndex(kParams, "resolution"),
+    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
+    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
 };
 
-const TechniqueDesc kDescriptor{
-    "area-reference",
-    "Area light reference (N shadow maps)",
-    "reference",
-    "The brute-force soft shadow: renders N shadow maps from points spread over the light's area (or, for "
-    "the sun, directions within its angular radius) and averages the N hard visibilities in every pixel. "
-    "Physically right up to sampling: penumbrae widen with the distance between caster and receiver and "
-    "overlapping casters combine correctly. Slow by design (N shadow passes per frame): it is the target "
-    "that single-map techniques such as PCSS approximate. Few samples show banding.",
-    "area-reference.glsl",
-    kParams,
-    kParamCount,
-};
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "area-reference",
+     .displayName = "Area light reference (N shadow maps)",
+     .category = "reference",
+     .explanation = "The brute-force soft shadow: renders N shadow maps from points spread over the light's area (or, for "
+                   "the sun, directions within its angular radius) and averages the N hard visibilities in every pixel. "
+                   "Physically right up to sampling: penumbrae widen with the distance between caster and receiver and "
+                   "overlapping casters combine correctly. Slow by design (N shadow passes per frame): it is the target "
+                   "that single-map techniques such as PCSS approximate. Few samples show banding.",
+     .shadowGlsl = "area-reference.glsl",
+     .flags = kTechniqueNeedsCameraPrepass},
+    kParams);
 
 // Van der Corput radical inverse in base 2: the second Hammersley coordinate.
 float radicalInverse(uint32_t i) {
@@ -106,129 +107,74 @@ LightInfo sampleLight(const LightInfo& light, const Bounds& bounds, int i, int n
     return sample;
 }
 
-class AreaReference final : public IShadowTechnique {
-public:
-    bool init(IHost& host, std::string& error) override {
-        host_ = &host;
-        if (!gladLoadGL(host.glLoader())) {
-            error = "could not load OpenGL entry points";
-            return false;
-        }
-        if (!sampleMap_.init(host, true, error)) return false;
-        positionProgram_ = host.buildProgram({"main.vert", "area_position.frag", nullptr}, error);
-        if (!positionProgram_) return false;
-        accumulateProgram_ = host.buildProgram({"fullscreen.vert", "area_accumulate.frag", nullptr}, error);
-        if (!accumulateProgram_) return false;
-        positionFbo_ = host.createFramebuffer("position pre-pass");
-        accumulationFbo_ = host.createFramebuffer("visibility accumulation");
-        return true;
+class AreaReference final : public kit::TechniqueBase {
+    bool setup(std::string& error) override {
+        accumulationFbo_ = kit::makeFramebuffer(host(), "visibility accumulation");
+        return sampleMap_.create(host(), error) &&
+               accumulateProgram_.build(host(), {.vertexFile = "fullscreen.vert", .fragmentFile = "area_accumulate.frag"},
+                                        error);
     }
 
-    void renderShadows(const ParamValues& params) override {
-        ensureScreenTargets(host_->camera().viewport);
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        const auto* prepass = static_cast<const CameraPrepass*>(host().extension(SHADOWLAB_EXT_CAMERA_PREPASS));
+        if (!prepass) return;
+        ensureAccumulation(prepass->size);
         sampleMap_.ensureTexture(params.asInt(kResolution));
-        positionPrePass();
-        accumulateSamples(params);
+        accumulateSamples(frame, *prepass, params);
     }
 
-    void bindMainPass(uint32_t program, const ParamValues& params) override {
-        (void)program;
-        (void)params;
-        glBindTextureUnit(4, accumulation_);
+    void bindMainPass(const FrameContext&, const ParamValues&) override {
+        glBindTextureUnit(shared::area_reference::kAverageUnit, accumulation_);
     }
 
-    void shutdown() override {
-        sampleMap_.shutdown();
-        for (GLuint* texture : {&positions_, &depth_, &accumulation_}) {
-            if (*texture) host_->destroyTexture(*texture);
-            *texture = 0;
-        }
-        for (GLuint* framebuffer : {&positionFbo_, &accumulationFbo_}) {
-            if (*framebuffer) host_->destroyFramebuffer(*framebuffer);
-            *framebuffer = 0;
-        }
-        viewport_ = glm::ivec2(0);
-    }
-
-private:
-    // Screen-sized targets, reallocated only when the viewport changes.
-    void ensureScreenTargets(glm::ivec2 viewport) {
-        if (positions_ && viewport == viewport_) return;
-        for (GLuint* texture : {&positions_, &depth_, &accumulation_})
-            if (*texture) host_->destroyTexture(*texture);
+    // Screen-sized target, reallocated only when the viewport changes.
+    void ensureAccumulation(glm::ivec2 viewport) {
+        if (accumulation_ && viewport == viewport_) return;
         viewport_ = viewport;
-        positions_ = host_->createTexture({GL_TEXTURE_2D, GL_RGBA32F, viewport.x, viewport.y, 1, 1, "world positions"});
-        depth_ = host_->createTexture({GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, viewport.x, viewport.y, 1, 1, "pre-pass depth"});
-        accumulation_ = host_->createTexture({GL_TEXTURE_2D, GL_R32F, viewport.x, viewport.y, 1, 1, "average visibility"});
-        for (GLuint texture : {positions_, accumulation_}) {
-            glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        }
-        glNamedFramebufferTexture(positionFbo_, GL_COLOR_ATTACHMENT0, positions_, 0);
-        glNamedFramebufferTexture(positionFbo_, GL_DEPTH_ATTACHMENT, depth_, 0);
-        glNamedFramebufferDrawBuffer(positionFbo_, GL_COLOR_ATTACHMENT0);
-        host_->checkFramebuffer(positionFbo_, "position pre-pass");
+        accumulation_ = kit::makeTexture(host(), {.internalFormat = GL_R32F, .width = viewport.x, .height = viewport.y,
+                                                  .label = "average visibility"});
+        glTextureParameteri(accumulation_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(accumulation_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glNamedFramebufferTexture(accumulationFbo_, GL_COLOR_ATTACHMENT0, accumulation_, 0);
         glNamedFramebufferDrawBuffer(accumulationFbo_, GL_COLOR_ATTACHMENT0);
-        host_->checkFramebuffer(accumulationFbo_, "visibility accumulation");
-        host_->registerDebugImage("world positions", positions_, DebugImageKind::Color);
-        host_->registerDebugImage("average visibility", accumulation_, DebugImageKind::Mask);
-    }
-
-    // World positions of the opaque surfaces the main pass will shade (translucent surfaces are
-    // drawn over them there without depth writes, so the opaque surface is the one measured).
-    void positionPrePass() {
-        GpuPass pass(*host_, "position pre-pass");
-        glBindFramebuffer(GL_FRAMEBUFFER, positionFbo_);
-        glViewport(0, 0, viewport_.x, viewport_.y);
-        glDisable(GL_BLEND);
-        glDisable(GL_CULL_FACE);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        glDepthMask(GL_TRUE);
-        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        glClearNamedFramebufferfv(positionFbo_, GL_COLOR, 0, zero);
-        glClearNamedFramebufferfi(positionFbo_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
-        const GLuint program = host_->glProgram(positionProgram_);
-        for (uint32_t i = 0; i < host_->objectCount(); ++i)
-            if (!host_->objectInfo(i).translucent) host_->drawObject(i, program);
+        host().checkFramebuffer(accumulationFbo_, "visibility accumulation");
+        host().registerDebugImage("average visibility", accumulation_, DebugImageKind::Mask);
     }
 
     // For each light sample: its shadow map, then its visibility of every pixel added (times 1/N).
-    void accumulateSamples(const ParamValues& params) {
-        GpuPass pass(*host_, "light samples");
+    void accumulateSamples(const FrameContext& frame, const CameraPrepass& prepass, const ParamValues& params) {
+        GpuPass pass(host(), "light samples");
         const int samples = params.asInt(kSamples);
-        const Bounds bounds = host_->sceneBounds(DrawSet::All);
-        const LightInfo& light = host_->light();
+        const Bounds bounds = host().bounds(DrawSet::All);
+        const kit::DepthMapConfig config{.resolution = sampleMap_.resolution(),
+                                         .constantBias = params.asFloat(kConstantBias),
+                                         .slopeBias = params.asFloat(kSlopeBias)};
         const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         glClearNamedFramebufferfv(accumulationFbo_, GL_COLOR, 0, zero);
-        const GLuint accumulateProgram = host_->glProgram(accumulateProgram_);
         for (int i = 0; i < samples; ++i) {
-            const LightSpace lightSpace = host_->fitLightSpaceFor(sampleLight(light, bounds, i, samples), DrawSet::All);
-            sampleMap_.drawDepth(lightSpace, params.asFloat(kConstantBias), params.asFloat(kSlopeBias));
+            glDisable(GL_BLEND);
+            glEnable(GL_DEPTH_TEST);
+            sampleMap_.drawDepth(host().fitLightSpace(sampleLight(frame.light, bounds, i, samples), bounds), config);
+            glDisable(GL_POLYGON_OFFSET_FILL);
 
             glBindFramebuffer(GL_FRAMEBUFFER, accumulationFbo_);
             glViewport(0, 0, viewport_.x, viewport_.y);
             glDisable(GL_DEPTH_TEST);
             glEnable(GL_BLEND);
-            glBlendEquation(GL_FUNC_ADD);
             glBlendColor(1.0f / float(samples), 0.0f, 0.0f, 0.0f);
             glBlendFunc(GL_CONSTANT_COLOR, GL_ONE);
-            glUseProgram(accumulateProgram);
-            glUniformMatrix4fv(16, 1, GL_FALSE, glm::value_ptr(lightSpace.viewProjection));
-            glBindTextureUnit(4, positions_);
-            glBindTextureUnit(5, sampleMap_.texture());
-            host_->drawFullscreenTriangle();
+            accumulateProgram_.use();
+            glBindTextureUnit(shared::area_reference::kPositionsUnit, prepass.position);
+            glBindTextureUnit(shared::area_reference::kSampleMapUnit, sampleMap_.texture());
+            glBindSampler(shared::area_reference::kSampleMapUnit, host().sampler(SamplerKind::CompareNearest));
+            host().drawFullscreenTriangle();
         }
-        glDisable(GL_BLEND);
-        glEnable(GL_DEPTH_TEST);
     }
 
-    IHost* host_ = nullptr;
-    kernel_filtering::KernelShadowMap sampleMap_;   // re-rendered for every light sample
-    ProgramId positionProgram_ = 0, accumulateProgram_ = 0;
-    GLuint positionFbo_ = 0, accumulationFbo_ = 0;
-    GLuint positions_ = 0, depth_ = 0, accumulation_ = 0;
+    kit::DepthMap sampleMap_;   // re-rendered for every light sample
+    kit::Program accumulateProgram_;
+    kit::Framebuffer accumulationFbo_;
+    kit::Texture accumulation_;
     glm::ivec2 viewport_{0};
 };
 

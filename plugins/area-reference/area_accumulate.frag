@@ -3,10 +3,11 @@
 // 1/N times the source plus the destination), so after N samples it holds their average.
 #include "common.glsl"
 #include "light_space.glsl"
+#include "shadowlab/kit/depth_map_shared.h"   // uShadowMatrix: this sample's light
+#include "area_reference_shared.h"
 
-layout(location = 16) uniform mat4 uSampleLightMatrix;
-layout(binding = 4) uniform sampler2D uPositions;
-layout(binding = 5) uniform sampler2DShadow uSampleShadowMap;
+layout(binding = kPositionsUnit) uniform sampler2D uPositions;
+layout(binding = kSampleMapUnit) uniform sampler2DShadow uSampleShadowMap;
 
 layout(location = 0) out float outVisible;
 
@@ -16,7 +17,7 @@ void main() {
         outVisible = 0.0;
         return;
     }
-    vec3 coord = shadowMapCoord(uSampleLightMatrix, position.xyz);
+    vec3 coord = shadowMapCoord(uShadowMatrix, position.xyz);
     // Outside this sample's map nothing was rendered that could occlude: lit.
     outVisible = insideShadowMap(coord) ? texture(uSampleShadowMap, coord) : 1.0;
 }

@@ -10,19 +10,16 @@
 // large exp(c d) weights dominate and the penumbra shrinks towards the shadow (one-sided
 // filtering); receivers inside the window's depth range (non-planar receivers) break the
 // assumption d_r >= d and are lit by the clamp.
-#include <glad/gl.h>
-#include <shadowlab/technique.h>
+#include <shadowlab/kit/moment_map.h>
+#include <shadowlab/kit/params.h>
 
-#include "../vsm/moment_map.h"   // header-only helper shared with vsm, evsm and msm
+#include "esm_shared.h"
 
 namespace {
 
 using namespace shadowlab;
-using namespace shadowlab::moments;
 
-enum Param : uint32_t { kExponent = kCommonParamCount, kParamCount };
-
-const ParamDesc kParams[] = {
+constexpr ParamDesc kParams[] = {
     SHADOWLAB_MOMENT_MAP_PARAMS(1024),
     {"exponent", "exponent c", ParamType::Float, 1, 85, 80, "",
      "Sharpness c of exp(c d), depth d normalised to [0, 1] over the casters (Annen et al use about 80 for "
@@ -30,36 +27,50 @@ const ParamDesc kParams[] = {
      "penumbrae widen into the shadow); the maximum is where exp(c) nears the 32-bit float limit.", nullptr},
 };
 
-const TechniqueDesc kDescriptor{
-    "esm",
-    "Exponential shadow maps",
-    "filtered",
-    "Stores exp(c d) of the light depth instead of the depth: the shadow test becomes a product, "
-    "exp(-c d_receiver) times the filtered map, so the map can be blurred and mipmapped like a texture "
-    "with one channel. Cheaper than VSM and free of its overlap light bleeding, but shadows leak light "
-    "where receiver and occluder nearly touch (contact shadows fade in; raise c) and the clamp makes "
-    "penumbrae one-sided.",
-    "esm.glsl",
-    kParams,
-    kParamCount,
+enum : uint32_t {
+    kResolution = kit::paramIndex(kParams, "resolution"),
+    kKernel = kit::paramIndex(kParams, "kernel"),
+    kFilter = kit::paramIndex(kParams, "filter"),
+    kMipmaps = kit::paramIndex(kParams, "mipmaps"),
+    kExponent = kit::paramIndex(kParams, "exponent"),
 };
 
-class ExponentialShadowMaps final : public FilteredMomentTechnique {
-public:
-    ExponentialShadowMaps() : FilteredMomentTechnique("esm_moments.frag") {}
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "esm",
+     .displayName = "Exponential shadow maps",
+     .category = "filtered",
+     .explanation = "Stores exp(c d) of the light depth instead of the depth: the shadow test becomes a product, "
+                   "exp(-c d_receiver) times the filtered map, so the map can be blurred and mipmapped like a texture "
+                   "with one channel. Cheaper than VSM and free of its overlap light bleeding, but shadows leak light "
+                   "where receiver and occluder nearly touch (contact shadows fade in; raise c) and the clamp makes "
+                   "penumbrae one-sided.",
+     .shadowGlsl = "esm.glsl"},
+    kParams);
 
-    void renderShadows(const ParamValues& params) override {
-        MomentMapConfig config = readCommonParams(params);
+class ExponentialShadowMaps final : public kit::MomentTechnique {
+public:
+    ExponentialShadowMaps() : MomentTechnique("esm_moments.frag") {}
+
+private:
+    bool setup(std::string& error) override {
+        uniforms_.create(host(), "esm uniforms");
+        return MomentTechnique::setup(error);
+    }
+
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        kit::MomentMapConfig config = kit::readCommonParams(params);
         config.format = GL_R32F;
         config.clearValue = glm::vec4(1.0f);   // exp(c (1 - 1)): depth 1, nothing occludes
-        map_.render(config, [&] { glUniform1f(21, params.asFloat(kExponent)); });
+        uniforms_.set({{}, params.asFloat(kExponent), 0.0f, 0.0f, 0.0f});
+        map_.render(frame, config);
     }
 
-    void bindMainPass(uint32_t program, const ParamValues& params) override {
-        (void)program;
+    void bindMainPass(const FrameContext&, const ParamValues&) override {
         map_.bindMainPass();
-        glUniform1f(21, params.asFloat(kExponent));
+        uniforms_.bind();
     }
+
+    kit::UniformBlock<shared::esm::EsmUniforms> uniforms_;
 };
 
 } // namespace

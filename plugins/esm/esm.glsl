@@ -7,7 +7,7 @@
 // exp(c (z - 1)) this reads exp(c (1 - d_r)) E[exp(c (z - 1))].
 #include "moment_shadows.glsl"
 
-layout(location = 21) uniform float uExponent;   // c
+#include "esm_shared.h"
 
 vec3 shadowTerm(ShadowInput s) {
     MomentSample m = sampleMoments(s.worldPos);

@@ -5,7 +5,7 @@
 in float vLightDepth;
 layout(location = 0) out float outMoment;
 
-layout(location = 21) uniform float uExponent;   // c
+#include "esm_shared.h"
 
 void main() {
     outMoment = exp(uExponent * (vLightDepth - 1.0));

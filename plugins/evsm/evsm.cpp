@@ -8,27 +8,18 @@
 // Known artefacts: some light bleeding remains for small exponents or very unequal depths (the
 // reduction parameter removes it), exponents are capped by 32-bit floats (c <= 42: the squares
 // reach exp(2 c)), and the warped variance needs a depth-scaled minimum; 128 bits per texel.
-#include <glad/gl.h>
-#include <shadowlab/technique.h>
-
 #include <cmath>
 
-#include "../vsm/moment_map.h"   // header-only helper shared with vsm, esm and msm
+#include <shadowlab/kit/moment_map.h>
+#include <shadowlab/kit/params.h>
+
+#include "evsm_shared.h"
 
 namespace {
 
 using namespace shadowlab;
-using namespace shadowlab::moments;
 
-enum Param : uint32_t {
-    kPositiveExponent = kCommonParamCount,
-    kNegativeExponent,
-    kMinVariance,
-    kLightBleedingReduction,
-    kParamCount
-};
-
-const ParamDesc kParams[] = {
+constexpr ParamDesc kParams[] = {
     SHADOWLAB_MOMENT_MAP_PARAMS(1024),
     {"positive_exponent", "positive exponent c+", ParamType::Float, 1, 42, 40, "",
      "Steepness of the warp exp(c+ x) with x = 2d - 1 in [-1, 1] over the casters' depth range. Small values "
@@ -47,46 +38,57 @@ const ParamDesc kParams[] = {
      "VSM (seed 000 section 3.2.5), but EVSM needs far less; large values shrink and darken penumbrae.", nullptr},
 };
 
-const TechniqueDesc kDescriptor{
-    "evsm",
-    "Exponential variance shadow maps",
-    "filtered",
-    "Warps the light depth through a positive and a negative exponential and keeps VSM's mean and "
-    "mean square of each, then takes the tighter of the two Chebyshev bounds. The exponential stretches "
-    "the depth differences behind an occluder, so the light that bleeds through overlapping occluders "
-    "in VSM mostly disappears while the map still blurs and mipmaps like a texture. Costs four 32-bit "
-    "channels per texel; exponents are capped by float range.",
-    "evsm.glsl",
-    kParams,
-    kParamCount,
+enum : uint32_t {
+    kResolution = kit::paramIndex(kParams, "resolution"),
+    kKernel = kit::paramIndex(kParams, "kernel"),
+    kFilter = kit::paramIndex(kParams, "filter"),
+    kMipmaps = kit::paramIndex(kParams, "mipmaps"),
+    kPositiveExponent = kit::paramIndex(kParams, "positive_exponent"),
+    kNegativeExponent = kit::paramIndex(kParams, "negative_exponent"),
+    kMinVariance = kit::paramIndex(kParams, "min_variance"),
+    kLightBleedingReduction = kit::paramIndex(kParams, "light_bleeding"),
 };
 
-class ExponentialVarianceShadowMaps final : public FilteredMomentTechnique {
-public:
-    ExponentialVarianceShadowMaps() : FilteredMomentTechnique("evsm_moments.frag") {}
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "evsm",
+     .displayName = "Exponential variance shadow maps",
+     .category = "filtered",
+     .explanation = "Warps the light depth through a positive and a negative exponential and keeps VSM's mean and "
+                   "mean square of each, then takes the tighter of the two Chebyshev bounds. The exponential stretches "
+                   "the depth differences behind an occluder, so the light that bleeds through overlapping occluders "
+                   "in VSM mostly disappears while the map still blurs and mipmaps like a texture. Costs four 32-bit "
+                   "channels per texel; exponents are capped by float range.",
+     .shadowGlsl = "evsm.glsl"},
+    kParams);
 
-    void renderShadows(const ParamValues& params) override {
-        MomentMapConfig config = readCommonParams(params);
+class ExponentialVarianceShadowMaps final : public kit::MomentTechnique {
+public:
+    ExponentialVarianceShadowMaps() : MomentTechnique("evsm_moments.frag") {}
+
+private:
+    bool setup(std::string& error) override {
+        uniforms_.create(host(), "evsm uniforms");
+        return MomentTechnique::setup(error);
+    }
+
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        kit::MomentMapConfig config = kit::readCommonParams(params);
         config.format = GL_RGBA32F;
         // Depth 1 (x = 1): p = exp(c+), n = -exp(-c-), and their squares.
         const float p = std::exp(params.asFloat(kPositiveExponent));
         const float n = -std::exp(-params.asFloat(kNegativeExponent));
         config.clearValue = glm::vec4(p, p * p, n, n * n);
-        map_.render(config, [&] { setExponents(params); });
+        uniforms_.set({{}, {params.asFloat(kPositiveExponent), params.asFloat(kNegativeExponent), 0.0f, 0.0f},
+                       params.asFloat(kMinVariance), params.asFloat(kLightBleedingReduction), 0.0f, 0.0f});
+        map_.render(frame, config);
     }
 
-    void bindMainPass(uint32_t program, const ParamValues& params) override {
-        (void)program;
+    void bindMainPass(const FrameContext&, const ParamValues&) override {
         map_.bindMainPass();
-        setExponents(params);
-        glUniform1f(22, params.asFloat(kMinVariance));
-        glUniform1f(23, params.asFloat(kLightBleedingReduction));
+        uniforms_.bind();
     }
 
-private:
-    static void setExponents(const ParamValues& params) {
-        glUniform2f(21, params.asFloat(kPositiveExponent), params.asFloat(kNegativeExponent));
-    }
+    kit::UniformBlock<shared::evsm::EvsmUniforms> uniforms_;
 };
 
 } // namespace

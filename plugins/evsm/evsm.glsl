@@ -4,9 +4,7 @@
 // then the light-bleeding reduction.
 #include "moment_shadows.glsl"
 
-layout(location = 21) uniform vec2 uExponents;               // c+, c-
-layout(location = 22) uniform float uMinVariance;            // in depth^2, before warping
-layout(location = 23) uniform float uLightBleedingReduction;
+#include "evsm_shared.h"
 
 vec3 shadowTerm(ShadowInput s) {
     MomentSample m = sampleMoments(s.worldPos);
@@ -16,7 +14,7 @@ vec3 shadowTerm(ShadowInput s) {
     // The minimum variance is given for the depth d; a warp w scales small deviations by dw/dd, so
     // the variance by (dw/dd)^2 (first-order error propagation): dw/dd = 2 c+ p and 2 c- |n|.
     // Squared last: (dw/dd)^2 alone overflows 32-bit floats near c+ = 40.
-    vec2 minDeviation = sqrt(uMinVariance) * 2.0 * uExponents * vec2(p, -n);
+    vec2 minDeviation = sqrt(uMinVariance) * 2.0 * uExponents.xy * vec2(p, -n);
     vec2 minVariance = minDeviation * minDeviation;
     float positive = chebyshevUpperBound(m.moments.xy, p, minVariance.x);
     float negative = chebyshevUpperBound(m.moments.zw, n, minVariance.y);

@@ -6,7 +6,7 @@
 in float vLightDepth;
 layout(location = 0) out vec4 outMoments;
 
-layout(location = 21) uniform vec2 uExponents;   // c+, c-
+#include "evsm_shared.h"
 
 void main() {
     float x = 2.0 * vLightDepth - 1.0;

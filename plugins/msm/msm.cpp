@@ -10,26 +10,17 @@
 // reconstruction stable (and makes 16-bit storage possible) adds a little leaking of its own and
 // self-shadowing on slopes needs a depth bias; 16-bit storage bands at large bias; four channels
 // double VSM's memory at 32 bits.
-#include <glad/gl.h>
-#include <shadowlab/technique.h>
+#include <shadowlab/kit/moment_map.h>
+#include <shadowlab/kit/params.h>
 
-#include "../vsm/moment_map.h"   // header-only helper shared with vsm, esm and evsm
+#include "msm_shared.h"
 #include "hamburger4msm.h"
 
 namespace {
 
 using namespace shadowlab;
-using namespace shadowlab::moments;
 
-enum Param : uint32_t {
-    kStorage = kCommonParamCount,
-    kMomentBias,
-    kDepthBias,
-    kLightBleedingReduction,
-    kParamCount
-};
-
-const ParamDesc kParams[] = {
+constexpr ParamDesc kParams[] = {
     SHADOWLAB_MOMENT_MAP_PARAMS(1024),
     {"storage", "moment storage", ParamType::Enum, 0, 1, 0, "",
      "How the four moments are stored: rgba32f, 32-bit floats (128 bits per texel), or rgba16, 16-bit unorm "
@@ -49,42 +40,57 @@ const ParamDesc kParams[] = {
      "(seed 000 section 3.2.5), but MSM needs much less; large values shrink and darken penumbrae.", nullptr},
 };
 
-const TechniqueDesc kDescriptor{
-    "msm",
-    "Moment shadow mapping",
-    "filtered",
-    "Stores four powers of the light depth, filters them like a texture, and reconstructs from the "
-    "filtered moments the depth distribution that is most plausible for the shaded point (Hamburger "
-    "4MSM): its share in front of the point is the shadow. Four moments describe overlapping occluders "
-    "far better than VSM's two, so light bleeding mostly disappears, and an optimised quantisation "
-    "lets all four fit in 64 bits per texel. Compare with vsm on the 'overlap' scene.",
-    "msm.glsl",
-    kParams,
-    kParamCount,
+enum : uint32_t {
+    kResolution = kit::paramIndex(kParams, "resolution"),
+    kKernel = kit::paramIndex(kParams, "kernel"),
+    kFilter = kit::paramIndex(kParams, "filter"),
+    kMipmaps = kit::paramIndex(kParams, "mipmaps"),
+    kStorage = kit::paramIndex(kParams, "storage"),
+    kMomentBias = kit::paramIndex(kParams, "moment_bias"),
+    kDepthBias = kit::paramIndex(kParams, "depth_bias"),
+    kLightBleedingReduction = kit::paramIndex(kParams, "light_bleeding"),
 };
 
-class MomentShadowMapping final : public FilteredMomentTechnique {
-public:
-    MomentShadowMapping() : FilteredMomentTechnique("msm_moments.frag") {}
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "msm",
+     .displayName = "Moment shadow mapping",
+     .category = "filtered",
+     .explanation = "Stores four powers of the light depth, filters them like a texture, and reconstructs from the "
+                   "filtered moments the depth distribution that is most plausible for the shaded point (Hamburger "
+                   "4MSM): its share in front of the point is the shadow. Four moments describe overlapping occluders "
+                   "far better than VSM's two, so light bleeding mostly disappears, and an optimised quantisation "
+                   "lets all four fit in 64 bits per texel. Compare with vsm on the 'overlap' scene.",
+     .shadowGlsl = "msm.glsl"},
+    kParams);
 
-    void renderShadows(const ParamValues& params) override {
-        MomentMapConfig config = readCommonParams(params);
+class MomentShadowMapping final : public kit::MomentTechnique {
+public:
+    MomentShadowMapping() : MomentTechnique("msm_moments.frag") {}
+
+private:
+    bool setup(std::string& error) override {
+        uniforms_.create(host(), "msm uniforms");
+        return MomentTechnique::setup(error);
+    }
+
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        kit::MomentMapConfig config = kit::readCommonParams(params);
         const bool quantized = params.asInt(kStorage) == 1;
         config.format = quantized ? GL_RGBA16 : GL_RGBA32F;
         // Depth 1: nothing occludes there.
         const glm::vec4 farMoments = msm::momentsOfDepth(1.0f);
         config.clearValue = quantized ? glm::clamp(msm::quantizeMoments(farMoments), 0.0f, 1.0f) : farMoments;
-        map_.render(config, [&] { glUniform1i(21, quantized ? 1 : 0); });
+        uniforms_.set({{}, quantized ? 1 : 0, params.asFloat(kMomentBias), params.asFloat(kDepthBias),
+                       params.asFloat(kLightBleedingReduction)});
+        map_.render(frame, config);
     }
 
-    void bindMainPass(uint32_t program, const ParamValues& params) override {
-        (void)program;
+    void bindMainPass(const FrameContext&, const ParamValues&) override {
         map_.bindMainPass();
-        glUniform1i(21, params.asInt(kStorage) == 1 ? 1 : 0);
-        glUniform1f(22, params.asFloat(kMomentBias));
-        glUniform1f(23, params.asFloat(kDepthBias));
-        glUniform1f(24, params.asFloat(kLightBleedingReduction));
+        uniforms_.bind();
     }
+
+    kit::UniformBlock<shared::msm::MsmUniforms> uniforms_;
 };
 
 } // namespace

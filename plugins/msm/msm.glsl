@@ -3,10 +3,7 @@
 #include "moment_shadows.glsl"
 #include "hamburger4msm.glsl"
 
-layout(location = 21) uniform int uQuantized;
-layout(location = 22) uniform float uMomentBias;
-layout(location = 23) uniform float uDepthBias;
-layout(location = 24) uniform float uLightBleedingReduction;
+#include "msm_shared.h"
 
 vec3 shadowTerm(ShadowInput s) {
     MomentSample m = sampleMoments(s.worldPos);

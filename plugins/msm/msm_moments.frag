@@ -5,7 +5,7 @@
 in float vLightDepth;
 layout(location = 0) out vec4 outMoments;
 
-layout(location = 21) uniform int uQuantized;
+#include "msm_shared.h"
 
 void main() {
     vec4 b = momentsOfDepth(vLightDepth);

@@ -1,30 +1,14 @@
-// No shadows: the baseline. The direct light reaches every surface that faces it, so the frame
-// time of this technique is the host's cost alone and the overhead of every other technique is
-// measured against it.
+// No shadows: the baseline. Every surface facing the light is lit, so this technique's frame time
+// is the host's cost alone; every other technique's overhead is measured against it.
 #include <shadowlab/technique.h>
 
 namespace {
-
-class NoShadows final : public shadowlab::IShadowTechnique {
-public:
-    bool init(shadowlab::IHost&, std::string&) override { return true; }
-    void renderShadows(const shadowlab::ParamValues&) override {}
-    void bindMainPass(uint32_t, const shadowlab::ParamValues&) override {}
-    void shutdown() override {}
-};
-
+struct NoShadows final : shadowlab::IShadowTechnique {};
 const shadowlab::TechniqueDesc kDescriptor{
-    "none",
-    "No shadows",
-    "baseline",
-    "Direct light without any occlusion test: every surface facing the light is lit. It is the "
-    "baseline for overhead measurements and shows how much shadows add to the reading of a scene "
-    "(contact, height above the ground, shape).",
-    "none.glsl",
-    nullptr,
-    0,
-};
-
+    .id = "none", .displayName = "No shadows", .category = "baseline",
+    .explanation = "Direct light without any occlusion test: every surface facing the light is lit. It is the baseline "
+                   "for overhead measurements and shows how much shadows add to the reading of a scene (contact, "
+                   "height above the ground, shape).",
+    .shadowGlsl = "none.glsl"};
 } // namespace
-
 SHADOWLAB_PLUGIN(NoShadows, kDescriptor)

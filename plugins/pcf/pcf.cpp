@@ -9,29 +9,18 @@
 // closer to the light. The cone bias (a receiver bias proportional to the tap's distance from
 // the centre and to the receiver's slope, sec. 3.2.4 last paragraph) removes that acne at the
 // price of some peter panning under large kernels.
-// Shares its shadow-map code with adaptive-pcf and pcss through kernel_shadow_map.h.
-#include <glad/gl.h>
-#include <shadowlab/technique.h>
+#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/params.h>
+#include <shadowlab/kit/technique_base.h>
 
-#include "kernel_shadow_map.h"
+#include "pcf_shared.h"
 
 namespace {
 
 using namespace shadowlab;
 
-enum Param : uint32_t {
-    kResolution,
-    kKernel,
-    kOffsetScale,
-    kHardwareFilter,
-    kConeBias,
-    kConstantBias,
-    kSlopeBias,
-    kParamCount
-};
-
-const ParamDesc kParams[] = {
-    kernel_filtering::kResolutionParam,
+constexpr ParamDesc kParams[] = {
+    kit::resolutionParam(),
     {"kernel", "kernel size n", ParamType::Int, 1, 15, 5, "taps",
      "n x n box of shadow tests averaged per pixel. 1 is plain shadow mapping; larger kernels widen and "
      "smooth the ramp but cost n^2 lookups (15 x 15 = 225 per pixel) and need more bias (see cone bias).",
@@ -44,51 +33,51 @@ const ParamDesc kParams[] = {
      "Each tap is the texture unit's 2x2 bilinear comparison, which removes the banding of the plain box "
      "at almost no cost (seed 000 figure 3.11c against 3.11b). Off shows the n^2 + 1 discrete shades and "
      "the texel steps.", nullptr},
-    kernel_filtering::kConeBiasParam,
-    kernel_filtering::kConstantBiasParam,
-    kernel_filtering::kSlopeBiasParam,
+    kit::coneBiasParam(),
+    kit::constantBiasParam(),
+    kit::slopeBiasParam(),
+};
+enum : uint32_t {
+    kResolution = kit::paramIndex(kParams, "resolution"),
+    kKernel = kit::paramIndex(kParams, "kernel"),
+    kOffsetScale = kit::paramIndex(kParams, "offset_scale"),
+    kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
+    kConeBias = kit::paramIndex(kParams, "cone_bias"),
+    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
+    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
 };
 
-const TechniqueDesc kDescriptor{
-    "pcf",
-    "Percentage-closer filtering",
-    "filtered",
-    "Shadow mapping whose depth test is repeated over an n x n box of neighbouring texels and averaged, "
-    "so edges become ramps instead of staircases. The kernel size sets the number of tests (cost grows "
-    "with n^2), the offset scale their spacing; bilinear taps remove the banding. The ramp has the same "
-    "width everywhere: this is anti-aliasing, not a physically soft shadow. Turn the cone bias off with "
-    "a large kernel to see the acne that wide filters cause.",
-    "pcf.glsl",
-    kParams,
-    kParamCount,
-};
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "pcf",
+     .displayName = "Percentage-closer filtering",
+     .category = "filtered",
+     .explanation = "Shadow mapping whose depth test is repeated over an n x n box of neighbouring texels and "
+                    "averaged, so edges become ramps instead of staircases. The kernel size sets the number of "
+                    "tests (cost grows with n^2), the offset scale their spacing; bilinear taps remove the "
+                    "banding. The ramp has the same width everywhere: this is anti-aliasing, not a physically soft "
+                    "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause.",
+     .shadowGlsl = "pcf.glsl"},
+    kParams);
 
-class PercentageCloserFiltering final : public IShadowTechnique {
-public:
-    bool init(IHost& host, std::string& error) override {
-        if (!gladLoadGL(host.glLoader())) {
-            error = "could not load OpenGL entry points";
-            return false;
-        }
-        return shadowMap_.init(host, true, error);
+class PercentageCloserFiltering final : public kit::TechniqueBase {
+    bool setup(std::string& error) override {
+        uniforms_.create(host(), "pcf uniforms");
+        return map_.create(host(), error);
     }
 
-    void renderShadows(const ParamValues& params) override {
-        shadowMap_.render(params.asInt(kResolution), params.asFloat(kConstantBias), params.asFloat(kSlopeBias));
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        map_.render(frame, {.resolution = params.asInt(kResolution),
+                            .constantBias = params.asFloat(kConstantBias),
+                            .slopeBias = params.asFloat(kSlopeBias)});
     }
 
-    void bindMainPass(uint32_t program, const ParamValues& params) override {
-        (void)program;
-        shadowMap_.bindMainPass(4, params.asBool(kHardwareFilter));
-        glUniform1i(23, params.asInt(kKernel));
-        glUniform1f(24, params.asFloat(kOffsetScale));
-        glUniform1f(25, params.asBool(kConeBias) ? 1.0f : 0.0f);
+    void bindMainPass(const FrameContext&, const ParamValues& params) override {
+        map_.bindMainPass(params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+        uniforms_.set({{}, params.asInt(kKernel), params.asFloat(kOffsetScale), params.asBool(kConeBias) ? 1.0f : 0.0f, 0});
     }
 
-    void shutdown() override { shadowMap_.shutdown(); }
-
-private:
-    kernel_filtering::KernelShadowMap shadowMap_;
+    kit::DepthMap map_;
+    kit::UniformBlock<shared::pcf::PcfUniforms> uniforms_;
 };
 
 } // namespace

@@ -5,14 +5,10 @@
 #include "light_space.glsl"
 #include "disc_sampling.glsl"
 
-layout(location = 16) uniform mat4 uShadowMatrix;
-layout(location = 20) uniform vec4 uLightDepth;      // near, far, perspective, resolution
-layout(location = 21) uniform vec2 uLightWorldSize;
-layout(location = 22) uniform vec3 uLightAxis;       // depth axis of the map (world)
-layout(location = 23) uniform int uKernel;           // n: n x n taps
-layout(location = 24) uniform float uOffsetScale;    // texels between neighbouring taps
-layout(location = 25) uniform float uConeBias;       // 0 off, else multiplier of the receiver slope
-layout(binding = 4) uniform sampler2DShadow uShadowMap;
+#include "shadowlab/kit/depth_map_shared.h"
+#include "pcf_shared.h"
+
+layout(binding = kDepthMapUnit) uniform sampler2DShadow uShadowMap;
 
 float discTap(vec2 uv, float ref) { return texture(uShadowMap, vec3(uv, ref)); }
 

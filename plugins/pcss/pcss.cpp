@@ -21,36 +21,24 @@
 // blockers' region of the map, the search and filter cost two kernels per pixel, noise from the
 // jittered sets, and acne under large kernels without the cone bias. Not physically correct: it
 // assumes blocker, receiver and light planar and parallel.
-// Shares code with pcf (../pcf/kernel_shadow_map.h) and adaptive-pcf (../adaptive-pcf/
-// disc_offset_texture.h, jittered_disk.h); GLSL in shaders/disc_sampling.glsl.
+// The shadow map and the disc sets are the kit's (depth_map.h, disc_offset_texture.h, shared with
+// pcf and adaptive-pcf); GLSL in shaders/disc_sampling.glsl.
 #include <algorithm>
 #include <cmath>
 
-#include <glad/gl.h>
-#include <shadowlab/technique.h>
+#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/disc_offset_texture.h>
+#include <shadowlab/kit/params.h>
+#include <shadowlab/kit/technique_base.h>
 
-#include "../adaptive-pcf/disc_offset_texture.h"
-#include "../pcf/kernel_shadow_map.h"
+#include "pcss_shared.h"
 
 namespace {
 
 using namespace shadowlab;
 
-enum Param : uint32_t {
-    kResolution,
-    kSearchGrid,
-    kFilterGrid,
-    kSets,
-    kBilinear,
-    kSearchBound,
-    kConeBias,
-    kConstantBias,
-    kSlopeBias,
-    kParamCount
-};
-
-const ParamDesc kParams[] = {
-    kernel_filtering::kResolutionParam,
+constexpr ParamDesc kParams[] = {
+    kit::resolutionParam(),
     {"search_grid", "search samples n_s", ParamType::Int, 2, 16, 6, "",
      "Blocker search: n_s x n_s jittered disc samples. Few samples miss small or thin blockers (light "
      "leaks, flickering penumbra widths); many cost n_s^2 depth reads in every pixel, lit or not.", nullptr},
@@ -70,85 +58,77 @@ const ParamDesc kParams[] = {
      "searches half the map and misses small casters (missing or blotchy shadows). 'min-depth' narrows the "
      "search to the cone at the nearest depth stored in the region (min-depth mips, one extra pass).",
      "near plane|min-depth"},
-    kernel_filtering::kConeBiasParam,
-    kernel_filtering::kConstantBiasParam,
-    kernel_filtering::kSlopeBiasParam,
+    kit::coneBiasParam(),
+    kit::constantBiasParam(),
+    kit::slopeBiasParam(),
+};
+enum : uint32_t {
+    kResolution = kit::paramIndex(kParams, "resolution"),
+    kSearchGrid = kit::paramIndex(kParams, "search_grid"),
+    kFilterGrid = kit::paramIndex(kParams, "filter_grid"),
+    kSets = kit::paramIndex(kParams, "sets"),
+    kBilinear = kit::paramIndex(kParams, "bilinear"),
+    kSearchBound = kit::paramIndex(kParams, "search_bound"),
+    kConeBias = kit::paramIndex(kParams, "cone_bias"),
+    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
+    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
 };
 
-const TechniqueDesc kDescriptor{
-    "pcss",
-    "Percentage-closer soft shadows",
-    "soft",
-    "Soft shadows from one shadow map: each pixel first searches the map for occluders between it and the "
-    "light, averages their depth, estimates the penumbra width from the light's size by similar triangles, "
-    "and then filters with a kernel of that width (PCF). Shadows are hard where a caster touches the "
-    "receiver and soften with distance (contact hardening). The light size comes from the scene "
-    "(--light-size). Plausible rather than correct: overlapping blockers at different depths are averaged.",
-    "pcss.glsl",
-    kParams,
-    kParamCount,
-};
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "pcss",
+     .displayName = "Percentage-closer soft shadows",
+     .category = "soft",
+     .explanation = "Soft shadows from one shadow map: each pixel first searches the map for occluders between it and the "
+                   "light, averages their depth, estimates the penumbra width from the light's size by similar triangles, "
+                   "and then filters with a kernel of that width (PCF). Shadows are hard where a caster touches the "
+                   "receiver and soften with distance (contact hardening). The light size comes from the scene "
+                   "(--light-size). Plausible rather than correct: overlapping blockers at different depths are averaged.",
+     .shadowGlsl = "pcss.glsl"},
+    kParams);
 
-class PercentageCloserSoftShadows final : public IShadowTechnique {
-public:
-    bool init(IHost& host, std::string& error) override {
-        host_ = &host;
-        if (!gladLoadGL(host.glLoader())) {
-            error = "could not load OpenGL entry points";
-            return false;
-        }
-        // Raw depths (no comparison mode): the blocker search reads them.
-        if (!shadowMap_.init(host, false, error)) return false;
-        minDepthProgram_ = host.buildProgram({"fullscreen.vert", "pcss_min_depth.frag", nullptr}, error);
-        if (!minDepthProgram_) return false;
-        minDepthFbo_ = host.createFramebuffer("min-depth mips");
-        return true;
+class PercentageCloserSoftShadows final : public kit::TechniqueBase {
+    bool setup(std::string& error) override {
+        uniforms_.create(host(), "pcss uniforms");
+        for (auto& level : levelUniforms_) level.create(host(), "pcss min-depth level");
+        minDepthFbo_ = kit::makeFramebuffer(host(), "min-depth mips");
+        return map_.create(host(), error) &&
+               minDepthProgram_.build(host(), {.vertexFile = "fullscreen.vert", .fragmentFile = "pcss_min_depth.frag"},
+                                      error);
     }
 
-    void renderShadows(const ParamValues& params) override {
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const int sets = params.asInt(kSets);
-        searchOffsets_.ensure(*host_, params.asInt(kSearchGrid), sets, "search disc offsets (m x m x n_s^2/2)", 2);
-        filterOffsets_.ensure(*host_, params.asInt(kFilterGrid), sets, "filter disc offsets (m x m x n_f^2/2)");
-        shadowMap_.render(params.asInt(kResolution), params.asFloat(kConstantBias), params.asFloat(kSlopeBias));
+        searchOffsets_.ensure(host(), params.asInt(kSearchGrid), sets, "search disc offsets (m x m x n_s^2/2)", 2);
+        filterOffsets_.ensure(host(), params.asInt(kFilterGrid), sets, "filter disc offsets (m x m x n_f^2/2)");
+        // Raw depths: the blocker search reads them (sampled without comparison).
+        map_.render(frame, {.resolution = params.asInt(kResolution),
+                            .constantBias = params.asFloat(kConstantBias),
+                            .slopeBias = params.asFloat(kSlopeBias)});
         if (params.asInt(kSearchBound) == 1) {
-            ensureMinDepth(shadowMap_.resolution());
+            ensureMinDepth(map_.resolution());
             buildMinDepthMips();
         } else {
-            releaseMinDepth();   // eq. 3.18 as printed needs no mips
+            minDepth_.reset();   // eq. 3.18 as printed needs no mips
+            minDepthSize_ = 0;
         }
     }
 
-    void bindMainPass(uint32_t program, const ParamValues& params) override {
-        (void)program;
-        shadowMap_.bindMainPass(4, false);
-        glBindTextureUnit(5, searchOffsets_.texture());
-        glBindTextureUnit(6, filterOffsets_.texture());
-        glUniform1i(23, searchOffsets_.n());
-        glUniform1i(24, filterOffsets_.n());
-        glUniform1f(25, params.asBool(kConeBias) ? 1.0f : 0.0f);
-        glUniform1f(26, lightSizeInLightSpace());
-        glUniform1i(27, params.asBool(kBilinear) ? 1 : 0);
-        glUniform1i(28, params.asInt(kSearchBound));
-        glBindTextureUnit(7, minDepth_);
+    void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
+        using namespace shared::pcss;
+        map_.bindMainPass(SamplerKind::Nearest);
+        glBindTextureUnit(kSearchOffsetsUnit, searchOffsets_.texture());
+        glBindTextureUnit(kFilterOffsetsUnit, filterOffsets_.texture());
+        glBindTextureUnit(kMinDepthUnit, minDepth_);
+        uniforms_.set({{}, searchOffsets_.n(), filterOffsets_.n(), params.asBool(kConeBias) ? 1.0f : 0.0f,
+                       lightSizeInLightSpace(frame.light), params.asBool(kBilinear) ? 1 : 0, params.asInt(kSearchBound),
+                       0, 0});
     }
 
-    void shutdown() override {
-        shadowMap_.shutdown();
-        if (!host_) return;
-        searchOffsets_.release(*host_);
-        filterOffsets_.release(*host_);
-        releaseMinDepth();
-        if (minDepthFbo_) host_->destroyFramebuffer(minDepthFbo_);
-        minDepthFbo_ = 0;
-    }
-
-private:
     // What pcss.glsl's uLightSize holds: the world radius for a perspective map (spot, point); for
     // an orthographic map (directional light) tan(angular radius), the light's width per unit of
     // depth in the limit described at the top of this file. Capped below 90 degrees.
-    float lightSizeInLightSpace() const {
-        const LightInfo& light = host_->light();
-        if (shadowMap_.lightSpace().perspective) return light.size;
+    float lightSizeInLightSpace(const LightInfo& light) const {
+        if (map_.lightSpace().perspective) return light.size;
         return std::tan(std::min(light.size, 1.4f));
     }
 
@@ -157,58 +137,56 @@ private:
     void ensureMinDepth(int resolution) {
         const int size = std::max(resolution / 2, 1);
         if (minDepth_ && size == minDepthSize_) return;
-        releaseMinDepth();
         minDepthSize_ = size;
         minDepthLevels_ = 1;
         while ((size >> minDepthLevels_) > 0) ++minDepthLevels_;
-        minDepth_ = host_->createTexture({GL_TEXTURE_2D, GL_R32F, size, size, 1, minDepthLevels_, "min-depth mips"});
+        minDepth_ = kit::makeTexture(host(), {.internalFormat = GL_R32F, .width = size, .height = size,
+                                              .levels = minDepthLevels_, .label = "min-depth mips"});
         glTextureParameteri(minDepth_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
         glTextureParameteri(minDepth_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        host_->registerDebugImage("min-depth mips", minDepth_, DebugImageKind::Depth);
-    }
-
-    void releaseMinDepth() {
-        if (minDepth_) host_->destroyTexture(minDepth_);
-        minDepth_ = 0;
-        minDepthSize_ = minDepthLevels_ = 0;
+        host().registerDebugImage("min-depth mips", minDepth_, DebugImageKind::Depth);
+        for (int level = 0; level < kMaxLevels; ++level) levelUniforms_[size_t(level)].update({{}, std::max(level - 1, 0), 0, 0, 0});
     }
 
     void buildMinDepthMips() {
-        GpuPass pass(*host_, "min-depth mips");
+        GpuPass pass(host(), "min-depth mips");
         glBindFramebuffer(GL_FRAMEBUFFER, minDepthFbo_);
         glDisable(GL_DEPTH_TEST);
-        glDisable(GL_BLEND);
-        glUseProgram(host_->glProgram(minDepthProgram_));
-        for (int level = 0; level < minDepthLevels_; ++level) {
+        minDepthProgram_.use();
+        for (int level = 0; level < minDepthLevels_ && level < kMaxLevels; ++level) {
             glNamedFramebufferTexture(minDepthFbo_, GL_COLOR_ATTACHMENT0, minDepth_, level);
             glNamedFramebufferDrawBuffer(minDepthFbo_, GL_COLOR_ATTACHMENT0);
             const int size = std::max(minDepthSize_ >> level, 1);
             glViewport(0, 0, size, size);
+            // Level 0 reads the shadow map (its level 0); level k reads level k - 1 of the same
+            // texture by explicit lod: written by the previous draw (made visible by the barrier),
+            // disjoint from the level being written.
             if (level == 0) {
-                glBindTextureUnit(4, shadowMap_.texture());
-                glUniform1i(16, 0);
+                glBindTextureUnit(shared::pcss::kMinDepthSourceUnit, map_.texture());
+                levelUniforms_[0].bind();   // uSourceLevel 0 of the shadow map (see ensureMinDepth)
             } else {
-                // Level - 1 of the same texture, fetched by explicit lod: written by the previous
-                // draw (made visible by the barrier), disjoint from the level being written.
                 glTextureBarrier();
-                glBindTextureUnit(4, minDepth_);
-                glUniform1i(16, level - 1);
+                glBindTextureUnit(shared::pcss::kMinDepthSourceUnit, minDepth_);
+                levelUniforms_[size_t(level)].bind();
             }
-            host_->drawFullscreenTriangle();
+            host().drawFullscreenTriangle();
         }
-        glBindTextureUnit(4, 0);
-        glEnable(GL_DEPTH_TEST);
+        glBindTextureUnit(shared::pcss::kMinDepthSourceUnit, 0);
     }
 
-    IHost* host_ = nullptr;
-    ProgramId minDepthProgram_ = 0;
-    GLuint minDepthFbo_ = 0;
-    GLuint minDepth_ = 0;
+    static constexpr int kMaxLevels = 16;   // maps up to 2^17 texels wide
+    kit::DepthMap map_;
+    kit::Program minDepthProgram_;
+    kit::Framebuffer minDepthFbo_;
+    kit::Texture minDepth_;
     int minDepthSize_ = 0;
     int minDepthLevels_ = 0;
-    kernel_filtering::KernelShadowMap shadowMap_;
     jittered_disk::DiscOffsetTexture searchOffsets_;
     jittered_disk::DiscOffsetTexture filterOffsets_;
+    kit::UniformBlock<shared::pcss::PcssUniforms> uniforms_;
+    // One block per mip level, written once per allocation: source level (level - 1; level 0 of
+    // the shadow map for the first).
+    kit::UniformBlock<shared::pcss::MinDepthUniforms> levelUniforms_[kMaxLevels];
 };
 
 } // namespace

@@ -8,20 +8,13 @@
 #include "light_space.glsl"
 #include "disc_sampling.glsl"
 
-layout(location = 16) uniform mat4 uShadowMatrix;
-layout(location = 20) uniform vec4 uLightDepth;      // near, far, perspective, resolution
-layout(location = 21) uniform vec2 uLightWorldSize;
-layout(location = 22) uniform vec3 uLightAxis;       // depth axis of the map (world)
-layout(location = 23) uniform int uSearchGrid;       // n_s: n_s x n_s blocker-search samples
-layout(location = 24) uniform int uFilterGrid;       // n_f: n_f x n_f filter samples
-layout(location = 25) uniform float uConeBias;       // 0 off, else multiplier of the receiver slope
-layout(location = 26) uniform float uLightSize;      // perspective: world radius; orthographic: tan(angular radius)
-layout(location = 27) uniform int uBilinear;         // filter taps: 1 bilinear comparison, 0 nearest
-layout(location = 28) uniform int uSearchBound;      // 0: near plane (eq. 3.18 as printed), 1: min-depth mips
-layout(binding = 4) uniform sampler2D uShadowDepth;  // raw depths: the search reads them, the filter compares
-layout(binding = 5) uniform sampler3D uSearchOffsets;
-layout(binding = 6) uniform sampler3D uFilterOffsets;
-layout(binding = 7) uniform sampler2D uMinDepth;     // level k texel: min depth over 2^(k+1) x 2^(k+1) map texels
+#include "shadowlab/kit/depth_map_shared.h"
+#include "pcss_shared.h"
+
+layout(binding = kDepthMapUnit) uniform sampler2D uShadowDepth;  // raw depths: the search reads them, the filter compares
+layout(binding = kSearchOffsetsUnit) uniform sampler3D uSearchOffsets;
+layout(binding = kFilterOffsetsUnit) uniform sampler3D uFilterOffsets;
+layout(binding = kMinDepthUnit) uniform sampler2D uMinDepth;     // level k texel: min depth over 2^(k+1) x 2^(k+1) map texels
 
 // One filter tap: lit when ref <= stored depth (GL_LEQUAL, as the texture unit compares). The
 // bilinear variant does what GL_LINEAR does on a sampler2DShadow: four comparisons, then weights.

@@ -3,8 +3,9 @@
 // covers the leftover row or column; overlapping a neighbour only loosens the bound). The source
 // is the shadow map (level 0) or the previous level of the same texture: fetched with an explicit
 // lod, so the level being written is never read (separate draws, with a texture barrier between).
-layout(location = 16) uniform int uSourceLevel;
-layout(binding = 4) uniform sampler2D uSource;
+#include "pcss_shared.h"
+
+layout(binding = kMinDepthSourceUnit) uniform sampler2D uSource;
 
 layout(location = 0) out float outMinDepth;
 

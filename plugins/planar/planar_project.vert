@@ -3,10 +3,7 @@
 #include "common.glsl"
 
 layout(location = 0) in vec3 inPosition;
-layout(location = 16) uniform mat4 uPlanarProjection;
-layout(location = 17) uniform vec4 uPlane;        // (n, d), n towards the light
-layout(location = 18) uniform vec4 uLight;        // homogeneous: w = 1 point/spot, 0 directional
-layout(location = 19) uniform int uClipAntiShadow;
+#include "planar_shared.h"
 
 out float gl_ClipDistance[2];
 

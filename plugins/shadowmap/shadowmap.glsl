@@ -2,9 +2,9 @@
 // compare (sampler2DShadow returns 1 where ref <= stored depth; with GL_LINEAR it is the
 // bilinear blend of the four neighbouring comparisons).
 #include "light_space.glsl"
+#include "shadowlab/kit/depth_map_shared.h"
 
-layout(location = 16) uniform mat4 uShadowMatrix;
-layout(binding = 4) uniform sampler2DShadow uShadowMap;
+layout(binding = kDepthMapUnit) uniform sampler2DShadow uShadowMap;
 
 vec3 shadowTerm(ShadowInput s) {
     vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);

@@ -9,19 +9,16 @@
 // [a, 1] to [0, 1]. Self-shadowing on slopes without the minimum variance or the derivative-based
 // second moment (eq. 3.16). Penumbrae of constant width: filtering antialiases, it does not soften
 // physically.
-#include <glad/gl.h>
-#include <shadowlab/technique.h>
+#include <shadowlab/kit/moment_map.h>
+#include <shadowlab/kit/params.h>
 
-#include "moment_map.h"
+#include "vsm_shared.h"
 
 namespace {
 
 using namespace shadowlab;
-using namespace shadowlab::moments;
 
-enum Param : uint32_t { kMinVariance = kCommonParamCount, kLightBleedingReduction, kDerivativeMoment, kParamCount };
-
-const ParamDesc kParams[] = {
+constexpr ParamDesc kParams[] = {
     SHADOWLAB_MOMENT_MAP_PARAMS(1024),
     {"min_variance", "minimum variance", ParamType::Float, 0, 0.001, 0.00002, "depth^2",
      "Lower clamp of the variance sigma^2, in squared depth normalised to [0, 1] over the casters (seed 000 "
@@ -39,37 +36,53 @@ const ParamDesc kParams[] = {
      "steeply tilted receivers.", nullptr},
 };
 
-const TechniqueDesc kDescriptor{
-    "vsm",
-    "Variance shadow maps",
-    "filtered",
-    "Stores the mean and the mean square of depth from the light, so the map can be blurred and "
-    "mipmapped like any texture; a shaded point then takes the Chebyshev upper bound of the fraction of "
-    "depths behind it as its visibility (seed 000 eq. 3.13-3.15). Smooth, antialiased edges for one "
-    "lookup and a cheap separable blur, but where occluders overlap at different depths the bound is "
-    "loose and light bleeds through (try the 'overlap' scene, then raise the light-bleeding reduction).",
-    "vsm.glsl",
-    kParams,
-    kParamCount,
+enum : uint32_t {
+    kResolution = kit::paramIndex(kParams, "resolution"),
+    kKernel = kit::paramIndex(kParams, "kernel"),
+    kFilter = kit::paramIndex(kParams, "filter"),
+    kMipmaps = kit::paramIndex(kParams, "mipmaps"),
+    kMinVariance = kit::paramIndex(kParams, "min_variance"),
+    kLightBleedingReduction = kit::paramIndex(kParams, "light_bleeding"),
+    kDerivativeMoment = kit::paramIndex(kParams, "derivative_moment"),
 };
 
-class VarianceShadowMaps final : public FilteredMomentTechnique {
-public:
-    VarianceShadowMaps() : FilteredMomentTechnique("vsm_moments.frag") {}
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "vsm",
+     .displayName = "Variance shadow maps",
+     .category = "filtered",
+     .explanation = "Stores the mean and the mean square of depth from the light, so the map can be blurred and "
+                   "mipmapped like any texture; a shaded point then takes the Chebyshev upper bound of the fraction of "
+                   "depths behind it as its visibility (seed 000 eq. 3.13-3.15). Smooth, antialiased edges for one "
+                   "lookup and a cheap separable blur, but where occluders overlap at different depths the bound is "
+                   "loose and light bleeds through (try the 'overlap' scene, then raise the light-bleeding reduction).",
+     .shadowGlsl = "vsm.glsl"},
+    kParams);
 
-    void renderShadows(const ParamValues& params) override {
-        MomentMapConfig config = readCommonParams(params);
+class VarianceShadowMaps final : public kit::MomentTechnique {
+public:
+    VarianceShadowMaps() : MomentTechnique("vsm_moments.frag") {}
+
+private:
+    bool setup(std::string& error) override {
+        uniforms_.create(host(), "vsm uniforms");
+        return MomentTechnique::setup(error);
+    }
+
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        kit::MomentMapConfig config = kit::readCommonParams(params);
         config.format = GL_RG32F;   // 32 bits per moment: M2 - M1^2 cancels badly in 16 bits
         config.clearValue = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);   // d = 1: M1 = 1, M2 = 1
-        map_.render(config, [&] { glUniform1i(21, params.asBool(kDerivativeMoment) ? 1 : 0); });
+        uniforms_.set({{}, params.asBool(kDerivativeMoment) ? 1 : 0, params.asFloat(kMinVariance),
+                       params.asFloat(kLightBleedingReduction), 0.0f});
+        map_.render(frame, config);
     }
 
-    void bindMainPass(uint32_t program, const ParamValues& params) override {
-        (void)program;
+    void bindMainPass(const FrameContext&, const ParamValues&) override {
         map_.bindMainPass();
-        glUniform1f(21, params.asFloat(kMinVariance));
-        glUniform1f(22, params.asFloat(kLightBleedingReduction));
+        uniforms_.bind();
     }
+
+    kit::UniformBlock<shared::vsm::VsmUniforms> uniforms_;
 };
 
 } // namespace

@@ -2,8 +2,7 @@
 // filtered moments (seed 000 eq. 3.13-3.15), then the light-bleeding reduction.
 #include "moment_shadows.glsl"
 
-layout(location = 21) uniform float uMinVariance;
-layout(location = 22) uniform float uLightBleedingReduction;
+#include "vsm_shared.h"
 
 vec3 shadowTerm(ShadowInput s) {
     MomentSample m = sampleMoments(s.worldPos);

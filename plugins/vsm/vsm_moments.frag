@@ -3,7 +3,7 @@
 in float vLightDepth;
 layout(location = 0) out vec2 outMoments;
 
-layout(location = 21) uniform int uDerivativeMoment;   // 1: eq. 3.16
+#include "vsm_shared.h"
 
 void main() {
     float d = vLightDepth;

@@ -9,12 +9,11 @@ public:
         error = "needs a feature this test pretends is missing";
         return false;
     }
-    void renderShadows(const shadowlab::ParamValues&) override {}
-    void bindMainPass(uint32_t, const shadowlab::ParamValues&) override {}
-    void shutdown() override {}
 };
 
-const shadowlab::TechniqueDesc kDescriptor{"init_fails", "Init fails", "baseline", "Test plugin.", "none.glsl", nullptr, 0};
+const shadowlab::TechniqueDesc kDescriptor{
+    .id = "init_fails", .displayName = "Init fails", .category = "baseline", .explanation = "Test plugin.",
+    .shadowGlsl = "none.glsl"};
 
 } // namespace
 

@@ -16,17 +16,17 @@ const ParamDesc kParams[] = {
 };
 
 const TechniqueDesc kDescriptor{
-    "reload_test",
-    "Reload test",
-    "baseline",
+    .id = "reload_test",
+    .displayName = "Reload test",
+    .category = "baseline",
 #if TEST_PLUGIN_VERSION == 2
-    "version 2",
+    .explanation = "version 2",
 #else
-    "version 1",
+    .explanation = "version 1",
 #endif
-    "reload_test.glsl",
-    kParams,
-    sizeof(kParams) / sizeof(kParams[0]),
+    .shadowGlsl = "reload_test.glsl",
+    .params = kParams,
+    .paramCount = sizeof(kParams) / sizeof(kParams[0]),
 };
 
 class ReloadTest final : public IShadowTechnique {
@@ -39,11 +39,10 @@ public:
         }
         // A tracked allocation that shutdown() deliberately forgets in version 1, so the test can
         // check that the host releases leftovers.
-        texture_ = host.createTexture({GL_TEXTURE_2D, GL_R8, 4, 4, 1, 1, "test texture"});
+        texture_ = host.createTexture({.internalFormat = GL_R8, .width = 4, .height = 4, .label = "test texture"});
         return true;
     }
-    void renderShadows(const ParamValues&) override {}
-    void bindMainPass(uint32_t, const ParamValues& params) override {
+    void bindMainPass(const FrameContext&, const ParamValues& params) override {
         // Version 2 inverts the meaning, so a rendered pixel says which version ran.
 #if TEST_PLUGIN_VERSION == 2
         glUniform1f(16, params.asFloat(0));

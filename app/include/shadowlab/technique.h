@@ -1,4 +1,5 @@
-// shadowlab plugin API: the whole boundary between the host and a shadow technique.
+// shadowlab plugin API, ABI 3: the whole boundary between the host and a shadow technique.
+// docs/plugin-api.md walks through it; the technique kit (shadowlab/kit/) builds on it.
 //
 // A technique is a shared library under plugins/<id>/ exporting one extern "C" function,
 // shadowlab_plugin_entry(), which returns a static PluginEntry. The host reads abiVersion before it
@@ -7,17 +8,29 @@
 // technique and calls init() with a GL context current and a host-services table.
 //
 // A frame, as the host drives it:
-//   technique.renderShadows(params)     shadow maps, filtering passes (wrapped in GpuPass scopes)
-//   host main pass                      forward Blinn-Phong; the technique's GLSL function
-//                                       `vec3 shadowTerm(ShadowInput s)` (file named by
-//                                       TechniqueDesc::shadowGlsl) multiplies the direct light,
-//                                       after technique.bindMainPass(program, params) set its
-//                                       uniforms and textures.
+//   host: hot reload, camera and light -> FrameContext, frame uniform block
+//   host: camera pre-pass (depth, world position, normal, object id), if the descriptor asks
+//   host: default GL state (see "GL state contract" below)
+//   technique.renderShadows(frame, params)  shadow maps, filtering passes (in GpuPass scopes)
+//   host: default GL state, main program bound
+//   technique.bindMainPass(frame, params)   uniforms, textures and samplers for shadowTerm()
+//   host: main-pass state, forward Blinn-Phong; `vec3 shadowTerm(ShadowInput s)` (the GLSL file
+//         named by TechniqueDesc::shadowGlsl) multiplies the direct light
 //
-// Parameters are declared once in the descriptor; the host owns their values (GUI, --set, sweeps,
-// hot-reload hand-over) and passes them in. A plugin only reads them.
+// Growing without breaking plugins: structs that cross the boundary and may grow start with
+// structSize (the host reads only what the plugin's size covers, and fills only what the plugin's
+// size covers); optional host capabilities are queried by id with IHost::extension() instead of
+// new vtable slots. Bump SHADOWLAB_ABI_VERSION only when an existing layout or meaning changes.
 //
-// Bump SHADOWLAB_ABI_VERSION whenever anything in this file changes layout or meaning.
+// GL state contract (set by the host before renderShadows and before bindMainPass):
+//   framebuffer 0 bound, viewport = the main target's size (bind your own framebuffer and
+//   viewport before drawing);
+//   depth test on, GL_LESS, depth writes on; blending off (func ONE/ZERO, equation ADD);
+//   face culling off (back faces, CCW front); stencil test off (mask 0xFF, func ALWAYS 0, ops KEEP);
+//   scissor test off; clip distances 0-7 off; polygon offset off (0, 0) for fill, line, point;
+//   colour writes on for every channel and draw buffer; depth clamp off; sRGB writes off;
+//   no sampler object bound on texture units 4-15 (the host's own units 0-3 are the host's);
+//   program 0. A technique may change any of it; it need not restore anything.
 #pragma once
 
 #include <cstddef>
@@ -26,12 +39,13 @@
 
 #include <glm/glm.hpp>
 
-#define SHADOWLAB_ABI_VERSION 2u
+#define SHADOWLAB_ABI_VERSION 3u
 
 namespace shadowlab {
 
 // ---------------------------------------------------------------------------------------------
-// Parameters
+// Parameters: declared once in the descriptor; the host owns their values (GUI, --set, sweeps,
+// tours, hot-reload hand-over) and passes them in. A plugin only reads them.
 enum class ParamType : uint32_t { Float, Int, Bool, Enum };
 
 struct ParamDesc {
@@ -61,14 +75,23 @@ private:
     uint32_t count_;
 };
 
+// What a technique asks of the host (TechniqueDesc::flags).
+enum TechniqueFlag : uint32_t {
+    // The host renders the camera's depth, world position, normal and object id of the opaque
+    // surfaces before renderShadows (extension kExtCameraPrepass), once for every technique asking.
+    kTechniqueNeedsCameraPrepass = 1u << 0,
+};
+
 struct TechniqueDesc {
-    const char* id;            // matches the folder name under plugins/
-    const char* displayName;
-    const char* category;      // "baseline", "hard", "filtered", "soft", "coloured", "reference"
-    const char* explanation;   // one paragraph for the classroom panel
-    const char* shadowGlsl;    // file in the plugin folder defining vec3 shadowTerm(ShadowInput)
-    const ParamDesc* params;
-    uint32_t paramCount;
+    uint32_t structSize = sizeof(TechniqueDesc);
+    const char* id = nullptr;          // matches the folder name under plugins/
+    const char* displayName = nullptr;
+    const char* category = nullptr;    // "baseline", "hard", "filtered", "soft", "coloured", "reference"
+    const char* explanation = nullptr; // one paragraph for the classroom panel
+    const char* shadowGlsl = nullptr;  // file in the plugin folder defining vec3 shadowTerm(ShadowInput)
+    const ParamDesc* params = nullptr;
+    uint32_t paramCount = 0;
+    uint32_t flags = 0;                // TechniqueFlag bits
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -76,112 +99,201 @@ struct TechniqueDesc {
 enum class LightType : uint32_t { Directional = 0, Spot = 1, Point = 2 };
 
 struct LightInfo {
-    LightType type;
-    glm::vec3 position;        // spot and point lights
-    glm::vec3 direction;       // unit vector the light travels along (directional and spot)
-    glm::vec3 color;           // linear RGB, intensity folded in
-    float size;                // soft shadows: emitter radius in world units (spot, point) or
-                               // angular radius in radians (directional)
-    float spotOuterAngle;      // half-angle in radians where a spot light's cone ends
-    float spotInnerAngle;      // half-angle in radians where its falloff begins
+    LightType type = LightType::Directional;
+    glm::vec3 position{0.0f, 10.0f, 0.0f};   // spot and point lights
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit vector the light travels along (directional, spot)
+    glm::vec3 color{1.0f};                   // linear RGB, intensity folded in
+    float size = 0.0f;                       // soft shadows: emitter radius in world units (spot,
+                                             // point) or angular radius in radians (directional)
+    float spotOuterAngle = 0.5f;             // half-angle in radians where a spot light's cone ends
+    float spotInnerAngle = 0.4f;             // half-angle in radians where its falloff begins
 };
 
 struct CameraInfo {
-    glm::mat4 view;
-    glm::mat4 projection;
-    glm::mat4 viewProjection;
-    glm::vec3 position;
-    float nearPlane;
-    float farPlane;
-    glm::ivec2 viewport;       // size of the main render target in pixels
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};
+    glm::mat4 viewProjection{1.0f};
+    glm::mat4 inverseViewProjection{1.0f};
+    glm::vec3 position{0.0f};
+    float nearPlane = 0.1f;
+    float farPlane = 100.0f;
+    float fovY = 0.785f;                     // radians, vertical
+    float aspect = 1.0f;                     // width / height
+    glm::ivec2 viewport{1};                  // size of the main render target in pixels
+    // World-space corners of the view frustum: index bit 0 = +x, bit 1 = +y, bit 2 = far plane
+    // (the same order as a box's corners, see kit/focus.h).
+    glm::vec3 frustumCorners[8]{};
+};
+
+// Passed to every per-frame call. Read fields only up to structSize (kit::frameHas()).
+struct FrameContext {
+    uint32_t structSize = sizeof(FrameContext);
+    uint32_t reserved = 0;
+    uint64_t frameIndex = 0;                 // counts rendered frames from 0
+    uint32_t randomSeed = 0;                 // differs every frame (a hash of frameIndex): stochastic techniques
+    float time = 0.0f;                       // seconds: wall clock in the window, 1/60 s a frame headless
+    float deltaTime = 0.0f;
+    CameraInfo camera;
+    glm::mat4 previousViewProjection{1.0f}; // the camera's on the previous frame (this frame's on the first)
+    LightInfo light;
 };
 
 struct Bounds {
-    glm::vec3 min;
-    glm::vec3 max;
+    glm::vec3 min{0.0f};
+    glm::vec3 max{0.0f};
 };
 
-// Light view and projection fitted by the host around a set of objects.
+// Light view and projection fitted by the host.
 struct LightSpace {
-    glm::mat4 view;
-    glm::mat4 projection;
-    glm::mat4 viewProjection;
-    float nearPlane;
-    float farPlane;
-    bool perspective;          // spot and point lights; directional lights are orthographic
-    glm::vec2 worldSizeAtUnitDepth; // orthographic: extent of the map in world units;
-                                    // perspective: extent at distance 1 from the light
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};
+    glm::mat4 viewProjection{1.0f};
+    float nearPlane = 0.0f;
+    float farPlane = 1.0f;
+    bool perspective = false;                // spot and point lights; directional lights are orthographic
+    glm::vec2 worldSizeAtUnitDepth{1.0f};    // orthographic: extent of the map in world units;
+                                             // perspective: extent at distance 1 from the light
 };
 
 // Object subsets a technique can draw. Opaque/Translucent refer to the material.
-enum class DrawSet : uint32_t { All, Casters, Receivers, OpaqueCasters, TranslucentCasters };
+enum class DrawSet : uint32_t { All, Casters, Receivers, OpaqueCasters, TranslucentCasters, Opaque, Translucent };
 
+enum ObjectFlag : uint32_t {
+    kObjectCastsShadow = 1u << 0,
+    kObjectReceivesShadow = 1u << 1,
+    kObjectTranslucent = 1u << 2,            // material alpha < 1
+    kObjectPlane = 1u << 3,                  // flat receiver: plane holds (n, d), dot(n, x) + d = 0
+};
+
+// Computed once per scene load.
 struct ObjectInfo {
-    bool castsShadow;
-    bool receivesShadow;
-    bool translucent;
-    bool isPlane;              // flat receiver: plane holds (n, d) with dot(n, x) + d = 0
-    glm::vec4 plane;
+    Bounds bounds;                           // world space, axis aligned
+    glm::vec3 center{0.0f};                  // of the bounds
+    uint32_t flags = 0;                      // ObjectFlag bits
+    glm::vec3 baseColor{0.8f};               // linear RGB
+    float alpha = 1.0f;                      // coverage
+    glm::vec3 transmission{0.0f};            // colour of light passing through
+    uint32_t material = 0;                   // index; objects sharing one share all of the above
+    glm::vec4 plane{0.0f, 1.0f, 0.0f, 0.0f};
+    bool castsShadow() const { return flags & kObjectCastsShadow; }
+    bool receivesShadow() const { return flags & kObjectReceivesShadow; }
+    bool translucent() const { return flags & kObjectTranslucent; }
+    bool isPlane() const { return flags & kObjectPlane; }
+};
+
+enum class DrawOrder : uint32_t { Scene, FrontToBack, BackToFront };
+
+// One drawScene() call. Objects that share mesh and material are drawn as one instanced draw
+// where order and culling allow.
+struct DrawRequest {
+    uint32_t structSize = sizeof(DrawRequest);
+    DrawSet set = DrawSet::All;
+    // Sorting by the objects' bounds centres: distance from a point (orderReference.w = 1) or
+    // along a direction (w = 0), e.g. front to back from the light.
+    DrawOrder order = DrawOrder::Scene;
+    glm::vec4 orderReference{0.0f};
+    // Culling: an object is drawn only if its bounds reach the positive side of every plane
+    // (dot(plane.xyz, p) + plane.w >= 0 for some corner p): a frustum or a focus body.
+    const glm::vec4* cullPlanes = nullptr;
+    uint32_t cullPlaneCount = 0;
 };
 
 enum class DebugImageKind : uint32_t { Depth, Color, Moments, Mask };
 enum class LogLevel : uint32_t { Info, Warning, Error };
 
+// Files resolve in the plugin folder, then shaders/, then app/include (the kit's shared headers).
+// Either compute alone, or vertex (+ geometry) (+ fragment: none for depth-only programs).
 struct ProgramDesc {
-    const char* vertexFile;    // resolved in the plugin folder, then shaders/
-    const char* fragmentFile;  // may be nullptr for depth-only programs
-    const char* defines;       // "NAME VALUE;NAME2 VALUE2" or nullptr
+    const char* vertexFile = nullptr;
+    const char* geometryFile = nullptr;
+    const char* fragmentFile = nullptr;
+    const char* computeFile = nullptr;
+    const char* defines = nullptr;           // "NAME VALUE;NAME2 VALUE2"
 };
 
 struct TextureDesc {
-    uint32_t target;           // GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY, GL_TEXTURE_3D, ...
-    uint32_t internalFormat;   // sized format, e.g. GL_DEPTH_COMPONENT32F
-    int width;
-    int height;
-    int depth;                 // layers or slices; 1 for 2D
-    int levels;                // mip levels, >= 1
-    const char* label;         // shown in the memory table and KHR_debug output
+    uint32_t target = 0x0DE1;                // GL_TEXTURE_2D; also 2D arrays, 3D, cube maps, cube-map
+                                             // arrays, 2D multisample (arrays), 1D
+    uint32_t internalFormat = 0;             // sized format, e.g. GL_DEPTH_COMPONENT32F
+    int width = 1;
+    int height = 1;
+    int depth = 1;                           // layers (arrays), slices (3D), cubes (cube-map arrays)
+    int levels = 1;                          // mip levels, >= 1
+    int samples = 0;                         // multisample targets only
+    const char* label = nullptr;             // shown in the memory table and KHR_debug output
 };
+
+// Host-owned sampler objects (clamp to edge); bind with glBindSampler(unit, host.sampler(kind)).
+// Compare kinds compare with GL_LEQUAL (sampler2DShadow: 1 where ref <= stored depth).
+enum class SamplerKind : uint32_t { Nearest, Linear, LinearMipmap, CompareNearest, CompareLinear, NearestMipmap };
 
 using GlProc = void (*)();
 using GlLoader = GlProc (*)(const char* name);
-using ProgramId = uint32_t;    // host handle; stays valid across shader hot reloads
+using ProgramId = uint32_t;                  // host handle; stays valid across shader hot reloads
+
+// Extension "shadowlab.camera-prepass/1": the host's camera pre-pass of this frame, for
+// techniques whose descriptor has kTechniqueNeedsCameraPrepass (null otherwise). Textures are
+// host-owned and read-only for techniques: sample them, or attach `depth` to a framebuffer with
+// depth writes off. Same size as the main target, single-sample, opaque objects only, the same
+// vertex transform as the main pass (so depths match it exactly).
+#define SHADOWLAB_EXT_CAMERA_PREPASS "shadowlab.camera-prepass/1"
+struct CameraPrepass {
+    uint32_t structSize;
+    uint32_t depth;                          // GL_DEPTH24_STENCIL8
+    uint32_t position;                       // GL_RGBA32F: xyz world, w = 1 where geometry was drawn
+    uint32_t normal;                         // GL_RGBA16F: xyz unit world normal facing the viewer
+    uint32_t objectId;                       // GL_R32UI: object index + 1, 0 = background
+    glm::ivec2 size;
+};
 
 // Host services, one table per loaded technique (so the host can account for its GPU memory and
 // release whatever it leaves behind on unload).
 class IHost {
 public:
-    // GL entry points: call gladLoadGL(host.glLoader()) in init(); never keep null pointers.
+    // GL entry points: call gladLoadGL(host.glLoader()) in init() (kit::TechniqueBase does).
     virtual GlLoader glLoader() const = 0;
     virtual void log(LogLevel level, const char* message) = 0;
+    // An optional capability by id (SHADOWLAB_EXT_...), or nullptr when the host lacks it.
+    virtual const void* extension(const char* id) const = 0;
 
-    // Scene and view
-    virtual const CameraInfo& camera() const = 0;
-    virtual const LightInfo& light() const = 0;
-    virtual Bounds sceneBounds(DrawSet set) const = 0;
-    virtual LightSpace fitLightSpace(DrawSet set) const = 0;
-    // The same fit for another light, e.g. one sample of an area light (ABI 2).
-    virtual LightSpace fitLightSpaceFor(const LightInfo& light, DrawSet set) const = 0;
+    // Scene: computed once per scene load.
     virtual uint32_t objectCount() const = 0;
-    virtual ObjectInfo objectInfo(uint32_t index) const = 0;
-    // Draws with `program` bound; the host sets the per-object data (see shaders/common.glsl:
-    // uModel and uNormalMatrix from its transform buffer, uBaseColor, uTransmission, uSpecular),
-    // drawing objects that share mesh and material as one instanced draw, and the frame UBO.
-    virtual void drawScene(DrawSet set, uint32_t glProgram) = 0;
+    virtual const ObjectInfo* objects() const = 0;
+    virtual Bounds bounds(DrawSet set) const = 0;
+
+    // Fitting a light space. Directional lights get an orthographic map, spot and point lights a
+    // perspective one (a single frustum). Depth always reaches towards the light far enough to
+    // hold every caster in front of the fitted region, so casters outside it still cast into it.
+    virtual LightSpace fitLightSpace(const LightInfo& light, const Bounds& bounds) const = 0;
+    virtual LightSpace fitLightSpaceToPoints(const LightInfo& light, const glm::vec3* points, uint32_t count) const = 0;
+    // The camera frustum between view distances near and far (seed 000 eq. 3.9-3.10; cascades).
+    virtual LightSpace fitLightSpaceToFrustumSlice(const LightInfo& light, const CameraInfo& camera, float nearDistance,
+                                                   float farDistance) const = 0;
+    LightSpace fitLightSpace(const LightInfo& light, DrawSet set) const { return fitLightSpace(light, bounds(set)); }
+
+    // Draws with `glProgram` bound; the host sets the per-object data (shaders/common.glsl: uModel
+    // and uNormalMatrix from its transform buffer, uBaseColor, uTransmission, uSpecular).
+    virtual void drawScene(const DrawRequest& request, uint32_t glProgram) = 0;
     virtual void drawObject(uint32_t index, uint32_t glProgram) = 0;
     virtual void drawFullscreenTriangle() = 0;
+    void drawScene(DrawSet set, uint32_t glProgram) {
+        DrawRequest request;
+        request.set = set;
+        drawScene(request, glProgram);
+    }
 
-    // Shaders: built from files with #include of shared GLSL in shaders/; rebuilt when a file
-    // changes (hot reload). glProgram(id) may therefore change between frames.
+    // Shaders: built from files with #include; rebuilt when a file changes (hot reload), so
+    // glProgram(id) may change between frames.
     virtual ProgramId buildProgram(const ProgramDesc& desc, std::string& error) = 0;
     virtual uint32_t glProgram(ProgramId id) const = 0;
+    virtual void destroyProgram(ProgramId id) = 0;
 
     // GPU timer scopes around each pass (see GpuPass below)
     virtual void beginGpuPass(const char* name) = 0;
     virtual void endGpuPass() = 0;
 
-    // Tracked GL objects: counted in the technique's memory, released by the host on unload if
-    // the technique forgets.
+    // Tracked GL objects: counted exactly in the technique's memory (every mip, layer, cube face
+    // and sample), released by the host on unload if the technique forgets.
     virtual uint32_t createTexture(const TextureDesc& desc) = 0;
     virtual void destroyTexture(uint32_t texture) = 0;
     virtual uint32_t createBuffer(size_t bytes, const void* data, uint32_t storageFlags, const char* label) = 0;
@@ -190,6 +302,7 @@ public:
     virtual void destroyFramebuffer(uint32_t framebuffer) = 0;
     // Completeness check; logs the status with `what` and returns false when incomplete.
     virtual bool checkFramebuffer(uint32_t framebuffer, const char* what) = 0;
+    virtual uint32_t sampler(SamplerKind kind) const = 0;
 
     virtual void registerDebugImage(const char* name, uint32_t texture, DebugImageKind kind) = 0;
     // A number the technique measures about itself (e.g. "early-out rate"), shown in the UI and
@@ -212,17 +325,29 @@ private:
 };
 
 // ---------------------------------------------------------------------------------------------
+// Every method has a default, so a technique overrides only what it uses.
 class IShadowTechnique {
 public:
     virtual ~IShadowTechnique() = default;
     // Create GL objects; on failure fill `error` and return false (the host skips the plugin).
-    virtual bool init(IHost& host, std::string& error) = 0;
+    virtual bool init(IHost& host, std::string& error) {
+        (void)host;
+        (void)error;
+        return true;
+    }
     // Passes before the main pass. Reallocate only when a parameter or the viewport changed.
-    virtual void renderShadows(const ParamValues& params) = 0;
-    // Bind uniforms (locations >= 16) and textures (units >= 4) used by shadowTerm().
-    virtual void bindMainPass(uint32_t glProgram, const ParamValues& params) = 0;
-    // Release every GL object created in init() or later.
-    virtual void shutdown() = 0;
+    virtual void renderShadows(const FrameContext& frame, const ParamValues& params) {
+        (void)frame;
+        (void)params;
+    }
+    // With the main program bound: uniforms (blocks at binding 1+, locations 16+), textures and
+    // samplers (units 4+) used by shadowTerm(). Pipeline state set here is overridden by the host.
+    virtual void bindMainPass(const FrameContext& frame, const ParamValues& params) {
+        (void)frame;
+        (void)params;
+    }
+    // Release GL objects not held by kit handles; the host destroys the technique right after.
+    virtual void shutdown() {}
 };
 
 struct PluginEntry {

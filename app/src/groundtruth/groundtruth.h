@@ -3,7 +3,7 @@
 // (world positions and normals), hands it to trace(), and compares what the technique rendered
 // with the result (metrics.h).
 //
-// The implementation (Embree 3 on the CPU, app/groundtruth/embree_groundtruth.cpp) is a module,
+// The implementation (Embree 3 on the CPU, app/src/groundtruth/embree/embree_groundtruth.cpp) is a module,
 // libshadowlab_groundtruth.so, opened on demand by loadGroundTruth(): the host starts, and times
 // techniques, on machines without Embree. Nothing in this header names an Embree type.
 //
@@ -64,7 +64,7 @@ public:
     // Visibility of `light` for every texel of `gbuffer`, resized to width * height: grey
     // (v, v, v) in [0, 1], or the rgb transmittance with options.transmission. Texels outside
     // compareMask() (background, N.L <= 0, outside a spot cone) are 0.
-    virtual void trace(const GBufferView& gbuffer, const SceneLight& light, const ReferenceOptions& options,
+    virtual void trace(const GBufferView& gbuffer, const LightInfo& light, const ReferenceOptions& options,
                        std::vector<glm::vec3>& visibility) = 0;
 
     // A CPU G-buffer of the view: one ray per pixel centre from cameraPos through the point that
@@ -96,7 +96,7 @@ GroundTruthPtr loadGroundTruth(std::string& error);
 // metrics (which compare only these).
 
 // Unit vector from `p` towards the light's centre.
-inline glm::vec3 directionToLight(const SceneLight& light, glm::vec3 p) {
+inline glm::vec3 directionToLight(const LightInfo& light, glm::vec3 p) {
     if (light.type == LightType::Directional) return -light.direction;
     const glm::vec3 toLight = light.position - p;
     const float length = glm::length(toLight);
@@ -104,7 +104,7 @@ inline glm::vec3 directionToLight(const SceneLight& light, glm::vec3 p) {
 }
 
 // Drawn geometry whose (unflipped) normal faces the light, inside the cone of a spot light.
-inline bool facesLight(const glm::vec4& position, const glm::vec4& normal, const SceneLight& light) {
+inline bool facesLight(const glm::vec4& position, const glm::vec4& normal, const LightInfo& light) {
     if (position.w == 0.0f) return false;
     const glm::vec3 p(position);
     const glm::vec3 l = directionToLight(light, p);

@@ -31,7 +31,7 @@ void checkSizes(size_t technique, size_t reference, size_t mask, int width, int 
 
 } // namespace
 
-std::vector<uint8_t> compareMask(const GBufferView& gbuffer, const SceneLight& light) {
+std::vector<uint8_t> compareMask(const GBufferView& gbuffer, const LightInfo& light) {
     const size_t pixels = static_cast<size_t>(std::max(gbuffer.width, 0)) * static_cast<size_t>(std::max(gbuffer.height, 0));
     std::vector<uint8_t> mask(pixels, 0);
     if (pixels > 0 && (!gbuffer.positions || !gbuffer.normals))

@@ -20,7 +20,7 @@ namespace shadowlab {
 // 1 where a pixel is compared: drawn geometry facing the light (N.L > 0 with the G-buffer
 // normal) and inside a spot light's cone; 0 for background and everything else, where the
 // visibility of a shadow is not defined (facesLight() in groundtruth.h).
-std::vector<uint8_t> compareMask(const GBufferView& gbuffer, const SceneLight& light);
+std::vector<uint8_t> compareMask(const GBufferView& gbuffer, const LightInfo& light);
 
 // All rates and means are over compared pixels (0 when none is compared).
 struct AccuracyMetrics {

@@ -1,6 +1,8 @@
 // Parameter descriptors and values (see params.h).
 #include "plugin/params.h"
 
+#include <cstddef>
+
 #include "util/strings.h"
 
 #include <algorithm>
@@ -67,12 +69,17 @@ int TechniqueInfo::paramIndex(const std::string& paramId) const {
 TechniqueInfo copyDescriptor(const TechniqueDesc& desc, const std::filesystem::path& library) {
     auto text = [](const char* s) { return std::string(s ? s : ""); };
     TechniqueInfo info;
+    // Fields beyond the plugin's structSize do not exist in its descriptor: defaults then.
+    auto has = [&](size_t offset, size_t size) { return desc.structSize >= offset + size; };
+    info.descriptorSize = desc.structSize;
+    if (!has(offsetof(TechniqueDesc, paramCount), sizeof(desc.paramCount))) return info;
     info.id = text(desc.id);
     info.displayName = text(desc.displayName);
     info.category = text(desc.category);
     info.explanation = text(desc.explanation);
     info.shadowGlsl = text(desc.shadowGlsl);
     info.library = library;
+    info.flags = has(offsetof(TechniqueDesc, flags), sizeof(desc.flags)) ? desc.flags : 0u;
     for (uint32_t i = 0; i < desc.paramCount && desc.params; ++i) {
         const ParamDesc& p = desc.params[i];
         info.params.push_back({text(p.id), text(p.label), p.type, p.minValue, p.maxValue, p.defaultValue,
@@ -82,6 +89,9 @@ TechniqueInfo copyDescriptor(const TechniqueDesc& desc, const std::filesystem::p
 }
 
 std::string validateDescriptor(const TechniqueInfo& info) {
+    if (info.descriptorSize < offsetof(TechniqueDesc, paramCount) + sizeof(uint32_t))
+        return "descriptor structSize " + std::to_string(info.descriptorSize) + " is too small for an ABI " +
+               std::to_string(SHADOWLAB_ABI_VERSION) + " TechniqueDesc";
     if (info.id.empty()) return "descriptor has an empty id";
     if (info.shadowGlsl.empty()) return "descriptor names no shadowGlsl file";
     std::set<std::string> seen;

@@ -32,6 +32,8 @@ struct TechniqueInfo {
     std::string explanation;
     std::string shadowGlsl;
     std::vector<ParamSpec> params;
+    uint32_t flags = 0;               // TechniqueFlag bits
+    uint32_t descriptorSize = sizeof(TechniqueDesc);
     std::filesystem::path library;    // the .so it came from (empty for host-provided entries)
 
     const ParamSpec* findParam(const std::string& paramId) const;

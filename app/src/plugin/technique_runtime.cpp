@@ -3,7 +3,9 @@
 #include "plugin/technique_runtime.h"
 
 #include <algorithm>
+#include <cstring>
 #include <sstream>
+#include <string_view>
 
 #include "render/light_space.h"
 #include "util/log.h"
@@ -13,37 +15,89 @@ namespace shadowlab {
 
 size_t textureBytes(const TextureDesc& desc) {
     const size_t texel = bytesPerTexel(desc.internalFormat);
+    const bool multisample = desc.target == GL_TEXTURE_2D_MULTISAMPLE || desc.target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY;
+    const size_t samples = multisample ? size_t(std::max(desc.samples, 1)) : 1u;
+    // Layers that do not shrink with the mips: array layers, cube faces (6 per cube).
+    size_t layers = 1;
+    switch (desc.target) {
+    case GL_TEXTURE_2D_ARRAY:
+    case GL_TEXTURE_1D_ARRAY:
+    case GL_TEXTURE_2D_MULTISAMPLE_ARRAY: layers = size_t(std::max(desc.depth, 1)); break;
+    case GL_TEXTURE_CUBE_MAP: layers = 6; break;
+    case GL_TEXTURE_CUBE_MAP_ARRAY: layers = 6 * size_t(std::max(desc.depth, 1)); break;
+    default: break;
+    }
     size_t total = 0;
     int w = std::max(desc.width, 1), h = std::max(desc.height, 1), d = std::max(desc.depth, 1);
-    const bool mipsShrinkDepth = desc.target == GL_TEXTURE_3D;
-    for (int level = 0; level < std::max(desc.levels, 1); ++level) {
-        total += size_t(w) * size_t(h) * size_t(d) * texel;
+    const bool is3d = desc.target == GL_TEXTURE_3D;
+    const int levels = multisample ? 1 : std::max(desc.levels, 1);
+    for (int level = 0; level < levels; ++level) {
+        total += size_t(w) * size_t(h) * size_t(is3d ? d : 1) * layers * samples * texel;
         w = std::max(w / 2, 1);
         h = std::max(h / 2, 1);
-        if (mipsShrinkDepth) d = std::max(d / 2, 1);
+        if (is3d) d = std::max(d / 2, 1);
     }
     return total;
 }
 
-PluginHost::PluginHost(HostContext context, const TechniqueInfo& info) : context_(context), techniqueId_(info.id) {}
+PluginHost::PluginHost(HostContext context, const TechniqueInfo& info)
+    : context_(context), techniqueId_(info.id), flags_(info.flags) {}
 
 PluginHost::~PluginHost() { releaseAll(); }
 
 void PluginHost::log(LogLevel level, const char* message) { logMessage(level, techniqueId_ + ": " + message); }
 
-LightSpace PluginHost::fitLightSpace(DrawSet set) const { return fitLightSpaceFor(context_.renderer.light(), set); }
+const void* PluginHost::extension(const char* id) const {
+    if (!id) return nullptr;
+    const std::string_view name(id);
+    if (name == SHADOWLAB_EXT_CAMERA_PREPASS)
+        return (flags_ & kTechniqueNeedsCameraPrepass) && context_.renderer.prepassTargets().depth
+                   ? &context_.renderer.prepassTargets()
+                   : nullptr;
+    return nullptr;
+}
 
-LightSpace PluginHost::fitLightSpaceFor(const LightInfo& light, DrawSet set) const {
-    return shadowlab::fitLightSpace(light, context_.renderer.bounds(set));
+LightSpace PluginHost::fitLightSpace(const LightInfo& light, const Bounds& bounds) const {
+    const Bounds casters = context_.renderer.bounds(DrawSet::Casters);
+    return shadowlab::fitLightSpace(light, bounds, &casters);
+}
+
+LightSpace PluginHost::fitLightSpaceToPoints(const LightInfo& light, const glm::vec3* points, uint32_t count) const {
+    const Bounds casters = context_.renderer.bounds(DrawSet::Casters);
+    return shadowlab::fitLightSpaceToPoints(light, points, count, &casters);
+}
+
+LightSpace PluginHost::fitLightSpaceToFrustumSlice(const LightInfo& light, const CameraInfo& camera, float nearDistance,
+                                                   float farDistance) const {
+    glm::vec3 corners[8];
+    frustumSliceCorners(camera, nearDistance, farDistance, corners);
+    return fitLightSpaceToPoints(light, corners, 8);
+}
+
+void PluginHost::drawScene(const DrawRequest& request, uint32_t glProgram) {
+    // Only the fields the plugin's struct has: a smaller (older) request keeps the defaults.
+    DrawRequest known;
+    std::memcpy(&known, &request, std::min<size_t>(sizeof(DrawRequest), std::max<size_t>(request.structSize, sizeof(uint32_t))));
+    known.structSize = sizeof(DrawRequest);
+    context_.renderer.drawScene(known, glProgram);
+}
+
+void PluginHost::destroyProgram(ProgramId id) {
+    if (std::erase(programs_, id)) context_.shaders.release(id);
 }
 
 ProgramId PluginHost::buildProgram(const ProgramDesc& desc, std::string& error) {
     ShaderRequest request;
     request.vertexFile = desc.vertexFile ? desc.vertexFile : "";
+    request.geometryFile = desc.geometryFile ? desc.geometryFile : "";
     request.fragmentFile = desc.fragmentFile ? desc.fragmentFile : "";
+    request.computeFile = desc.computeFile ? desc.computeFile : "";
     request.defines = desc.defines ? desc.defines : "";
-    request.searchPaths = {pluginSourceDir(techniqueId_), sharedShaderDir()};
-    request.label = techniqueId_ + ": " + request.vertexFile + (request.fragmentFile.empty() ? "" : " + " + request.fragmentFile);
+    request.searchPaths = {pluginSourceDir(techniqueId_)};
+    for (const auto& dir : hostShaderPaths()) request.searchPaths.push_back(dir);
+    request.label = techniqueId_ + ": ";
+    for (const std::string* stage : {&request.vertexFile, &request.geometryFile, &request.fragmentFile, &request.computeFile})
+        if (!stage->empty()) request.label += (request.label.back() == ' ' ? "" : " + ") + *stage;
     const ProgramId id = context_.shaders.build(request, error);
     if (id) programs_.push_back(id);
     return id;
@@ -53,15 +107,29 @@ uint32_t PluginHost::createTexture(const TextureDesc& desc) {
     GLuint name = 0;
     glCreateTextures(desc.target, 1, &name);
     const int levels = std::max(desc.levels, 1);
+    const int depth = std::max(desc.depth, 1);
     switch (desc.target) {
     case GL_TEXTURE_2D_ARRAY:
     case GL_TEXTURE_3D:
-        glTextureStorage3D(name, levels, desc.internalFormat, desc.width, desc.height, std::max(desc.depth, 1));
+        glTextureStorage3D(name, levels, desc.internalFormat, desc.width, desc.height, depth);
+        break;
+    case GL_TEXTURE_CUBE_MAP_ARRAY:   // depth counts cubes; GL counts layer-faces
+        glTextureStorage3D(name, levels, desc.internalFormat, desc.width, desc.height, 6 * depth);
+        break;
+    case GL_TEXTURE_2D_MULTISAMPLE:
+        glTextureStorage2DMultisample(name, std::max(desc.samples, 1), desc.internalFormat, desc.width, desc.height, GL_TRUE);
+        break;
+    case GL_TEXTURE_2D_MULTISAMPLE_ARRAY:
+        glTextureStorage3DMultisample(name, std::max(desc.samples, 1), desc.internalFormat, desc.width, desc.height, depth,
+                                      GL_TRUE);
         break;
     case GL_TEXTURE_1D:
         glTextureStorage1D(name, levels, desc.internalFormat, desc.width);
         break;
-    default:
+    case GL_TEXTURE_1D_ARRAY:
+        glTextureStorage2D(name, levels, desc.internalFormat, desc.width, depth);
+        break;
+    default:   // GL_TEXTURE_2D, GL_TEXTURE_CUBE_MAP (storage of all six faces)
         glTextureStorage2D(name, levels, desc.internalFormat, desc.width, desc.height);
         break;
     }
@@ -151,7 +219,7 @@ bool LoadedTechnique::start(HostContext context, const std::filesystem::path& sh
     ShaderRequest main;
     main.vertexFile = "main.vert";
     main.fragmentFile = "main.frag";
-    main.searchPaths = {sharedShaderDir()};
+    main.searchPaths = hostShaderPaths();
     main.aliases["technique_shadow.glsl"] = shadowGlsl;
     main.label = info_.id + ": main pass";
     std::string shaderError;
@@ -255,12 +323,6 @@ LoadedTechnique* TechniqueManager::get(const std::string& id, std::string& error
     auto* raw = loaded.get();
     loaded_[id] = std::move(loaded);
     return raw;
-}
-
-std::vector<LoadedTechnique*> TechniqueManager::loadedTechniques() {
-    std::vector<LoadedTechnique*> out;
-    for (auto& [id, t] : loaded_) out.push_back(t.get());
-    return out;
 }
 
 std::vector<std::string> TechniqueManager::pollForChanges(ParamStore& params, std::chrono::milliseconds interval) {

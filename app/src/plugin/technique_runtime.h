@@ -45,18 +45,22 @@ public:
 
     GlLoader glLoader() const override { return context_.glLoader; }
     void log(LogLevel level, const char* message) override;
-    const CameraInfo& camera() const override { return context_.renderer.camera(); }
-    const LightInfo& light() const override { return context_.renderer.light(); }
-    Bounds sceneBounds(DrawSet set) const override { return context_.renderer.bounds(set); }
-    LightSpace fitLightSpace(DrawSet set) const override;
-    LightSpace fitLightSpaceFor(const LightInfo& light, DrawSet set) const override;
+    const void* extension(const char* id) const override;
     uint32_t objectCount() const override { return context_.renderer.objectCount(); }
-    ObjectInfo objectInfo(uint32_t index) const override { return context_.renderer.objectInfo(index); }
-    void drawScene(DrawSet set, uint32_t glProgram) override { context_.renderer.drawScene(set, glProgram); }
+    const ObjectInfo* objects() const override { return context_.renderer.objects(); }
+    Bounds bounds(DrawSet set) const override { return context_.renderer.bounds(set); }
+    LightSpace fitLightSpace(const LightInfo& light, const Bounds& bounds) const override;
+    LightSpace fitLightSpaceToPoints(const LightInfo& light, const glm::vec3* points, uint32_t count) const override;
+    LightSpace fitLightSpaceToFrustumSlice(const LightInfo& light, const CameraInfo& camera, float nearDistance,
+                                           float farDistance) const override;
+    using IHost::drawScene;
+    using IHost::fitLightSpace;
+    void drawScene(const DrawRequest& request, uint32_t glProgram) override;
     void drawObject(uint32_t index, uint32_t glProgram) override { context_.renderer.drawObject(index, glProgram); }
     void drawFullscreenTriangle() override { context_.renderer.drawFullscreenTriangle(); }
     ProgramId buildProgram(const ProgramDesc& desc, std::string& error) override;
     uint32_t glProgram(ProgramId id) const override { return context_.shaders.program(id); }
+    void destroyProgram(ProgramId id) override;
     void beginGpuPass(const char* name) override { context_.timer.begin(name); }
     void endGpuPass() override { context_.timer.end(); }
     uint32_t createTexture(const TextureDesc& desc) override;
@@ -66,6 +70,7 @@ public:
     uint32_t createFramebuffer(const char* label) override;
     void destroyFramebuffer(uint32_t framebuffer) override;
     bool checkFramebuffer(uint32_t framebuffer, const char* what) override;
+    uint32_t sampler(SamplerKind kind) const override { return context_.renderer.sampler(kind); }
     void registerDebugImage(const char* name, uint32_t texture, DebugImageKind kind) override;
     void reportStatistic(const char* name, double value) override { statistics_[name ? name : "?"] = value; }
 
@@ -79,6 +84,7 @@ public:
 private:
     HostContext context_;
     std::string techniqueId_;
+    uint32_t flags_ = 0;
     std::map<GLuint, TrackedAllocation> textures_, buffers_;
     std::map<GLuint, std::string> framebuffers_;
     std::vector<ProgramId> programs_;
@@ -136,7 +142,6 @@ public:
     void unloadAll() { loaded_.clear(); }
     using BuiltinFactory = std::function<std::unique_ptr<IShadowTechnique>()>;
     void registerBuiltin(const TechniqueInfo& info, BuiltinFactory factory);
-    std::vector<LoadedTechnique*> loadedTechniques();
 
 private:
     struct Pending {

@@ -21,11 +21,17 @@ void boxCorners(const Bounds& b, glm::vec3 corners[8]) {
         corners[i] = {i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z};
 }
 
-LightSpace fitLightSpace(const LightInfo& light, const Bounds& bounds) {
-    glm::vec3 corners[8];
-    boxCorners(bounds, corners);
-    const glm::vec3 center = 0.5f * (bounds.min + bounds.max);
-    const float radius = std::max(0.5f * glm::length(bounds.max - bounds.min), 1e-3f);
+LightSpace fitLightSpaceToPoints(const LightInfo& light, const glm::vec3* points, size_t count, const Bounds* casters) {
+    Bounds box{glm::vec3(1e30f), glm::vec3(-1e30f)};
+    for (size_t i = 0; i < count; ++i) {
+        box.min = glm::min(box.min, points[i]);
+        box.max = glm::max(box.max, points[i]);
+    }
+    if (count == 0) box = {glm::vec3(-1.0f), glm::vec3(1.0f)};
+    const glm::vec3 center = 0.5f * (box.min + box.max);
+    const float radius = std::max(0.5f * glm::length(box.max - box.min), 1e-3f);
+    glm::vec3 casterCorners[8];
+    if (casters) boxCorners(*casters, casterCorners);
     LightSpace ls{};
 
     if (light.type == LightType::Directional) {
@@ -33,11 +39,14 @@ LightSpace fitLightSpace(const LightInfo& light, const Bounds& bounds) {
         const glm::vec3 eye = center - dir * (2.0f * radius);
         ls.view = glm::lookAt(eye, center, upFor(dir));
         glm::vec3 lo(1e30f), hi(-1e30f);
-        for (const auto& c : corners) {
-            const glm::vec3 v = glm::vec3(ls.view * glm::vec4(c, 1.0f));
+        for (size_t i = 0; i < count; ++i) {
+            const glm::vec3 v = glm::vec3(ls.view * glm::vec4(points[i], 1.0f));
             lo = glm::min(lo, v);
             hi = glm::max(hi, v);
         }
+        // Casters between the light and the region cast into it: reach back to the nearest.
+        if (casters)
+            for (const auto& c : casterCorners) hi.z = std::max(hi.z, (ls.view * glm::vec4(c, 1.0f)).z);
         // View space looks down -z: near = -hi.z, far = -lo.z, with a small margin.
         const float margin = 0.01f * radius;
         ls.nearPlane = -hi.z - margin;
@@ -51,13 +60,15 @@ LightSpace fitLightSpace(const LightInfo& light, const Bounds& bounds) {
                                                                 : glm::normalize(center - eye);
         ls.view = glm::lookAt(eye, eye + forward, upFor(forward));
         float nearest = 1e30f, farthest = 0.0f, maxTan = 0.0f;
-        for (const auto& c : corners) {
-            const glm::vec3 v = glm::vec3(ls.view * glm::vec4(c, 1.0f));
+        for (size_t i = 0; i < count; ++i) {
+            const glm::vec3 v = glm::vec3(ls.view * glm::vec4(points[i], 1.0f));
             const float depth = -v.z;
             farthest = std::max(farthest, depth);
             nearest = std::min(nearest, depth);
             if (depth > 1e-4f) maxTan = std::max({maxTan, std::abs(v.x) / depth, std::abs(v.y) / depth});
         }
+        if (casters)
+            for (const auto& c : casterCorners) nearest = std::min(nearest, -(ls.view * glm::vec4(c, 1.0f)).z);
         float halfFov;
         if (light.type == LightType::Spot) {
             halfFov = std::min(light.spotOuterAngle * 1.02f, glm::radians(85.0f));
@@ -73,6 +84,23 @@ LightSpace fitLightSpace(const LightInfo& light, const Bounds& bounds) {
     }
     ls.viewProjection = ls.projection * ls.view;
     return ls;
+}
+
+LightSpace fitLightSpace(const LightInfo& light, const Bounds& bounds, const Bounds* casters) {
+    glm::vec3 corners[8];
+    boxCorners(bounds, corners);
+    return fitLightSpaceToPoints(light, corners, 8, casters);
+}
+
+void frustumSliceCorners(const CameraInfo& camera, float nearDistance, float farDistance, glm::vec3 corners[8]) {
+    // Corner i of the near plane lies at view depth camera.nearPlane on the ray from the eye
+    // through it; the same ray reaches depth d at eye + (corner - eye) d / near.
+    const float n = std::max(camera.nearPlane, 1e-6f);
+    for (int i = 0; i < 4; ++i) {
+        const glm::vec3 ray = (camera.frustumCorners[i] - camera.position) / n;
+        corners[i] = camera.position + ray * nearDistance;
+        corners[i + 4] = camera.position + ray * farDistance;
+    }
 }
 
 } // namespace shadowlab

@@ -2,21 +2,29 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <type_traits>
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "render/light_space.h"
+#include "shadowlab/frame_block.h"
+#include "util/log.h"
 #include "util/paths.h"
 
 namespace shadowlab {
 namespace {
 
-// std140 mirror of the Frame block in shaders/common.glsl.
-struct FrameUniforms {
-    glm::mat4 view, projection, viewProjection, invViewProjection;
-    glm::mat4 lightView, lightProjection, lightViewProjection;
-    glm::vec4 cameraPosition, lightPosition, lightDirection, lightColor, lightSpot, ambient, viewport;
-};
+using FrameUniforms = shared::frame::Frame;
+
+// Keeps an object unless its box lies wholly on the negative side of a plane.
+bool insidePlanes(const Bounds& box, const glm::vec4* planes, uint32_t count) {
+    for (uint32_t i = 0; i < count; ++i) {
+        const glm::vec3 n{planes[i]};
+        const glm::vec3 farthest{n.x >= 0 ? box.max.x : box.min.x, n.y >= 0 ? box.max.y : box.min.y,
+                                 n.z >= 0 ? box.max.z : box.min.z};
+        if (glm::dot(n, farthest) + planes[i].w < 0.0f) return false;
+    }
+    return true;
+}
 
 GlTexture makeTexture(GLenum format, glm::ivec2 size, int samples, const char* label) {
     GLuint name = 0;
@@ -70,13 +78,50 @@ bool Renderer::init(std::string& error) {
     glSamplerParameteri(name, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 
+    // Host-owned samplers for techniques (SamplerKind order), so no technique changes sampling
+    // state on its textures every frame.
+    struct SamplerSetup {
+        GLint minFilter, magFilter;
+        bool compare;
+    };
+    const SamplerSetup setups[] = {{GL_NEAREST, GL_NEAREST, false},
+                                   {GL_LINEAR, GL_LINEAR, false},
+                                   {GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, false},
+                                   {GL_NEAREST, GL_NEAREST, true},
+                                   {GL_LINEAR, GL_LINEAR, true},
+                                   {GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST, false}};
+    static_assert(std::extent_v<decltype(setups)> == std::extent_v<decltype(samplers_)>);
+    for (size_t i = 0; i < std::size(setups); ++i) {
+        glCreateSamplers(1, &name);
+        samplers_[i].reset(name);
+        glSamplerParameteri(name, GL_TEXTURE_MIN_FILTER, setups[i].minFilter);
+        glSamplerParameteri(name, GL_TEXTURE_MAG_FILTER, setups[i].magFilter);
+        glSamplerParameteri(name, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glSamplerParameteri(name, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glSamplerParameteri(name, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+        glSamplerParameteri(name, GL_TEXTURE_COMPARE_MODE, setups[i].compare ? GL_COMPARE_REF_TO_TEXTURE : GL_NONE);
+        glSamplerParameteri(name, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    }
+
     ShaderRequest present;
     present.vertexFile = "fullscreen.vert";
     present.fragmentFile = "present.frag";
-    present.searchPaths = {sharedShaderDir()};
+    present.searchPaths = hostShaderPaths();
     present.label = "host present";
     presentProgram_ = shaders_.build(present, error);
-    return presentProgram_ != 0;
+    if (!presentProgram_) return false;
+    ShaderRequest prepass;
+    prepass.vertexFile = "main.vert";
+    prepass.fragmentFile = "camera_prepass.frag";
+    prepass.searchPaths = hostShaderPaths();
+    prepass.label = "host camera pre-pass";
+    prepassProgram_ = shaders_.build(prepass, error);
+    return prepassProgram_ != 0;
+}
+
+GLuint Renderer::sampler(SamplerKind kind) const {
+    const auto index = size_t(kind);
+    return index < std::size(samplers_) ? samplers_[index].get() : 0u;
 }
 
 void Renderer::setScene(const Scene& scene) {
@@ -119,13 +164,13 @@ void Renderer::setScene(const Scene& scene) {
     transforms.reserve(scene.objects.size());
     batches_.clear();
     opaqueBatches_.clear();
-    translucentObjects_.clear();
+    batchOfObject_.clear();
     for (uint32_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& object = scene.objects[i];
         transforms.push_back({object.transform, glm::mat4(glm::transpose(glm::inverse(glm::mat3(object.transform))))});
-        if (scene.materials[object.material].translucent()) {
-            translucentObjects_.push_back(i);
+        if (scene.materials[object.material].translucent()) {   // drawn one by one, sorted
             batches_.push_back({i, 1, object.mesh, object.material});
+            batchOfObject_.push_back(uint32_t(batches_.size() - 1));
             continue;
         }
         const bool extends = !batches_.empty() && batches_.back().mesh == object.mesh &&
@@ -140,12 +185,13 @@ void Renderer::setScene(const Scene& scene) {
             batches_.push_back({i, 1, object.mesh, object.material});
             opaqueBatches_.push_back(uint32_t(batches_.size() - 1));
         }
+        batchOfObject_.push_back(uint32_t(batches_.size() - 1));
     }
     glCreateBuffers(1, &name);
     objectTransforms_.reset(name);
     glNamedBufferStorage(name, GLsizeiptr(std::max<size_t>(1, transforms.size()) * sizeof(ObjectTransform)),
                          transforms.empty() ? nullptr : transforms.data(), 0);
-    translucentOrder_.reserve(translucentObjects_.size());
+    drawOrder_.reserve(scene.objects.size());
 }
 
 bool Renderer::resize(glm::ivec2 size, int msaaSamples, std::string& error) {
@@ -182,6 +228,7 @@ bool Renderer::resize(glm::ivec2 size, int msaaSamples, std::string& error) {
                                msDepth_.get(), "main MSAA", error))
             return false;
     }
+    if (prepassFbo_) allocatePrepassTargets();
     displayColor_ = makeTexture(GL_RGBA8, size, 0, "display");
     glCreateFramebuffers(1, &name);
     displayFbo_.reset(name);
@@ -198,23 +245,17 @@ void Renderer::setView(const CameraInfo& camera, const LightInfo& light) {
     camera_ = camera;
     camera_.viewport = size_;
     light_ = light;
-    defaultLightSpace_ = fitLightSpace(light_, bounds(DrawSet::All));
     FrameUniforms u{};
-    u.view = camera_.view;
-    u.projection = camera_.projection;
-    u.viewProjection = camera_.viewProjection;
-    u.invViewProjection = glm::inverse(camera_.viewProjection);
-    u.lightView = defaultLightSpace_.view;
-    u.lightProjection = defaultLightSpace_.projection;
-    u.lightViewProjection = defaultLightSpace_.viewProjection;
-    u.cameraPosition = glm::vec4(camera_.position, 1.0f);
-    u.lightPosition = glm::vec4(light_.position, float(static_cast<uint32_t>(light_.type)));
-    u.lightDirection = glm::vec4(glm::normalize(light_.direction), light_.size);
-    u.lightColor = glm::vec4(light_.color, 1.0f);
-    u.lightSpot = glm::vec4(std::cos(light_.spotOuterAngle), std::cos(light_.spotInnerAngle),
-                            defaultLightSpace_.nearPlane, defaultLightSpace_.farPlane);
-    u.ambient = glm::vec4(scene_ ? scene_->ambient : glm::vec3(0.0f), 1.0f);
-    u.viewport = glm::vec4(float(size_.x), float(size_.y), 1.0f / float(size_.x), 1.0f / float(size_.y));
+    u.uView = camera_.view;
+    u.uProjection = camera_.projection;
+    u.uViewProjection = camera_.viewProjection;
+    u.uCameraPosition = glm::vec4(camera_.position, 1.0f);
+    u.uLightPosition = glm::vec4(light_.position, float(static_cast<uint32_t>(light_.type)));
+    u.uLightDirection = glm::vec4(glm::normalize(light_.direction), light_.size);
+    u.uLightColor = glm::vec4(light_.color, 1.0f);
+    u.uLightSpot = glm::vec4(std::cos(light_.spotOuterAngle), std::cos(light_.spotInnerAngle), 0.0f, 0.0f);
+    u.uAmbient = glm::vec4(scene_ ? scene_->ambient : glm::vec3(0.0f), 1.0f);
+    u.uViewport = glm::vec4(float(size_.x), float(size_.y), 1.0f / float(size_.x), 1.0f / float(size_.y));
     glNamedBufferSubData(frameUniforms_.get(), 0, sizeof(u), &u);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUniforms_.get());
 }
@@ -225,10 +266,8 @@ Bounds Renderer::bounds(DrawSet set) const {
 
 uint32_t Renderer::objectCount() const { return scene_ ? uint32_t(scene_->objects.size()) : 0u; }
 
-ObjectInfo Renderer::objectInfo(uint32_t index) const {
-    if (!scene_ || index >= scene_->objects.size()) return {};
-    const SceneObject& o = scene_->objects[index];
-    return {o.castsShadow, o.receivesShadow, scene_->materials[o.material].translucent(), o.isPlane, o.plane};
+const ObjectInfo* Renderer::objects() const {
+    return scene_ && scene_->objectInfo.size() == scene_->objects.size() ? scene_->objectInfo.data() : nullptr;
 }
 
 void Renderer::drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, uint32_t material) {
@@ -243,23 +282,59 @@ void Renderer::drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, ui
                                       GLsizei(count), range.baseVertex);
 }
 
-void Renderer::drawObject(uint32_t index, GLuint program) {
-    if (!scene_ || index >= scene_->objects.size()) return;
+void Renderer::bindSceneGeometry(GLuint program) {
     glUseProgram(program);
     glBindVertexArray(sceneVao_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objectTransforms_.get());
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUniforms_.get());
+}
+
+void Renderer::drawObject(uint32_t index, GLuint program) {
+    if (!scene_ || index >= scene_->objects.size()) return;
+    bindSceneGeometry(program);
     const SceneObject& object = scene_->objects[index];
     drawBatch(index, 1, object.mesh, object.material);
 }
 
-void Renderer::drawScene(DrawSet set, GLuint program) {
+void Renderer::drawScene(const DrawRequest& request, GLuint program) {
     if (!scene_) return;
-    glUseProgram(program);
-    glBindVertexArray(sceneVao_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objectTransforms_.get());
-    // A batch shares its objects' flags, so its first object decides for all of it.
-    for (const Batch& batch : batches_)
-        if (scene_->inSet(scene_->objects[batch.firstObject], set)) drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
+    bindSceneGeometry(program);
+    const bool culled = request.cullPlanes && request.cullPlaneCount > 0;
+    if (request.order == DrawOrder::Scene && !culled) {
+        // A batch shares its objects' flags, so its first object decides for all of it.
+        for (const Batch& batch : batches_)
+            if (scene_->inSet(scene_->objects[batch.firstObject], request.set))
+                drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
+        return;
+    }
+    // The objects that pass, sorted if asked, then drawn in runs of consecutive objects of one
+    // batch (still instanced where order and culling leave a run together).
+    drawOrder_.clear();
+    const std::vector<ObjectInfo>& info = scene_->objectInfo;
+    const glm::vec3 reference{request.orderReference};
+    const bool fromPoint = request.orderReference.w != 0.0f;
+    for (const Batch& batch : batches_) {
+        if (!scene_->inSet(scene_->objects[batch.firstObject], request.set)) continue;
+        for (uint32_t i = batch.firstObject; i < batch.firstObject + batch.count; ++i) {
+            if (culled && !insidePlanes(info[i].bounds, request.cullPlanes, request.cullPlaneCount)) continue;
+            const float key = request.order == DrawOrder::Scene ? float(i)
+                              : fromPoint                       ? glm::length(info[i].center - reference)
+                                                                : glm::dot(info[i].center, reference);
+            drawOrder_.push_back({request.order == DrawOrder::BackToFront ? -key : key, i});
+        }
+    }
+    if (request.order != DrawOrder::Scene)
+        std::stable_sort(drawOrder_.begin(), drawOrder_.end(), [](auto& a, auto& b) { return a.first < b.first; });
+    for (size_t k = 0; k < drawOrder_.size();) {
+        const uint32_t first = drawOrder_[k].second;
+        size_t end = k + 1;
+        while (end < drawOrder_.size() && drawOrder_[end].second == drawOrder_[end - 1].second + 1 &&
+               batchOfObject_[drawOrder_[end].second] == batchOfObject_[first])
+            ++end;
+        const SceneObject& object = scene_->objects[first];
+        drawBatch(first, uint32_t(end - k), object.mesh, object.material);
+        k = end;
+    }
 }
 
 void Renderer::drawFullscreenTriangle() {
@@ -288,35 +363,110 @@ void Renderer::beginMainPass(GLuint program) {
     glClearNamedFramebufferfv(fbo, GL_COLOR, 2, zero);
     glClearNamedFramebufferfv(fbo, GL_COLOR, 3, zero);
     glClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUniforms_.get());
-    glUseProgram(program);
+    bindSceneGeometry(program);
 }
 
 void Renderer::drawMainPassObjects(GLuint program) {
     if (!scene_) return;
-    glBindVertexArray(sceneVao_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objectTransforms_.get());
+    bindSceneGeometry(program);
     for (uint32_t index : opaqueBatches_) {
         const Batch& batch = batches_[index];
         drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
     }
-    if (translucentObjects_.empty()) return;
-    // Translucent surfaces: blended colour, back to front, without touching the G-buffer or
-    // depth, so accuracy is measured on the opaque surface behind them.
-    translucentOrder_.clear();
-    for (uint32_t i : translucentObjects_) {
-        const glm::vec3 center = glm::vec3(scene_->objects[i].transform[3]);
-        translucentOrder_.push_back({glm::length(center - camera_.position), i});
-    }
-    std::sort(translucentOrder_.begin(), translucentOrder_.end(), [](auto& a, auto& b) { return a.first > b.first; });
+    if (opaqueBatches_.size() == batches_.size()) return;
+    // Translucent surfaces: blended colour, back to front from the camera by their bounds'
+    // centres, without touching the G-buffer or depth, so accuracy is measured on the opaque
+    // surface behind them.
     glDepthMask(GL_FALSE);
     glEnablei(GL_BLEND, 0);
     glBlendFunci(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     for (GLuint attachment = 1; attachment < 4; ++attachment) glColorMaski(attachment, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    for (const auto& entry : translucentOrder_) drawObject(entry.second, program);
+    DrawRequest translucent;
+    translucent.set = DrawSet::Translucent;
+    translucent.order = DrawOrder::BackToFront;
+    translucent.orderReference = glm::vec4(camera_.position, 1.0f);
+    drawScene(translucent, program);
     for (GLuint attachment = 1; attachment < 4; ++attachment) glColorMaski(attachment, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDisablei(GL_BLEND, 0);
     glDepthMask(GL_TRUE);
+}
+
+void Renderer::applyDefaultState() {
+    resetPipelineState();
+    for (GLuint unit = 4; unit < 16; ++unit) glBindSampler(unit, 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUniforms_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, objectTransforms_.get());
+    glUseProgram(0);
+}
+
+void Renderer::resetPipelineState() {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, size_.x, size_.y);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    glDisable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+    glDisable(GL_STENCIL_TEST);
+    glStencilMask(0xFF);
+    glStencilFunc(GL_ALWAYS, 0, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glDisable(GL_SCISSOR_TEST);
+    for (GLenum i = 0; i < 8; ++i) glDisable(GL_CLIP_DISTANCE0 + i);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisable(GL_POLYGON_OFFSET_LINE);
+    glDisable(GL_POLYGON_OFFSET_POINT);
+    glPolygonOffset(0.0f, 0.0f);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glDisable(GL_RASTERIZER_DISCARD);
+    glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+}
+
+void Renderer::allocatePrepassTargets() {
+    prepassDepth_ = makeTexture(GL_DEPTH24_STENCIL8, size_, 0, "camera pre-pass depth");
+    prepassPosition_ = makeTexture(GL_RGBA32F, size_, 0, "camera pre-pass world position");
+    prepassNormal_ = makeTexture(GL_RGBA16F, size_, 0, "camera pre-pass world normal");
+    prepassObjectId_ = makeTexture(GL_R32UI, size_, 0, "camera pre-pass object id");
+    GLuint name = 0;
+    glCreateFramebuffers(1, &name);
+    prepassFbo_.reset(name);
+    glObjectLabel(GL_FRAMEBUFFER, name, -1, "camera pre-pass");
+    glNamedFramebufferTexture(name, GL_COLOR_ATTACHMENT0, prepassPosition_.get(), 0);
+    glNamedFramebufferTexture(name, GL_COLOR_ATTACHMENT1, prepassNormal_.get(), 0);
+    glNamedFramebufferTexture(name, GL_COLOR_ATTACHMENT2, prepassObjectId_.get(), 0);
+    glNamedFramebufferTexture(name, GL_DEPTH_STENCIL_ATTACHMENT, prepassDepth_.get(), 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glNamedFramebufferDrawBuffers(name, 3, buffers);
+    const GLenum status = glCheckNamedFramebufferStatus(name, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) logError("camera pre-pass framebuffer is " + framebufferStatusName(status));
+    prepass_ = {sizeof(CameraPrepass), prepassDepth_.get(), prepassPosition_.get(), prepassNormal_.get(),
+                prepassObjectId_.get(), size_};
+}
+
+void Renderer::cameraPrepass() {
+    if (!prepassFbo_) allocatePrepassTargets();
+    const GLuint fbo = prepassFbo_.get();
+    applyDefaultState();
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const GLuint noObject[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 1, zero);
+    glClearNamedFramebufferuiv(fbo, GL_COLOR, 2, noObject);
+    glClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    const GLuint program = shaders_.program(prepassProgram_);
+    bindSceneGeometry(program);
+    for (uint32_t index : opaqueBatches_) {
+        const Batch& batch = batches_[index];
+        drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
+    }
 }
 
 void Renderer::endMainPass() {
@@ -360,10 +510,6 @@ void Renderer::present(PresentMode mode, GLuint texture, GLuint framebuffer, glm
     glBindSampler(0, presentSampler_.get());
     drawFullscreenTriangle();
     glBindSampler(0, 0);
-}
-
-void Renderer::presentToDisplay(PresentMode mode, GLuint texture, glm::vec2 range) {
-    present(mode, texture, displayFbo_.get(), size_, range);
 }
 
 Image Renderer::readDisplay() const {

@@ -1,6 +1,7 @@
-// The host's GL side: scene geometry on the GPU, the per-frame uniform block, the main pass
-// (forward Blinn-Phong into colour + visibility + G-buffer targets) and the present pass.
-// Everything here is created once (or when the size changes), never per frame.
+// The host's GL side: scene geometry on the GPU, the per-frame uniform block, the GL state
+// contract, the camera pre-pass, the main pass (forward Blinn-Phong into colour + visibility +
+// G-buffer targets) and the present pass. Everything here is created once (or when the size
+// changes), never per frame.
 #pragma once
 
 #include <optional>
@@ -35,28 +36,46 @@ public:
     void setView(const CameraInfo& camera, const LightInfo& light);
     const CameraInfo& camera() const { return camera_; }
     const LightInfo& light() const { return light_; }
-    const LightSpace& defaultLightSpace() const { return defaultLightSpace_; }
 
     // Host services for techniques.
     Bounds bounds(DrawSet set) const;
     uint32_t objectCount() const;
-    ObjectInfo objectInfo(uint32_t index) const;
-    void drawScene(DrawSet set, GLuint program);
+    const ObjectInfo* objects() const;
+    void drawScene(const DrawRequest& request, GLuint program);
+    void drawScene(DrawSet set, GLuint program) {
+        DrawRequest request;
+        request.set = set;
+        drawScene(request, program);
+    }
     void drawObject(uint32_t index, GLuint program);
     void drawFullscreenTriangle();
+    GLuint sampler(SamplerKind kind) const;
 
-    // The main pass with a technique's main program (bindTechnique sets its uniforms).
+    // The GL state contract of shadowlab/technique.h, set before every technique call.
+    void applyDefaultState();
+    // Its pipeline part only (not the texture, sampler and buffer bindings a technique made).
+    void resetPipelineState();
+
+    // Camera pre-pass into its own targets (allocated on first use): depth, world position,
+    // normal and object id of the opaque surfaces, rasterised exactly as the main pass does.
+    void cameraPrepass();
+    const CameraPrepass& prepassTargets() const { return prepass_; }
+
+    // The main pass with a technique's main program: default state and the program bound,
+    // bindTechnique() sets its uniforms and textures, then the host's main-pass state and draws.
     template <typename BindTechnique>
     void mainPass(GLuint program, BindTechnique&& bindTechnique) {
+        applyDefaultState();
+        glUseProgram(program);
+        bindTechnique();
+        resetPipelineState();   // whatever bindTechnique() changed besides its bindings
         beginMainPass(program);
-        bindTechnique(program);
         drawMainPassObjects(program);
         endMainPass();
     }
 
     // Present pass into `framebuffer` (0 = window) or, with framebuffer = ~0u, the display texture.
     void present(PresentMode mode, GLuint texture, GLuint framebuffer, glm::ivec2 viewport, glm::vec2 range = {0, 1});
-    void presentToDisplay(PresentMode mode, GLuint texture, glm::vec2 range = {0, 1});
     GLuint target(MainTarget which) const;
     GLuint displayTexture() const { return displayColor_.get(); }
     GLuint displayFramebuffer() const { return displayFbo_.get(); }
@@ -84,6 +103,8 @@ private:
     void drawMainPassObjects(GLuint program);
     void endMainPass();
     void drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, uint32_t material);
+    void bindSceneGeometry(GLuint program);
+    void allocatePrepassTargets();
 
     ShaderLibrary& shaders_;
     const Scene* scene_ = nullptr;
@@ -91,9 +112,9 @@ private:
     GlVertexArray sceneVao_, emptyVao_;
     std::vector<MeshRange> meshRanges_;
     std::vector<Batch> batches_;                 // every object, in scene order
+    std::vector<uint32_t> batchOfObject_;        // object index -> its batch
     std::vector<uint32_t> opaqueBatches_;        // indices into batches_
-    std::vector<uint32_t> translucentObjects_;   // drawn one by one, sorted
-    std::vector<std::pair<float, uint32_t>> translucentOrder_;  // reused each frame
+    std::vector<std::pair<float, uint32_t>> drawOrder_;  // sorted or culled draws, reused each frame
 
     glm::ivec2 size_{0};
     int msaaSamples_ = 0;
@@ -103,11 +124,15 @@ private:
     GlTexture displayColor_;
     GlFramebuffer displayFbo_;
     GlSampler presentSampler_;
+    GlSampler samplers_[6];                      // by SamplerKind
     ProgramId presentProgram_ = 0;
+    ProgramId prepassProgram_ = 0;
+    GlTexture prepassDepth_, prepassPosition_, prepassNormal_, prepassObjectId_;
+    GlFramebuffer prepassFbo_;
+    CameraPrepass prepass_{};
 
     CameraInfo camera_{};
     LightInfo light_{};
-    LightSpace defaultLightSpace_{};
 };
 
 } // namespace shadowlab

@@ -35,11 +35,16 @@ public:
         out += "#line 1 " + std::to_string(index) + "\n";
         std::string line;
         int lineNumber = 0;
-        static const std::regex includePattern(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
+        static const std::regex includePattern(R"(^\s*#\s*include\s+"([^"]+)\"\s*(//.*)?$)");
+        // Headers shared with C++ (shadowlab/kit/shared.h) include system headers under
+        // #ifdef __cplusplus; GLSL has none, so those lines are dropped before the driver sees them.
+        static const std::regex systemIncludePattern(R"(^\s*#\s*include\s+<[^>]+>\s*$)");
         while (std::getline(in, line)) {
             ++lineNumber;
             std::smatch match;
-            if (std::regex_match(line, match, includePattern)) {
+            if (std::regex_match(line, systemIncludePattern)) {
+                out += '\n';
+            } else if (std::regex_match(line, match, includePattern)) {
                 const auto resolved = resolve(match[1].str(), file.parent_path());
                 if (resolved.empty()) {
                     error = file.string() + ":" + std::to_string(lineNumber) + ": cannot find include \"" +
@@ -131,7 +136,17 @@ GLuint ShaderLibrary::compileAndLink(const ShaderRequest& request, std::vector<D
         for (GLuint s : shaders) glDeleteShader(s);
     };
     const std::pair<GLenum, std::string> stages[] = {{GL_VERTEX_SHADER, request.vertexFile},
-                                                     {GL_FRAGMENT_SHADER, request.fragmentFile}};
+                                                     {GL_GEOMETRY_SHADER, request.geometryFile},
+                                                     {GL_FRAGMENT_SHADER, request.fragmentFile},
+                                                     {GL_COMPUTE_SHADER, request.computeFile}};
+    if (!request.computeFile.empty() && !(request.vertexFile.empty() && request.geometryFile.empty() && request.fragmentFile.empty())) {
+        error = (request.label.empty() ? "" : request.label + ": ") + "a compute program has no other stage";
+        return 0;
+    }
+    if (request.computeFile.empty() && request.vertexFile.empty()) {
+        error = (request.label.empty() ? "" : request.label + ": ") + "a program needs a vertex or a compute stage";
+        return 0;
+    }
     for (const auto& [stage, name] : stages) {
         if (name.empty()) continue;
         Preprocessor pre(request);

@@ -17,7 +17,9 @@ namespace shadowlab {
 
 struct ShaderRequest {
     std::string vertexFile;
+    std::string geometryFile;                       // optional
     std::string fragmentFile;                       // empty: depth-only program
+    std::string computeFile;                        // a compute program has this stage alone
     std::string defines;                            // "NAME VALUE;NAME2 VALUE2"
     std::vector<std::filesystem::path> searchPaths; // for the stage files and #include "..."
     std::map<std::string, std::filesystem::path> aliases; // include name -> file (technique GLSL)

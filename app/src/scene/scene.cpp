@@ -570,9 +570,9 @@ float readDegrees(FieldReader& fields, const std::string& key, float fallbackDeg
     return degrees * kRadiansPerDegree;
 }
 
-SceneLight readLight(const json& node, const ParseContext& context) {
+LightInfo readLight(const json& node, const ParseContext& context) {
     FieldReader fields(node, "light", context);
-    SceneLight light;
+    LightInfo light;
     const std::string type = fields.string("type", "directional");
     const glm::vec3 color = fields.vec("color", glm::vec3(1.0f), Range::NonNegative);
     light.color = color * fields.number("intensity", 1.0f, Range::NonNegative);
@@ -697,6 +697,7 @@ Scene parseScene(const std::string& jsonText, const std::string& sourceName, con
     scene.ambient = fields.vec("ambient", scene.ambient, Range::NonNegative);
     scene.background = fields.vec("background", scene.background, Range::NonNegative);
     fields.finish("a scene");
+    scene.computeDerived();
     return std::move(builder.scene);
 }
 
@@ -731,25 +732,31 @@ std::vector<std::string> builtinSceneNames() {
 
 const char* defaultSceneName() { return "cube"; }
 
-Bounds Scene::worldBounds(DrawSet set) const {
-    // The eight corners of each mesh's box, moved to world space: loose for rotated meshes, but
-    // cheap with thousands of instances, and never too small for fitting a shadow map.
-    std::vector<Bounds> meshBounds(meshes.size());
-    std::vector<bool> measured(meshes.size(), false);
-    glm::vec3 low{std::numeric_limits<float>::max()};
-    glm::vec3 high{std::numeric_limits<float>::lowest()};
-    bool any = false;
-    for (const SceneObject& object : objects) {
-        if (!inSet(object, set) || object.mesh >= meshes.size() || meshes[object.mesh].vertices.empty()) continue;
-        Bounds& local = meshBounds[object.mesh];
-        if (!measured[object.mesh]) {
-            local = {glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
-            for (const Vertex& vertex : meshes[object.mesh].vertices) {
-                local.min = glm::min(local.min, vertex.position);
-                local.max = glm::max(local.max, vertex.position);
-            }
-            measured[object.mesh] = true;
+namespace {
+
+// World bounds of every object: the eight corners of its mesh's box moved to world space (loose
+// for rotated meshes, but cheap with thousands of instances, and never too small for fitting a
+// shadow map). Each mesh is scanned once.
+std::vector<Bounds> objectWorldBounds(const Scene& scene) {
+    std::vector<Bounds> meshBounds(scene.meshes.size());
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        Bounds local{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
+        for (const Vertex& vertex : scene.meshes[m].vertices) {
+            local.min = glm::min(local.min, vertex.position);
+            local.max = glm::max(local.max, vertex.position);
         }
+        meshBounds[m] = local;
+    }
+    std::vector<Bounds> out;
+    out.reserve(scene.objects.size());
+    for (const SceneObject& object : scene.objects) {
+        if (object.mesh >= scene.meshes.size() || scene.meshes[object.mesh].vertices.empty()) {
+            const glm::vec3 origin{object.transform[3]};
+            out.push_back({origin, origin});
+            continue;
+        }
+        const Bounds& local = meshBounds[object.mesh];
+        glm::vec3 low{std::numeric_limits<float>::max()}, high{std::numeric_limits<float>::lowest()};
         for (int corner = 0; corner < 8; ++corner) {
             const glm::vec3 point{(corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
                                   (corner & 4) ? local.max.z : local.min.z};
@@ -757,10 +764,54 @@ Bounds Scene::worldBounds(DrawSet set) const {
             low = glm::min(low, world);
             high = glm::max(high, world);
         }
+        out.push_back({low, high});
+    }
+    return out;
+}
+
+Bounds setBoundsOf(const Scene& scene, const std::vector<Bounds>& objectBounds, DrawSet set) {
+    glm::vec3 low{std::numeric_limits<float>::max()};
+    glm::vec3 high{std::numeric_limits<float>::lowest()};
+    bool any = false;
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const SceneObject& object = scene.objects[i];
+        if (!scene.inSet(object, set) || object.mesh >= scene.meshes.size() || scene.meshes[object.mesh].vertices.empty())
+            continue;
+        low = glm::min(low, objectBounds[i].min);
+        high = glm::max(high, objectBounds[i].max);
         any = true;
     }
     if (!any) return {glm::vec3(0.0f), glm::vec3(0.0f)};   // an empty set: a point, not inverted infinities
     return {low, high};
+}
+
+} // namespace
+
+void Scene::computeDerived() {
+    const std::vector<Bounds> bounds = objectWorldBounds(*this);
+    objectInfo.clear();
+    objectInfo.reserve(objects.size());
+    for (size_t i = 0; i < objects.size(); ++i) {
+        const SceneObject& object = objects[i];
+        const Material material = object.material < materials.size() ? materials[object.material] : Material{};
+        ObjectInfo info;
+        info.bounds = bounds[i];
+        info.center = 0.5f * (bounds[i].min + bounds[i].max);
+        info.flags = (object.castsShadow ? kObjectCastsShadow : 0u) | (object.receivesShadow ? kObjectReceivesShadow : 0u) |
+                     (material.translucent() ? kObjectTranslucent : 0u) | (object.isPlane ? kObjectPlane : 0u);
+        info.baseColor = material.baseColor;
+        info.alpha = material.alpha;
+        info.transmission = material.transmission;
+        info.material = object.material;
+        info.plane = object.plane;
+        objectInfo.push_back(info);
+    }
+    for (size_t set = 0; set < setBounds.size(); ++set) setBounds[set] = setBoundsOf(*this, bounds, DrawSet(set));
+}
+
+Bounds Scene::worldBounds(DrawSet set) const {
+    if (objectInfo.size() == objects.size() && !objects.empty()) return setBounds[size_t(set)];
+    return setBoundsOf(*this, objectWorldBounds(*this), set);
 }
 
 size_t Scene::triangleCount() const {
@@ -779,6 +830,8 @@ bool Scene::inSet(const SceneObject& object, DrawSet set) const {
     case DrawSet::Receivers: return object.receivesShadow;
     case DrawSet::OpaqueCasters: return object.castsShadow && !translucent;
     case DrawSet::TranslucentCasters: return object.castsShadow && translucent;
+    case DrawSet::Opaque: return !translucent;
+    case DrawSet::Translucent: return translucent;
     }
     return false;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <array>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -48,16 +49,6 @@ struct SceneObject {
     glm::vec4 plane{0.0f, 1.0f, 0.0f, 0.0f}; // world-space (n, d), dot(n, x) + d = 0
 };
 
-struct SceneLight {
-    LightType type = LightType::Directional;
-    glm::vec3 position{0.0f, 10.0f, 0.0f};
-    glm::vec3 direction{0.0f, -1.0f, 0.0f};   // normalised; direction the light travels
-    glm::vec3 color{1.0f};                     // linear RGB times intensity
-    float size = 0.0f;                         // see LightInfo::size (radians for directional)
-    float spotOuterAngle = 0.5f;               // radians, half-angle
-    float spotInnerAngle = 0.4f;
-};
-
 struct SceneCamera {
     glm::vec3 position{0.0f, 3.0f, 6.0f};
     glm::vec3 target{0.0f};
@@ -75,11 +66,19 @@ struct Scene {
     std::vector<Mesh> meshes;
     std::vector<Material> materials;
     std::vector<SceneObject> objects;
-    SceneLight light;
+    LightInfo light;                           // direction normalised
     SceneCamera camera;
     glm::vec3 ambient{0.08f};
     glm::vec3 background{0.02f, 0.02f, 0.03f};
 
+    // Derived once per load by computeDerived() (the parser calls it; call it again after editing
+    // objects, meshes or materials by hand): what techniques are told about each object, and the
+    // bounds of every draw set.
+    std::vector<ObjectInfo> objectInfo;
+    std::array<Bounds, 7> setBounds{};
+    void computeDerived();
+
+    // Cached by computeDerived(); computed on the spot for a scene that never called it.
     Bounds worldBounds(DrawSet set = DrawSet::All) const;
     size_t triangleCount() const;
     bool inSet(const SceneObject& object, DrawSet set) const;

@@ -1,5 +1,5 @@
-// The reference as a technique (see reference_technique.h).
-#include "reference/reference_technique.h"
+// The reference as a technique (see reference_technique.h). It traces the host's camera pre-pass.
+#include "groundtruth/reference_technique.h"
 
 #include <cstring>
 
@@ -23,6 +23,7 @@ const ParamDesc kParams[] = {
 };
 
 const TechniqueDesc kDescriptor{
+    sizeof(TechniqueDesc),
     "reference",
     "Ray-traced reference",
     "reference",
@@ -33,6 +34,7 @@ const TechniqueDesc kDescriptor{
     "reference_visibility.glsl",
     kParams,
     kParamCount,
+    kTechniqueNeedsCameraPrepass,
 };
 
 } // namespace
@@ -47,38 +49,26 @@ ReferenceOptions referenceOptions(const ParamValues& params) {
     return options;
 }
 
-bool ReferenceTechnique::init(IHost& host, std::string& error) {
+bool ReferenceTechnique::init(IHost& host, std::string&) {
     host_ = &host;
-    gbufferProgram_ = host.buildProgram({"reference_gbuffer.vert", "reference_gbuffer.frag", nullptr}, error);
-    if (!gbufferProgram_) return false;
-    framebuffer_ = host.createFramebuffer("reference G-buffer");
     return true;
 }
 
-void ReferenceTechnique::ensureTargets(glm::ivec2 size) {
-    if (visibility_ && size == size_) return;
-    for (uint32_t* texture : {&positions_, &normals_, &depth_, &visibility_})
-        if (*texture) host_->destroyTexture(*texture);
-    size_ = size;
-    positions_ = host_->createTexture({GL_TEXTURE_2D, GL_RGBA32F, size.x, size.y, 1, 1, "reference positions"});
-    normals_ = host_->createTexture({GL_TEXTURE_2D, GL_RGBA32F, size.x, size.y, 1, 1, "reference normals"});
-    depth_ = host_->createTexture({GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, size.x, size.y, 1, 1, "reference depth"});
-    visibility_ = host_->createTexture({GL_TEXTURE_2D, GL_RGBA16F, size.x, size.y, 1, 1, "reference visibility"});
-    glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, positions_, 0);
-    glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT1, normals_, 0);
-    glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, depth_, 0);
-    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(framebuffer_, 2, buffers);
-    host_->checkFramebuffer(framebuffer_, "reference G-buffer");
-    host_->registerDebugImage("reference visibility", visibility_, DebugImageKind::Color);
-    cacheKey_.clear();
-}
-
-void ReferenceTechnique::renderShadows(const ParamValues& params) {
-    const CameraInfo& camera = host_->camera();
-    ensureTargets(camera.viewport);
+void ReferenceTechnique::renderShadows(const FrameContext& frame, const ParamValues& params) {
+    // The host's camera pre-pass holds exactly the pixels the main pass shades.
+    const auto* prepass = static_cast<const CameraPrepass*>(host_->extension(SHADOWLAB_EXT_CAMERA_PREPASS));
+    if (!prepass) return;
+    if (!visibility_ || prepass->size != size_) {
+        if (visibility_) host_->destroyTexture(visibility_);
+        size_ = prepass->size;
+        visibility_ = host_->createTexture({.internalFormat = GL_RGBA16F, .width = size_.x, .height = size_.y,
+                                            .label = "reference visibility"});
+        host_->registerDebugImage("reference visibility", visibility_, DebugImageKind::Color);
+        cacheKey_.clear();
+    }
     // Everything the traced image depends on; unchanged means the last trace is still right.
-    const LightInfo& light = host_->light();
+    const CameraInfo& camera = frame.camera;
+    const LightInfo& light = frame.light;
     std::vector<float> key(&camera.viewProjection[0][0], &camera.viewProjection[0][0] + 16);
     key.insert(key.end(), {light.position.x, light.position.y, light.position.z, light.direction.x, light.direction.y,
                            light.direction.z, light.size, light.spotOuterAngle, float(light.type),
@@ -86,27 +76,12 @@ void ReferenceTechnique::renderShadows(const ParamValues& params) {
                            float(*sceneGeneration_), float(size_.x), float(size_.y)});
     if (key == cacheKey_) return;
 
-    {
-        GpuPass pass(*host_, "reference G-buffer");
-        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-        glViewport(0, 0, size_.x, size_.y);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        glDepthMask(GL_TRUE);
-        glDisable(GL_CULL_FACE);
-        const float zero[4] = {0, 0, 0, 0};
-        glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 0, zero);
-        glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 1, zero);
-        const float one = 1.0f;
-        glClearNamedFramebufferfv(framebuffer_, GL_DEPTH, 0, &one);
-        host_->drawScene(DrawSet::All, host_->glProgram(gbufferProgram_));
-    }
     // A deliberate read-back: the reference is a CPU computation on exactly these pixels.
     const size_t pixels = size_t(size_.x) * size_t(size_.y);
     positionData_.resize(pixels);
     normalData_.resize(pixels);
-    glGetTextureImage(positions_, 0, GL_RGBA, GL_FLOAT, GLsizei(pixels * sizeof(glm::vec4)), positionData_.data());
-    glGetTextureImage(normals_, 0, GL_RGBA, GL_FLOAT, GLsizei(pixels * sizeof(glm::vec4)), normalData_.data());
+    glGetTextureImage(prepass->position, 0, GL_RGBA, GL_FLOAT, GLsizei(pixels * sizeof(glm::vec4)), positionData_.data());
+    glGetTextureImage(prepass->normal, 0, GL_RGBA, GL_FLOAT, GLsizei(pixels * sizeof(glm::vec4)), normalData_.data());
     const GBufferView gbuffer{size_.x, size_.y, positionData_.data(), normalData_.data()};
     if (!tracer_(gbuffer, referenceOptions(params), visibilityData_, error_)) {
         host_->log(LogLevel::Error, error_.c_str());
@@ -118,13 +93,11 @@ void ReferenceTechnique::renderShadows(const ParamValues& params) {
     cacheKey_ = std::move(key);
 }
 
-void ReferenceTechnique::bindMainPass(uint32_t, const ParamValues&) { glBindTextureUnit(4, visibility_); }
+void ReferenceTechnique::bindMainPass(const FrameContext&, const ParamValues&) { glBindTextureUnit(4, visibility_); }
 
 void ReferenceTechnique::shutdown() {
-    for (uint32_t* texture : {&positions_, &normals_, &depth_, &visibility_})
-        if (*texture) host_->destroyTexture(*texture);
-    if (framebuffer_) host_->destroyFramebuffer(framebuffer_);
-    positions_ = normals_ = depth_ = visibility_ = framebuffer_ = 0;
+    if (visibility_) host_->destroyTexture(visibility_);
+    visibility_ = 0;
 }
 
 } // namespace shadowlab

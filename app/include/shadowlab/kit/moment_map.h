@@ -2,8 +2,8 @@
 // moments from the light, blur them with a separable filter (ping-pong between the map and a
 // scratch texture of the same format), optionally build mipmaps, and bind the result for the main
 // pass. Each technique supplies only its moment fragment shader, its format and the value of an
-// empty texel (FilteredMomentTechnique below does init and shutdown for it). Header-only: plugins
-// are separate libraries, so esm, evsm and msm include it by relative path ("../vsm/moment_map.h").
+// empty texel (MomentTechnique below does setup for it); its own uniforms go in a block at
+// binding 2 that its moment shader and its main-pass GLSL both read.
 #pragma once
 
 #include <glad/gl.h>
@@ -15,9 +15,16 @@
 #include <bit>
 #include <string>
 
-#include "moment_light_space.h"
+#include "shadowlab/kit/handles.h"
+#include "shadowlab/kit/moment_light_space.h"
+#include "shadowlab/kit/moment_map_shared.h"
+#include "shadowlab/kit/technique_base.h"
 
-namespace shadowlab::moments {
+namespace shadowlab::kit {
+
+using shared::moment_map::BlurUniforms;
+using shared::moment_map::kMomentMapUnit;
+using shared::moment_map::MomentMapUniforms;
 
 struct MomentMapConfig {
     int resolution = 1024;
@@ -57,67 +64,53 @@ inline MomentMapConfig readCommonParams(const ParamValues& params) {
     return config;
 }
 
-class FilteredMomentMap {
+class MomentMap {
 public:
-    bool init(IHost& host, const char* momentFragment, std::string& error) {
+    bool create(IHost& host, const char* momentFragment, std::string& error) {
         host_ = &host;
-        if (!gladLoadGL(host.glLoader())) {
-            error = "could not load OpenGL entry points";
+        if (!momentProgram_.build(host, {.vertexFile = "moment_depth.vert", .fragmentFile = momentFragment}, error))
             return false;
-        }
-        momentProgram_ = host.buildProgram({"moment_depth.vert", momentFragment, nullptr}, error);
-        if (!momentProgram_) return false;
-        blurProgram_ = host.buildProgram({"fullscreen.vert", "separable_blur.frag", nullptr}, error);
-        if (!blurProgram_) return false;
-        momentFramebuffer_ = host.createFramebuffer("moment map");
-        blurFramebuffer_ = host.createFramebuffer("moment blur");
+        if (!blurProgram_.build(host, {.vertexFile = "fullscreen.vert", .fragmentFile = "separable_blur.frag"}, error))
+            return false;
+        momentFramebuffer_ = makeFramebuffer(host, "moment map");
+        blurFramebuffer_ = makeFramebuffer(host, "moment blur");
+        mapUniforms_.create(host, "moment map uniforms");
+        blurUniforms_[0].create(host, "moment blur uniforms (x)");
+        blurUniforms_[1].create(host, "moment blur uniforms (y)");
         return true;
     }
 
-    // Shadow pass, blur and mipmaps. setUniforms() sets the technique's own uniforms of its moment
-    // fragment shader (locations >= 21) while that program is bound.
-    template <class SetUniforms>
-    void render(const MomentMapConfig& config, SetUniforms&& setUniforms) {
+    // Shadow pass, blur and mipmaps. The technique's own block (binding 2) must be bound already.
+    void render(const FrameContext& frame, const MomentMapConfig& config) {
         ensureTextures(config);
-        space_ = fitMomentLightSpace(host_->fitLightSpace(DrawSet::All), host_->sceneBounds(DrawSet::Casters),
-                                     host_->sceneBounds(DrawSet::All));
+        space_ = fitMomentLightSpace(host_->fitLightSpace(frame.light, DrawSet::All), host_->bounds(DrawSet::Casters),
+                                     host_->bounds(DrawSet::All));
+        mapUniforms_.set({{}, space_.light.viewProjection, space_.depthPlane});
         {
             GpuPass pass(*host_, "shadow map");
             glBindFramebuffer(GL_FRAMEBUFFER, momentFramebuffer_);
             glViewport(0, 0, resolution_, resolution_);
-            glEnable(GL_DEPTH_TEST);
-            glDepthFunc(GL_LESS);
-            glDepthMask(GL_TRUE);
-            glDisable(GL_BLEND);
-            glDisable(GL_CULL_FACE);          // thin and open casters need both sides
-            glDisable(GL_POLYGON_OFFSET_FILL);
-            glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
             const float farDepth = 1.0f;
             glClearNamedFramebufferfv(momentFramebuffer_, GL_COLOR, 0, glm::value_ptr(config.clearValue));
             glClearNamedFramebufferfv(momentFramebuffer_, GL_DEPTH, 0, &farDepth);
-            const GLuint program = host_->glProgram(momentProgram_);
-            glUseProgram(program);
-            setLightUniforms();
-            setUniforms();
-            host_->drawScene(DrawSet::OpaqueCasters, program);
+            // No culling (the contract's default): thin and open casters need both sides.
+            host_->drawScene(DrawSet::OpaqueCasters, momentProgram_.use());
         }
         if (config.kernelSize > 1) {
             GpuPass pass(*host_, "blur");
             glDisable(GL_DEPTH_TEST);
-            glUseProgram(host_->glProgram(blurProgram_));
-            glUniform1i(17, config.kernelSize);
-            glUniform1i(18, config.gaussian ? 1 : 0);
+            blurProgram_.use();
             const float texel = 1.0f / float(resolution_);
             // Along x: map -> scratch; along y: scratch -> map.
+            blurUniforms_[0].set({{}, {texel, 0.0f, 0.0f, 0.0f}, config.kernelSize, config.gaussian ? 1 : 0, 0, 0});
             glBindFramebuffer(GL_FRAMEBUFFER, blurFramebuffer_);
-            glUniform2f(16, texel, 0.0f);
-            glBindTextureUnit(4, moments_);
+            glBindTextureUnit(shared::moment_map::kBlurSourceUnit, moments_);
             host_->drawFullscreenTriangle();
+            blurUniforms_[1].set({{}, {0.0f, texel, 0.0f, 0.0f}, config.kernelSize, config.gaussian ? 1 : 0, 0, 0});
             glBindFramebuffer(GL_FRAMEBUFFER, momentFramebuffer_);
-            glUniform2f(16, 0.0f, texel);
-            glBindTextureUnit(4, scratch_);
+            glBindTextureUnit(shared::moment_map::kBlurSourceUnit, scratch_);
             host_->drawFullscreenTriangle();
-            glBindTextureUnit(4, 0);
+            glBindTextureUnit(shared::moment_map::kBlurSourceUnit, 0);
         }
         if (config.mipmaps) {
             GpuPass pass(*host_, "mipmaps");
@@ -125,49 +118,40 @@ public:
         }
     }
 
-    // Main pass: light matrix, depth plane and the map on unit 4 (see moment_shadows.glsl).
-    void bindMainPass() {
-        setLightUniforms();
-        glBindTextureUnit(4, moments_);
-    }
-
-    void shutdown() {
-        releaseTextures();
-        if (momentFramebuffer_) host_->destroyFramebuffer(momentFramebuffer_);
-        if (blurFramebuffer_) host_->destroyFramebuffer(blurFramebuffer_);
-        momentFramebuffer_ = blurFramebuffer_ = 0;
+    // Main pass: light matrix, depth plane and the map (see moment_shadows.glsl).
+    void bindMainPass() const {
+        mapUniforms_.bind();
+        glBindTextureUnit(kMomentMapUnit, moments_);
+        glBindSampler(kMomentMapUnit, host_->sampler(mipmaps_ ? SamplerKind::LinearMipmap : SamplerKind::Linear));
     }
 
     const MomentLightSpace& space() const { return space_; }
     GLuint texture() const { return moments_; }
 
 private:
-    void setLightUniforms() {
-        glUniformMatrix4fv(16, 1, GL_FALSE, glm::value_ptr(space_.light.viewProjection));
-        glUniform4fv(20, 1, glm::value_ptr(space_.depthPlane));
-    }
-
     // (Re)allocates only when the resolution, format, mipmapping or the need for a scratch texture
     // changed: never per frame.
     void ensureTextures(const MomentMapConfig& config) {
         const bool blur = config.kernelSize > 1;
         if (moments_ && config.resolution == resolution_ && config.format == format_ && config.mipmaps == mipmaps_ &&
-            blur == (scratch_ != 0))
+            blur == bool(scratch_))
             return;
-        releaseTextures();
+        scratch_.reset();
         resolution_ = config.resolution;
         format_ = config.format;
         mipmaps_ = config.mipmaps;
         const int levels = mipmaps_ ? std::bit_width(unsigned(resolution_)) : 1;
-        moments_ = host_->createTexture({GL_TEXTURE_2D, format_, resolution_, resolution_, 1, levels, "moment map"});
+        moments_ = makeTexture(*host_, {.internalFormat = format_, .width = resolution_, .height = resolution_,
+                                        .levels = levels, .label = "moment map"});
         setSampling(moments_, mipmaps_);
-        depth_ = host_->createTexture(
-            {GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, resolution_, resolution_, 1, 1, "moment map depth buffer"});
+        depth_ = makeTexture(*host_, {.internalFormat = GL_DEPTH_COMPONENT32F, .width = resolution_,
+                                      .height = resolution_, .label = "moment map depth buffer"});
         glNamedFramebufferTexture(momentFramebuffer_, GL_COLOR_ATTACHMENT0, moments_, 0);
         glNamedFramebufferTexture(momentFramebuffer_, GL_DEPTH_ATTACHMENT, depth_, 0);
         host_->checkFramebuffer(momentFramebuffer_, "moment map");
         if (blur) {
-            scratch_ = host_->createTexture({GL_TEXTURE_2D, format_, resolution_, resolution_, 1, 1, "blur scratch"});
+            scratch_ = makeTexture(*host_, {.internalFormat = format_, .width = resolution_, .height = resolution_,
+                                            .label = "blur scratch"});
             setSampling(scratch_, false);
             glNamedFramebufferTexture(blurFramebuffer_, GL_COLOR_ATTACHMENT0, scratch_, 0);
             host_->checkFramebuffer(blurFramebuffer_, "moment blur");
@@ -175,6 +159,7 @@ private:
         host_->registerDebugImage("moments", moments_, DebugImageKind::Moments);
     }
 
+    // The blur reads through the texture's own state (no sampler bound on its unit).
     static void setSampling(GLuint texture, bool mipmaps) {
         glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
         glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -182,40 +167,30 @@ private:
         glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     }
 
-    void releaseTextures() {
-        for (GLuint* texture : {&moments_, &scratch_, &depth_}) {
-            if (*texture) host_->destroyTexture(*texture);
-            *texture = 0;
-        }
-    }
-
     IHost* host_ = nullptr;
-    ProgramId momentProgram_ = 0;
-    ProgramId blurProgram_ = 0;
-    GLuint momentFramebuffer_ = 0;
-    GLuint blurFramebuffer_ = 0;
-    GLuint moments_ = 0;
-    GLuint scratch_ = 0;
-    GLuint depth_ = 0;
+    Program momentProgram_, blurProgram_;
+    Framebuffer momentFramebuffer_, blurFramebuffer_;
+    Texture moments_, scratch_, depth_;
+    UniformBlock<MomentMapUniforms> mapUniforms_;
+    UniformBlock<BlurUniforms> blurUniforms_[2];
     int resolution_ = 0;
     GLenum format_ = 0;
     bool mipmaps_ = false;
     MomentLightSpace space_{};
 };
 
-// A technique built on one filtered moment map: init() and shutdown() are done here; the plugin
-// writes renderShadows() (its format, clear value and moment-pass uniforms) and bindMainPass().
-class FilteredMomentTechnique : public IShadowTechnique {
+// A technique built on one filtered moment map: setup is done here; the plugin writes
+// renderShadows() (its format, clear value and block) and bindMainPass().
+class MomentTechnique : public TechniqueBase {
 public:
-    explicit FilteredMomentTechnique(const char* momentFragment) : momentFragment_(momentFragment) {}
-    bool init(IHost& host, std::string& error) override { return map_.init(host, momentFragment_, error); }
-    void shutdown() override { map_.shutdown(); }
+    explicit MomentTechnique(const char* momentFragment) : momentFragment_(momentFragment) {}
 
 protected:
-    FilteredMomentMap map_;
+    bool setup(std::string& error) override { return map_.create(host(), momentFragment_, error); }
+    MomentMap map_;
 
 private:
     const char* momentFragment_;
 };
 
-} // namespace shadowlab::moments
+} // namespace shadowlab::kit

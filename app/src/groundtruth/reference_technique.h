@@ -1,6 +1,6 @@
-// The ray-traced reference shown like any technique ("reference" in `shadowlab list`): it draws
-// its own G-buffer of the current view, reads it back, traces it on the CPU (groundtruth.h) and
-// uploads the visibility, which its shadowTerm() reads per pixel. Slow by nature (a read-back and
+// The ray-traced reference shown like any technique ("reference" in `shadowlab list`): it reads
+// back the host's camera pre-pass (world positions and normals of the current view), traces it on
+// the CPU (groundtruth.h) and uploads the visibility, which its shadowTerm() reads per pixel. Slow by nature (a read-back and
 // a CPU trace), so it traces again only when the view, light, scene or its parameters change.
 #pragma once
 
@@ -29,18 +29,16 @@ public:
     ReferenceTechnique(ReferenceTracer tracer, const uint64_t* sceneGeneration)
         : tracer_(std::move(tracer)), sceneGeneration_(sceneGeneration) {}
     bool init(IHost& host, std::string& error) override;
-    void renderShadows(const ParamValues& params) override;
-    void bindMainPass(uint32_t glProgram, const ParamValues& params) override;
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override;
+    void bindMainPass(const FrameContext& frame, const ParamValues& params) override;
     void shutdown() override;
     const std::string& lastError() const { return error_; }
 
 private:
-    void ensureTargets(glm::ivec2 size);
     IHost* host_ = nullptr;
     ReferenceTracer tracer_;
     const uint64_t* sceneGeneration_;
-    ProgramId gbufferProgram_ = 0;
-    uint32_t framebuffer_ = 0, positions_ = 0, normals_ = 0, depth_ = 0, visibility_ = 0;
+    uint32_t visibility_ = 0;
     glm::ivec2 size_{0};
     std::vector<float> cacheKey_;
     std::vector<glm::vec4> positionData_, normalData_;

@@ -1,6 +1,5 @@
 // Light space of the filterable shadow maps (vsm, esm, evsm, msm), without GL so that tests can
-// reproduce the mapping. Header-only: each plugin is its own library, so esm, evsm and msm include
-// this file by relative path ("../vsm/moment_light_space.h"), as does tests/test_moment_shadows.cpp.
+// reproduce the mapping (tests/test_moment_shadows.cpp).
 //
 // The map covers the same area as the host's default light space (so texel density compares with
 // plain shadow mapping at the same resolution), but the stored depth is linear along the light's
@@ -12,7 +11,7 @@
 
 #include <algorithm>
 
-namespace shadowlab::moments {
+namespace shadowlab::kit {
 
 struct MomentLightSpace {
     LightSpace light;        // view-projection used for rasterising and for the lookup
@@ -57,4 +56,4 @@ inline float linearLightDepth(const MomentLightSpace& space, glm::vec3 world) {
     return std::clamp(glm::dot(space.depthPlane, glm::vec4(world, 1.0f)), 0.0f, 1.0f);
 }
 
-} // namespace shadowlab::moments
+} // namespace shadowlab::kit

@@ -134,7 +134,7 @@ struct ShadowRay {
 // Samples over the light's emitter as seen from one shaded point.
 class EmitterSampler {
 public:
-    EmitterSampler(const SceneLight& light, glm::vec3 origin, float endOffset)
+    EmitterSampler(const LightInfo& light, glm::vec3 origin, float endOffset)
         : light_(light), origin_(origin), endOffset_(endOffset) {
         if (light.type == LightType::Directional) {
             axis_ = -light.direction;
@@ -181,7 +181,7 @@ private:
         return {toTarget / distance, std::max(0.0f, distance - endOffset_)};
     }
 
-    const SceneLight& light_;
+    const LightInfo& light_;
     glm::vec3 origin_;
     float endOffset_;
     glm::vec3 axis_{0.0f, 1.0f, 0.0f}, tangent_{1.0f, 0.0f, 0.0f}, bitangent_{0.0f, 0.0f, 1.0f};
@@ -365,7 +365,7 @@ public:
         }
     }
 
-    void trace(const GBufferView& gbuffer, const SceneLight& light, const ReferenceOptions& options,
+    void trace(const GBufferView& gbuffer, const LightInfo& light, const ReferenceOptions& options,
                std::vector<glm::vec3>& visibility) override {
         requireScene();
         if (gbuffer.width < 0 || gbuffer.height < 0 ||

@@ -1,6 +1,6 @@
 // Jittered disc sample sets for adaptive PCF and PCSS (seed 000 sec. 3.2.4; Uralsky, "Efficient
-// Soft-Edged Shadows Using Pixel Shader Branching", GPU Gems 2 ch. 17). Header-only and GL-free so
-// the tests can check the mapping and the ordering; pcss includes it by relative path too.
+// Soft-Edged Shadows Using Pixel Shader Branching", GPU Gems 2 ch. 17). GL-free so the tests can
+// check the mapping and the ordering.
 //
 // One set: an n x n grid over [0,1]^2, one sample jittered uniformly inside each cell, mapped to
 // the unit disc by eq. 3.11-3.12. x becomes the angle and y the squared radius, so one grid row

@@ -1,0 +1,125 @@
+// A shadow map of depth from the light: the plumbing of shadowmap, pcf, adaptive-pcf and pcss (and
+// of area-reference's per-sample maps). It owns the texture (reallocated only when resolution or
+// format change), the framebuffer, the depth pass (glPolygonOffset bias, face culling) and the
+// block of uniforms its main-pass GLSL reads (depth_map_shared.h). The light space is fitted by the
+// host around the whole scene unless the technique passes its own.
+#pragma once
+
+#include <string>
+
+#include <glad/gl.h>
+#include <shadowlab/technique.h>
+
+#include "shadowlab/kit/depth_map_shared.h"
+#include "shadowlab/kit/handles.h"
+
+namespace shadowlab::kit {
+
+using shared::depth_map::DepthMapUniforms;
+using shared::depth_map::kDepthMapUnit;
+
+enum class Cull : int { None = 0, Back = 1, Front = 2 };
+
+struct DepthMapConfig {
+    int resolution = 2048;
+    GLenum format = GL_DEPTH_COMPONENT32F;
+    float constantBias = 2.0f;     // glPolygonOffset units
+    float slopeBias = 2.0f;        // glPolygonOffset factor
+    Cull cull = Cull::None;        // none: open and single-sided casters (plates, planes) cast too
+};
+
+// depth_format parameter index (kit::depthFormatParam) -> GL format.
+inline GLenum depthFormat(int index) {
+    static constexpr GLenum kFormats[] = {GL_DEPTH_COMPONENT16, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT32F};
+    return kFormats[index < 0 ? 0 : index > 2 ? 2 : index];
+}
+
+class DepthMap {
+public:
+    bool create(IHost& host, std::string& error) {
+        host_ = &host;
+        if (!program_.build(host, {.vertexFile = "depth_only.vert"}, error)) return false;
+        framebuffer_ = makeFramebuffer(host, "shadow map");
+        uniforms_.create(host, "shadow map uniforms");
+        return true;
+    }
+
+    // The usual frame: fit around the scene, one timed "shadow map" pass.
+    void render(const FrameContext& frame, const DepthMapConfig& config) {
+        ensureTexture(config.resolution, config.format);
+        GpuPass pass(*host_, "shadow map");
+        drawDepth(host_->fitLightSpace(frame.light, DrawSet::All), config);
+    }
+
+    // The depth pass alone, from any light space and without a timer scope (area-reference draws
+    // one per light sample inside its own scope). ensureTexture() first.
+    void drawDepth(const LightSpace& lightSpace, const DepthMapConfig& config) {
+        lightSpace_ = lightSpace;
+        uniforms_.set(mainPassUniforms());
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+        glViewport(0, 0, resolution_, resolution_);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        if (config.cull != Cull::None) {
+            glEnable(GL_CULL_FACE);
+            glCullFace(config.cull == Cull::Back ? GL_BACK : GL_FRONT);
+        }
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(config.slopeBias, config.constantBias);
+        host_->drawScene(DrawSet::OpaqueCasters, program_.use());
+    }
+
+    // Binds the map to its unit with a host sampler (CompareLinear: the texture unit's bilinear
+    // comparison, hardware PCF; Nearest: raw depths) and the block the GLSL reads.
+    void bindMainPass(SamplerKind sampling) const {
+        glBindTextureUnit(kDepthMapUnit, texture_);
+        glBindSampler(kDepthMapUnit, host_->sampler(sampling));
+        uniforms_.bind();
+    }
+
+    // (Re)allocates the map when the resolution or format changed, never per frame.
+    void ensureTexture(int resolution, GLenum format = GL_DEPTH_COMPONENT32F) {
+        if (texture_ && resolution == resolution_ && format == format_) return;
+        resolution_ = resolution;
+        format_ = format;
+        texture_ = makeTexture(*host_, {.target = GL_TEXTURE_2D, .internalFormat = format, .width = resolution,
+                                        .height = resolution, .label = "shadow map"});
+        // Complete for plain reads without a sampler object too (pcss's min-depth pass fetches it).
+        glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, texture_, 0);
+        glNamedFramebufferDrawBuffer(framebuffer_, GL_NONE);
+        glNamedFramebufferReadBuffer(framebuffer_, GL_NONE);
+        host_->checkFramebuffer(framebuffer_, "shadow map");
+        host_->registerDebugImage("shadow map", texture_, DebugImageKind::Depth);
+    }
+
+    const LightSpace& lightSpace() const { return lightSpace_; }
+    GLuint texture() const { return texture_; }
+    int resolution() const { return resolution_; }
+
+private:
+    DepthMapUniforms mainPassUniforms() const {
+        DepthMapUniforms u{};
+        u.uShadowMatrix = lightSpace_.viewProjection;
+        u.uLightDepth = {lightSpace_.nearPlane, lightSpace_.farPlane, lightSpace_.perspective ? 1.0f : 0.0f,
+                         float(resolution_)};
+        u.uLightWorldSize4 = {lightSpace_.worldSizeAtUnitDepth, 0.0f, 0.0f};
+        // The light camera looks down its view space's -z: that axis in world space.
+        const glm::mat4& view = lightSpace_.view;
+        u.uLightAxis4 = {-view[0][2], -view[1][2], -view[2][2], 0.0f};
+        return u;
+    }
+
+    IHost* host_ = nullptr;
+    Program program_;
+    Framebuffer framebuffer_;
+    Texture texture_;
+    UniformBlock<DepthMapUniforms> uniforms_;
+    int resolution_ = 0;
+    GLenum format_ = 0;
+    LightSpace lightSpace_{};
+};
+
+} // namespace shadowlab::kit

@@ -1,0 +1,13 @@
+// pcf's main-pass block, shared by pcf.cpp and pcf.glsl (see shadowlab/kit/shared.h).
+#ifndef PCF_SHARED_H
+#define PCF_SHARED_H
+#include "shadowlab/kit/shared.h"
+SHADOWLAB_SHARED_BEGIN(pcf)
+SHADOWLAB_UNIFORM_BLOCK(PcfUniforms, 2) {
+    int uKernel;           // n: n x n taps
+    float uOffsetScale;    // texels between neighbouring taps
+    float uConeBias;       // 0 off, else multiplier of the receiver slope
+    float uPcfPad;
+};
+SHADOWLAB_SHARED_END
+#endif
