@@ -5,7 +5,9 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <thread>
 
 #include <unistd.h>
@@ -175,6 +177,43 @@ TEST_F(PluginSandbox, DirtyStateLeftByATechniqueDoesNotReachTheMainPass) {
     }
     EXPECT_GT(drawn, colour.size() / 4) << "the scene was drawn";
     EXPECT_EQ(differing, 0u) << "pixels changed by state the technique left behind";
+}
+
+// docs/plugin-api.md's worked example is a real technique: it loads, shadows the cube where the
+// analytic shadow is, and the page shows its files as they are.
+TEST_F(PluginSandbox, TheDocumentedExampleTechniqueWorksAndTheDocShowsItVerbatim) {
+    const fs::path source = fs::path(SHADOWLAB_SOURCE_DIR) / "tests" / "plugins" / "example";
+    fs::copy_file(kTestPlugins / "example.so", root_ / "bin" / "example.so");
+    fs::create_directories(root_ / "plugins" / "example");
+    for (const char* file : {"example.glsl", "example_shared.h"})
+        fs::copy_file(source / file, root_ / "plugins" / "example" / file, fs::copy_options::overwrite_existing);
+    auto app = test::makeHeadlessApp("cube", {160, 120});
+    ASSERT_TRUE(app);
+    const auto visibility = test::renderVisibility(*app, "example");
+    const test::GroundClassification ground = test::classifyGround(*app);
+    int inside = 0, insideDark = 0, outside = 0, outsideLit = 0;
+    for (int y = 0; y < ground.size.y; ++y)
+        for (int x = 0; x < ground.size.x; ++x) {
+            const size_t i = size_t(y) * size_t(ground.size.x) + size_t(x);
+            if (ground.analytic[i] < 0 || ground.nearBoundary(x, y, 2)) continue;
+            (ground.analytic[i] == 1 ? inside : outside) += 1;
+            (ground.analytic[i] == 1 ? insideDark : outsideLit) += ground.analytic[i] == 1 ? visibility[i].r < 0.1f
+                                                                                        : visibility[i].r > 0.9f;
+        }
+    ASSERT_GT(inside, 100);
+    EXPECT_GT(insideDark, inside * 99 / 100);
+    EXPECT_GT(outsideLit, outside * 99 / 100);
+
+    std::ifstream docFile(fs::path(SHADOWLAB_SOURCE_DIR) / "docs" / "plugin-api.md");
+    const std::string doc((std::istreambuf_iterator<char>(docFile)), std::istreambuf_iterator<char>());
+    size_t lines = 0;
+    for (const char* file : {"example.cpp", "example_shared.h", "example.glsl"}) {
+        std::ifstream in(source / file);
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        EXPECT_NE(doc.find(text), std::string::npos) << "docs/plugin-api.md does not show " << file << " as it is";
+        lines += size_t(std::count(text.begin(), text.end(), '\n'));
+    }
+    EXPECT_LT(lines, 60u) << "the worked example stays under 60 lines";
 }
 
 TEST_F(PluginSandbox, HotReloadOfARebuiltLibraryKeepsParameterValues) {

@@ -1,0 +1,38 @@
+// A whole technique on the kit: a shadow map read through 3 x 3 bilinear taps, its darkness a parameter.
+#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/params.h>
+#include <shadowlab/kit/technique_base.h>
+#include "example_shared.h"
+
+namespace {
+using namespace shadowlab;
+
+constexpr ParamDesc kParams[] = {
+    kit::resolutionParam(1024),
+    {"darkness", "darkness", ParamType::Float, 0, 1, 1, "", "How much of the light a shadow removes.", nullptr},
+};
+enum : uint32_t { kResolution = kit::paramIndex(kParams, "resolution"), kDarkness = kit::paramIndex(kParams, "darkness") };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "example", .displayName = "Example", .category = "filtered",
+     .explanation = "A shadow map filtered over 3 x 3 taps.", .shadowGlsl = "example.glsl"},
+    kParams);
+
+class Example final : public kit::TechniqueBase {
+    bool setup(std::string& error) override {
+        uniforms_.create(host(), "example uniforms");
+        return map_.create(host(), error);
+    }
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        map_.render(frame, {.resolution = params.asInt(kResolution)});
+    }
+    void bindMainPass(const FrameContext&, const ParamValues& params) override {
+        map_.bindMainPass(SamplerKind::CompareLinear);
+        uniforms_.set({{}, params.asFloat(kDarkness), 0, 0, 0});
+    }
+    kit::DepthMap map_;
+    kit::UniformBlock<shared::example::ExampleUniforms> uniforms_;
+};
+} // namespace
+
+SHADOWLAB_PLUGIN(Example, kDescriptor)
