@@ -24,7 +24,7 @@ void GpuTimer::beginFrame() {
     FrameSlot& slot = slots_[size_t(current_)];
     // Results of the frame kFramesInFlight back. Normally ready; if the GPU is that far behind,
     // waiting here is what the driver's frame throttling would do anyway, and no frame is lost.
-    if (slot.pending) collect(slot, true);
+    if (slot.pending) collect(slot);
     slot.scopes.clear();
     slot.used = 0;
     slot.pending = false;
@@ -61,14 +61,8 @@ void GpuTimer::end() {
     slot.scopes[size_t(scope)].endQuery = query;
 }
 
-void GpuTimer::collect(FrameSlot& slot, bool wait) {
+void GpuTimer::collect(FrameSlot& slot) {
     if (slot.scopes.empty()) return;
-    if (!wait) {
-        // The last query of the frame finishes last; if it is ready, all are.
-        GLint available = 0;
-        glGetQueryObjectiv(slot.queries[size_t(slot.used - 1)], GL_QUERY_RESULT_AVAILABLE, &available);
-        if (!available) return;
-    }
     std::map<std::string, double> frame;
     for (const Scope& scope : slot.scopes) {
         if (scope.endQuery < 0) continue;
@@ -85,7 +79,7 @@ void GpuTimer::collect(FrameSlot& slot, bool wait) {
 void GpuTimer::drain() {
     for (int i = 1; i <= kFramesInFlight; ++i) {
         FrameSlot& slot = slots_[size_t((current_ + i) % kFramesInFlight)];
-        if (slot.pending) collect(slot, true);
+        if (slot.pending) collect(slot);
     }
 }
 

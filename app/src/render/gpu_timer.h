@@ -46,7 +46,7 @@ private:
         int used = 0;
         bool pending = false;
     };
-    void collect(FrameSlot& slot, bool wait);
+    void collect(FrameSlot& slot);   // reads the slot's results (waits if the GPU has not finished them)
     int nextQuery();
 
     std::array<FrameSlot, kFramesInFlight> slots_;
