@@ -2,8 +2,11 @@
 // under a directional light is the set of ground points whose ray towards the light hits the box.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "shadowlab/kit/depth_map_shared.h"
 #include "test_support.h"
+#include "util/paths.h"
 
 using namespace shadowlab;
 
@@ -125,4 +128,91 @@ TEST(Msaa, MultisampledMainPassResolvesAndStillShadowsTheCube) {
     ASSERT_TRUE(app->presentView("shadowmap", {}, ~0u, {}, error)) << error;
     const Image image = app->readDisplay();
     EXPECT_EQ(image.width, 320);
+}
+
+// ABI 3 drawing: DrawRequest's order and culling planes, through the renderer the host services
+// use. Object ids are drawn with the camera pre-pass's fragment stage into the pre-pass targets.
+namespace {
+struct IdDrawing {
+    App& app;
+    GLuint program = 0, fbo = 0;
+    explicit IdDrawing(App& a) : app(a) {
+        app.renderer().cameraPrepass();   // allocates the targets (and fills them depth-tested)
+        ShaderRequest request;
+        request.vertexFile = "main.vert";
+        request.fragmentFile = "camera_prepass.frag";
+        request.searchPaths = hostShaderPaths();
+        std::string error;
+        id_ = app.shaders().build(request, error);
+        EXPECT_NE(id_, 0u) << error;
+        program = app.shaders().program(id_);
+        const CameraPrepass& t = app.renderer().prepassTargets();
+        glCreateFramebuffers(1, &fbo);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, t.position, 0);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, t.normal, 0);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT2, t.objectId, 0);
+        const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+        glNamedFramebufferDrawBuffers(fbo, 3, buffers);
+    }
+    ~IdDrawing() {
+        glDeleteFramebuffers(1, &fbo);
+        app.shaders().release(id_);
+    }
+    std::vector<uint32_t> ids() const {
+        const glm::ivec2 size = app.renderer().size();
+        std::vector<uint32_t> out(size_t(size.x) * size_t(size.y));
+        glGetTextureImage(app.renderer().prepassTargets().objectId, 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                          GLsizei(out.size() * 4), out.data());
+        return out;
+    }
+    // Draws `request` without depth test: the last object drawn wins every pixel it covers.
+    std::vector<uint32_t> drawLastWins(const DrawRequest& request) {
+        app.renderer().applyDefaultState();
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        const GLuint zero[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferuiv(fbo, GL_COLOR, 2, zero);
+        glDisable(GL_DEPTH_TEST);
+        app.renderer().drawScene(request, program);
+        return ids();
+    }
+    ProgramId id_ = 0;
+};
+} // namespace
+
+TEST_F(CubeScene, DrawRequestsSortByDistanceAndCullByPlanes) {
+    std::string error;
+    ASSERT_TRUE(app_->renderFrame("none", error)) << error;
+    IdDrawing drawing(*app_);
+    const std::vector<uint32_t> visible = drawing.ids();   // depth-tested: what the camera sees
+    uint32_t cubeId = 0;
+    for (uint32_t i = 0; i < app_->scene().objects.size(); ++i)
+        if (app_->scene().objects[i].name == "cube") cubeId = i + 1;
+    ASSERT_NE(cubeId, 0u);
+    const size_t cubePixels = size_t(std::count(visible.begin(), visible.end(), cubeId));
+    ASSERT_GT(cubePixels, 100u);
+    const glm::vec3 eye = app_->renderer().camera().position;
+    auto countOnCube = [&](const std::vector<uint32_t>& ids, uint32_t id) {
+        size_t n = 0;
+        for (size_t i = 0; i < ids.size(); ++i) n += visible[i] == cubeId && ids[i] == id;
+        return n;
+    };
+    DrawRequest backToFront;
+    backToFront.order = DrawOrder::BackToFront;
+    backToFront.orderReference = glm::vec4(eye, 1.0f);
+    EXPECT_EQ(countOnCube(drawing.drawLastWins(backToFront), cubeId), cubePixels)
+        << "back to front from the eye: the cube, nearer, is drawn last";
+    DrawRequest frontToBack = backToFront;
+    frontToBack.order = DrawOrder::FrontToBack;
+    EXPECT_LT(countOnCube(drawing.drawLastWins(frontToBack), cubeId), cubePixels / 10)
+        << "front to back: the ground, farther, is drawn over the cube";
+    // A plane that keeps only what lies above y = 0.5 (the cube reaches higher, the ground does not).
+    const glm::vec4 above{0.0f, 1.0f, 0.0f, -0.5f};
+    DrawRequest culled;
+    culled.cullPlanes = &above;
+    culled.cullPlaneCount = 1;
+    const std::vector<uint32_t> culledIds = drawing.drawLastWins(culled);
+    EXPECT_EQ(countOnCube(culledIds, cubeId), cubePixels) << "the cube passes";
+    EXPECT_EQ(size_t(std::count_if(culledIds.begin(), culledIds.end(), [&](uint32_t id) { return id != 0 && id != cubeId; })),
+              0u) << "only the cube is drawn";
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }

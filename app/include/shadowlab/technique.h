@@ -128,7 +128,7 @@ struct CameraInfo {
 // Passed to every per-frame call. Read fields only up to structSize (kit::frameHas()).
 struct FrameContext {
     uint32_t structSize = sizeof(FrameContext);
-    uint32_t reserved = 0;
+    uint32_t version = 1;                    // layout version of this struct
     uint64_t frameIndex = 0;                 // counts rendered frames from 0
     uint32_t randomSeed = 0;                 // differs every frame (a hash of frameIndex): stochastic techniques
     float time = 0.0f;                       // seconds: wall clock in the window, 1/60 s a frame headless
