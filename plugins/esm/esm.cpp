@@ -47,30 +47,17 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .shadowGlsl = "esm.glsl"},
     kParams);
 
-class ExponentialShadowMaps final : public kit::MomentTechnique {
+class ExponentialShadowMaps final : public kit::MomentTechnique<shared::esm::EsmUniforms> {
 public:
     ExponentialShadowMaps() : MomentTechnique("esm_moments.frag") {}
 
 private:
-    bool setup(std::string& error) override {
-        uniforms_.create(host(), "esm uniforms");
-        return MomentTechnique::setup(error);
-    }
-
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         kit::MomentMapConfig config = kit::readCommonParams(params);
         config.format = GL_R32F;
         config.clearValue = glm::vec4(1.0f);   // exp(c (1 - 1)): depth 1, nothing occludes
-        uniforms_.set({{}, params.asFloat(kExponent), 0.0f, 0.0f, 0.0f});
-        map_.render(frame, config);
+        render(frame, config, {{}, params.asFloat(kExponent), 0.0f, 0.0f, 0.0f});
     }
-
-    void bindMainPass(const FrameContext&, const ParamValues&) override {
-        map_.bindMainPass();
-        uniforms_.bind();
-    }
-
-    kit::UniformBlock<shared::esm::EsmUniforms> uniforms_;
 };
 
 } // namespace

@@ -61,16 +61,11 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .shadowGlsl = "evsm.glsl"},
     kParams);
 
-class ExponentialVarianceShadowMaps final : public kit::MomentTechnique {
+class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<shared::evsm::EvsmUniforms> {
 public:
     ExponentialVarianceShadowMaps() : MomentTechnique("evsm_moments.frag") {}
 
 private:
-    bool setup(std::string& error) override {
-        uniforms_.create(host(), "evsm uniforms");
-        return MomentTechnique::setup(error);
-    }
-
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         kit::MomentMapConfig config = kit::readCommonParams(params);
         config.format = GL_RGBA32F;
@@ -78,17 +73,9 @@ private:
         const float p = std::exp(params.asFloat(kPositiveExponent));
         const float n = -std::exp(-params.asFloat(kNegativeExponent));
         config.clearValue = glm::vec4(p, p * p, n, n * n);
-        uniforms_.set({{}, {params.asFloat(kPositiveExponent), params.asFloat(kNegativeExponent), 0.0f, 0.0f},
+        render(frame, config, {{}, {params.asFloat(kPositiveExponent), params.asFloat(kNegativeExponent), 0.0f, 0.0f},
                        params.asFloat(kMinVariance), params.asFloat(kLightBleedingReduction), 0.0f, 0.0f});
-        map_.render(frame, config);
     }
-
-    void bindMainPass(const FrameContext&, const ParamValues&) override {
-        map_.bindMainPass();
-        uniforms_.bind();
-    }
-
-    kit::UniformBlock<shared::evsm::EvsmUniforms> uniforms_;
 };
 
 } // namespace

@@ -63,16 +63,11 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .shadowGlsl = "msm.glsl"},
     kParams);
 
-class MomentShadowMapping final : public kit::MomentTechnique {
+class MomentShadowMapping final : public kit::MomentTechnique<shared::msm::MsmUniforms> {
 public:
     MomentShadowMapping() : MomentTechnique("msm_moments.frag") {}
 
 private:
-    bool setup(std::string& error) override {
-        uniforms_.create(host(), "msm uniforms");
-        return MomentTechnique::setup(error);
-    }
-
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         kit::MomentMapConfig config = kit::readCommonParams(params);
         const bool quantized = params.asInt(kStorage) == 1;
@@ -80,17 +75,9 @@ private:
         // Depth 1: nothing occludes there.
         const glm::vec4 farMoments = msm::momentsOfDepth(1.0f);
         config.clearValue = quantized ? glm::clamp(msm::quantizeMoments(farMoments), 0.0f, 1.0f) : farMoments;
-        uniforms_.set({{}, quantized ? 1 : 0, params.asFloat(kMomentBias), params.asFloat(kDepthBias),
+        render(frame, config, {{}, quantized ? 1 : 0, params.asFloat(kMomentBias), params.asFloat(kDepthBias),
                        params.asFloat(kLightBleedingReduction)});
-        map_.render(frame, config);
     }
-
-    void bindMainPass(const FrameContext&, const ParamValues&) override {
-        map_.bindMainPass();
-        uniforms_.bind();
-    }
-
-    kit::UniformBlock<shared::msm::MsmUniforms> uniforms_;
 };
 
 } // namespace

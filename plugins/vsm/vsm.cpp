@@ -58,31 +58,18 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .shadowGlsl = "vsm.glsl"},
     kParams);
 
-class VarianceShadowMaps final : public kit::MomentTechnique {
+class VarianceShadowMaps final : public kit::MomentTechnique<shared::vsm::VsmUniforms> {
 public:
     VarianceShadowMaps() : MomentTechnique("vsm_moments.frag") {}
 
 private:
-    bool setup(std::string& error) override {
-        uniforms_.create(host(), "vsm uniforms");
-        return MomentTechnique::setup(error);
-    }
-
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         kit::MomentMapConfig config = kit::readCommonParams(params);
         config.format = GL_RG32F;   // 32 bits per moment: M2 - M1^2 cancels badly in 16 bits
         config.clearValue = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);   // d = 1: M1 = 1, M2 = 1
-        uniforms_.set({{}, params.asBool(kDerivativeMoment) ? 1 : 0, params.asFloat(kMinVariance),
+        render(frame, config, {{}, params.asBool(kDerivativeMoment) ? 1 : 0, params.asFloat(kMinVariance),
                        params.asFloat(kLightBleedingReduction), 0.0f});
-        map_.render(frame, config);
     }
-
-    void bindMainPass(const FrameContext&, const ParamValues&) override {
-        map_.bindMainPass();
-        uniforms_.bind();
-    }
-
-    kit::UniformBlock<shared::vsm::VsmUniforms> uniforms_;
 };
 
 } // namespace

@@ -179,18 +179,32 @@ private:
     MomentLightSpace space_{};
 };
 
-// A technique built on one filtered moment map: setup is done here; the plugin writes
-// renderShadows() (its format, clear value and block) and bindMainPass().
+// A technique built on one filtered moment map and its own block `Block` (binding 2, read by its
+// moment shader and its main-pass GLSL): setup and bindMainPass are done here; the plugin writes
+// renderShadows() (its format, clear value and block values) and calls render().
+template <class Block>
 class MomentTechnique : public TechniqueBase {
 public:
     explicit MomentTechnique(const char* momentFragment) : momentFragment_(momentFragment) {}
 
 protected:
-    bool setup(std::string& error) override { return map_.create(host(), momentFragment_, error); }
-    MomentMap map_;
+    bool setup(std::string& error) override {
+        uniforms_.create(host(), "technique uniforms");
+        return map_.create(host(), momentFragment_, error);
+    }
+    void render(const FrameContext& frame, const MomentMapConfig& config, const Block& block) {
+        uniforms_.set(block);
+        map_.render(frame, config);
+    }
+    void bindMainPass(const FrameContext&, const ParamValues&) override {
+        map_.bindMainPass();
+        uniforms_.bind();
+    }
 
 private:
     const char* momentFragment_;
+    MomentMap map_;
+    UniformBlock<Block> uniforms_;
 };
 
 } // namespace shadowlab::kit
