@@ -75,6 +75,8 @@ bool buildOptions(const CommonOptions& common, AppOptions& options, std::string&
     options.scene = common.scene;
     options.msaaSamples = common.msaa;
     if (!parseSize(common.size, options.size, error)) return false;
+    // The budget part of the render-target check needs no GL: before a context or buffer exists.
+    if (error = renderTargetBudgetProblem(options.size, options.msaaSamples, 0); !error.empty()) return false;
     if (!common.backend.empty()) {
         options.backend = parseBackend(common.backend);
         if (!options.backend) {

@@ -421,6 +421,12 @@ bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& tec
                     }
                 }
             }
+            for (const glm::ivec2 size : spec.sizes) {
+                if (const std::string problem = renderTargetBudgetProblem(size, 0, check.gpuBytes); !problem.empty()) {
+                    error = nameOf(spec, "--size", "sizes") + " on scene '" + scene + "': " + problem;
+                    return false;
+                }
+            }
             if (lightSize) {
                 if (const std::string problem = lightSizeProblem(check.lightType, *lightSize); !problem.empty()) {
                     error = "--light-size on scene '" + scene + "': " + problem;

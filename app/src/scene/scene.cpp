@@ -924,6 +924,22 @@ bool parseSceneBudget(const std::string& text, SceneBudget& budget, std::string&
     return true;
 }
 
+uint64_t mainTargetBytes(glm::ivec2 size, int msaaSamples) {
+    const uint64_t pixels = uint64_t(std::max(size.x, 1)) * uint64_t(std::max(size.y, 1));
+    return pixels * (44 + 4 + 44 * uint64_t(std::max(msaaSamples, 0)));
+}
+
+std::string renderTargetBudgetProblem(glm::ivec2 size, int msaaSamples, uint64_t geometryBytes) {
+    const uint64_t targets = mainTargetBytes(size, msaaSamples);
+    const uint64_t budget = sceneBudget().gpuBytes;
+    if (targets + geometryBytes <= budget) return "";
+    return "--size " + std::to_string(size.x) + "x" + std::to_string(size.y) +
+           (msaaSamples > 0 ? " with --msaa " + std::to_string(msaaSamples) : std::string()) + ": the render targets (" +
+           formatBytes(targets) + ") and the scene's geometry (" + formatBytes(geometryBytes) +
+           ") would need more than the GPU memory budget of " + formatBytes(budget) + "; raise it with --budget gpu-mib=N (" +
+           kBudgetHelp + ")";
+}
+
 std::string lightSizeProblem(LightType type, double size) {
     if (type == LightType::Directional) {
         if (!(size >= 0.0 && size <= kMaxDirectionalLightSizeDegrees))

@@ -105,6 +105,14 @@ void setSceneBudget(const SceneBudget& budget);
 // Estimated GPU bytes of a scene's geometry as the renderer uploads it (the figure the budget checks).
 uint64_t sceneGeometryBytes(const Scene& scene);
 
+// Bytes of the host's main render targets at `size`: RGBA16F colour, visibility and normal,
+// RGBA32F position, depth24-stencil8 (44 bytes a sample; the multisampled set too with MSAA) and
+// the RGBA8 display texture.
+uint64_t mainTargetBytes(glm::ivec2 size, int msaaSamples);
+// "" when the main render targets at `size` plus `geometryBytes` fit the GPU budget, else a message
+// naming --size (and --msaa) and the budget. No GL needed: checked before a context exists.
+std::string renderTargetBudgetProblem(glm::ivec2 size, int msaaSamples, uint64_t geometryBytes);
+
 // Limits that hold whatever the budget: world coordinates (positions after transforms, light and
 // camera positions, spot and point light sizes) within +-kMaxWorldCoordinate, so that squared
 // lengths stay finite in single precision; polygons of OBJ files up to kMaxPolygonCorners corners.

@@ -18,13 +18,9 @@ RenderLimits queryRenderLimits();
 // "this device renders up to 16384x16384 with MSAA up to 4 samples"
 std::string describeRenderLimits();
 
-// Bytes of the host's main render targets (colour, visibility, position, normal, depth-stencil,
-// display; the multisampled set too with MSAA) at `size`.
-uint64_t mainTargetBytes(glm::ivec2 size, int msaaSamples);
-
 // False, with a message naming the option and what the device supports, when `size` and
 // `msaaSamples` exceed the device's limits, or when the targets plus `geometryBytes` exceed the
-// GPU memory budget (SceneBudget::gpuBytes).
+// GPU memory budget (renderTargetBudgetProblem in scene.h).
 bool checkRenderTargets(glm::ivec2 size, int msaaSamples, uint64_t geometryBytes, std::string& error);
 
 } // namespace shadowlab
