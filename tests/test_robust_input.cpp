@@ -483,6 +483,16 @@ TEST(RobustBench, EveryValueIsCheckedBeforeTheRunNamingTheOption) {
     EXPECT_EQ(size, glm::ivec2(64, 48));
 }
 
+TEST(RobustBench, TheShippedSpecsPassTheCheck) {
+    for (const char* name : {"default.json", "quick.json", "seed000.json"}) {
+        SCOPED_TRACE(name);
+        std::vector<BenchSpec> specs;
+        std::string error;
+        ASSERT_TRUE(loadBenchSpecs(fs::path(SHADOWLAB_SOURCE_DIR) / "assets" / "bench" / name, specs, error)) << error;
+        for (const BenchSpec& spec : specs) EXPECT_TRUE(checkBenchSpec(spec, realTechniques(), error)) << error;
+    }
+}
+
 TEST(RobustBench, DepthFloorResolutionsAreChecked) {
     // The case: an uncaught std::stoi (exit 134) once the depth floor reached "abc".
     BenchSpec spec = commandLineSpec({"resolution=256,abc"});

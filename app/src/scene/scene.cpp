@@ -863,15 +863,20 @@ Scene loadScene(const std::string& nameOrPath, const std::map<std::string, doubl
     return parseScene(scene.text, scene.source, scene.baseDir, overrides);
 }
 
-SceneCheck checkScene(const std::string& nameOrPath, const std::map<std::string, double>& overrides) {
-    const SceneText text = readSceneText(nameOrPath);
+SceneCheck checkSceneText(const std::string& jsonText, const std::string& sourceName, const std::filesystem::path& baseDir,
+                          const std::map<std::string, double>& overrides) {
     SceneBuilder builder;
-    builder.context.source = text.source;
-    builder.baseDir = text.baseDir;
+    builder.context.source = sourceName;
+    builder.baseDir = baseDir;
     builder.budget = sceneBudget();
     builder.checkOnly = true;
-    buildScene(text.text, builder, overrides);
+    buildScene(jsonText, builder, overrides);
     return {builder.scene.name, builder.scene.light.type, builder.objects, builder.triangles, builder.gpuBytes()};
+}
+
+SceneCheck checkScene(const std::string& nameOrPath, const std::map<std::string, double>& overrides) {
+    const SceneText text = readSceneText(nameOrPath);
+    return checkSceneText(text.text, text.source, text.baseDir, overrides);
 }
 
 const SceneBudget& sceneBudget() { return processBudget(); }

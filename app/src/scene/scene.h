@@ -150,6 +150,9 @@ struct SceneCheck {
 // generating procedural meshes or objects: throws the SceneError loadScene would throw. Cheap
 // enough to validate every scene of a benchmark sweep before the first frame.
 SceneCheck checkScene(const std::string& nameOrPath, const std::map<std::string, double>& overrides = {});
+// The same for text already in memory (as parseScene).
+SceneCheck checkSceneText(const std::string& jsonText, const std::string& sourceName, const std::filesystem::path& baseDir,
+                          const std::map<std::string, double>& overrides = {});
 std::vector<std::string> builtinSceneNames();
 const char* defaultSceneName();
 
