@@ -180,8 +180,14 @@ TEST(Soak, TenThousandFramesCyclingEveryTechniqueLeaveNothingBehind) {
     for (size_t i = half + 1; i < snapshots.size(); ++i) second += snapshots[i].rssMiB / double(snapshots.size() - 1 - half);
     std::printf("soak: RSS mean %.1f MiB over the first half, %.1f MiB over the second, peak %.1f MiB above warm-up\n", first,
                 second, peakGrowth);
+#if defined(__SANITIZE_ADDRESS__)
+    // AddressSanitizer keeps freed memory in quarantine (256 MiB) and so grows RSS by design:
+    // GL objects and tracked memory are checked above; LeakSanitizer and the Release run see the rest.
+    std::printf("soak: RSS not checked under AddressSanitizer\n");
+#else
     EXPECT_LT(second - first, 6.0) << "RSS grows: " << first << " MiB, then " << second << " MiB";
     EXPECT_LT(peakGrowth, 16.0) << "RSS grew from " << warm.rssMiB << " MiB";
+#endif
 }
 
 TEST(Soak, HundredHotReloadsGrowNoGlObjectsNorTrackedMemory) {
