@@ -336,6 +336,20 @@ TEST(RobustObj, IndicesAreCheckedInSixtyFourBits) {
     EXPECT_MENTIONS(message, "two.obj:3: OBJ parse error: a face needs at least 3 corners");
 }
 
+TEST(RobustObj, TheBudgetIsCheckedWhileReading) {
+    std::string text = "v 0 0 0\nv 1 0 0\nv 0 0 -1\n";
+    for (int i = 0; i < 20; ++i) text += "f 1 2 3\n";
+    SceneBudget budget;
+    budget.triangles = 10;
+    std::string message = sceneErrorOf([&] { parseObj(text, "many.obj", budget); });
+    EXPECT_MENTIONS(message, "many.obj:14: more than 10 triangles, the scene budget; raise it with --budget triangles=N");
+    budget = SceneBudget{};
+    budget.gpuBytes = 100;
+    message = sceneErrorOf([&] { parseObj(text, "big.obj", budget); });
+    EXPECT_MENTIONS(message, "big.obj: 3 vertices and 20 triangles need more than the GPU memory budget");
+    EXPECT_EQ(parseObj(text, "fine.obj").indices.size(), 60u);
+}
+
 TEST(RobustObj, AHundredThousandCornerPolygonIsRefusedAtOnce) {
     std::string text;
     for (int i = 0; i < 100000; ++i) text += "v " + std::to_string(std::cos(i * 1e-4)) + " 0 " + std::to_string(std::sin(i * 1e-4)) + "\n";

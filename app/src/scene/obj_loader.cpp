@@ -18,7 +18,6 @@
 #include <iostream>
 #include <limits>
 #include <string_view>
-#include <unordered_map>
 
 #include "scene/scene.h"
 #include "util/text_file.h"
@@ -26,10 +25,12 @@
 namespace shadowlab {
 namespace {
 
+// Indices are checked to fit 32 bits as they are read; 12 bytes a corner keeps a file's worst
+// case (every two bytes a corner) at six times its size.
 struct Corner {
-    int64_t position = -1;   // 0-based once resolved
-    int64_t uv = -1;         // -1: none
-    int64_t normal = -1;
+    int32_t position = -1;   // 0-based once resolved
+    int32_t uv = -1;         // -1: none
+    int32_t normal = -1;
 };
 
 struct Face {
@@ -40,7 +41,7 @@ struct Face {
 
 class ObjParser {
 public:
-    explicit ObjParser(std::string source) : source_(std::move(source)) {}
+    ObjParser(std::string source, const SceneBudget& budget) : source_(std::move(source)), budget_(budget) {}
 
     [[noreturn]] void fail(const std::string& problem) const {
         throw SceneError(source_ + ":" + std::to_string(line_) + ": " + problem);
@@ -98,7 +99,7 @@ private:
 
     // One index of a corner ("7", "-2"): resolved to 0-based; `count` is how many exist so far
     // (negative indices count back from there). Positive ones are checked at the end of the file.
-    int64_t index(std::string_view word, int64_t count, const char* kind) const {
+    int32_t index(std::string_view word, int64_t count, const char* kind) const {
         int64_t value = 0;
         const auto result = std::from_chars(word.data(), word.data() + word.size(), value);
         if (word.empty() || result.ptr != word.data() + word.size()) {
@@ -113,9 +114,9 @@ private:
                 fail("face refers to " + std::string(kind) + " " + std::to_string(value) + " but only " +
                      std::to_string(count) + " come before it (index out of range)");
             }
-            return count + value;
+            return static_cast<int32_t>(count + value);
         }
-        return value - 1;
+        return static_cast<int32_t>(value - 1);
     }
 
     void parseLine(std::string_view rest) {
@@ -156,6 +157,13 @@ private:
                 if (corners_.size() > size_t(UINT32_MAX)) fail("more face corners than a mesh can index");
             }
             if (face.cornerCount < 3) fail("OBJ parse error: a face needs at least 3 corners");
+            // The budget while reading: the triangles this file adds, before they are stored.
+            triangles_ += face.cornerCount - 2;
+            if (triangles_ > budget_.triangles) {
+                fail("more than " + std::to_string(budget_.triangles) +
+                     " triangles, the scene budget; raise it with --budget triangles=N");
+            }
+            if (3 * triangles_ > uint64_t(UINT32_MAX)) fail("more triangles than a mesh can index (2^32 indices)");
             faces_.push_back(face);
         }
         // Everything else (comments, o, g, s, usemtl, mtllib, l, p, curves) is not needed.
@@ -164,6 +172,8 @@ private:
     void triangulate(const Face& face, std::vector<uint32_t>& triangles) const;
 
     std::string source_;
+    const SceneBudget& budget_;
+    uint64_t triangles_ = 0;
     size_t line_ = 0;
     std::vector<glm::vec3> positions_, normals_;
     std::vector<glm::vec2> uvs_;
@@ -287,35 +297,58 @@ Mesh ObjParser::finish() {
     }
 
     // One vertex per distinct (position, normal, uv) corner. Without usable file normals the normal
-    // index is left out of the key so that generateNormals sees shared corners.
-    struct KeyHash {
-        size_t operator()(const std::array<int64_t, 3>& k) const {
-            return std::hash<int64_t>()(k[0] * 73856093 ^ k[1] * 19349663 ^ k[2] * 83492791);
-        }
+    // index is left out of the key so that generateNormals sees shared corners. Distinct corners
+    // are found by sorting (16 bytes a corner, no hash table), in order of first use.
+    struct Use {
+        std::array<int32_t, 3> key;
+        uint32_t order;   // position in the triangle list
     };
-    std::unordered_map<std::array<int64_t, 3>, uint32_t, KeyHash> vertexOfCorner;
-    Mesh mesh;
+    std::vector<Use> uses;
+    uses.reserve(size_t(triangles_) * 3);
     std::vector<uint32_t> corners;
     for (const Face& face : faces_) {
         corners.clear();
         triangulate(face, corners);
         for (uint32_t k : corners) {
             const Corner& corner = corners_[face.firstCorner + k];
-            const std::array<int64_t, 3> key{corner.position, everyCornerHasNormal ? corner.normal : -1, corner.uv};
-            auto [found, inserted] = vertexOfCorner.try_emplace(key, static_cast<uint32_t>(mesh.vertices.size()));
-            if (inserted) {
-                Vertex vertex{};
-                vertex.position = positions_[size_t(corner.position)];
-                if (everyCornerHasNormal) {
-                    const glm::vec3 normal = normals_[size_t(corner.normal)];
-                    const float length = glm::length(normal);
-                    vertex.normal = length > 0.0f && std::isfinite(length) ? normal / length : glm::vec3(0.0f, 1.0f, 0.0f);
-                }
-                if (corner.uv >= 0) vertex.uv = uvs_[size_t(corner.uv)];
-                mesh.vertices.push_back(vertex);
-            }
-            mesh.indices.push_back(found->second);
+            uses.push_back({{corner.position, everyCornerHasNormal ? corner.normal : -1, corner.uv}, uint32_t(uses.size())});
         }
+    }
+    corners_ = {};   // no longer needed: give the memory back before the mesh is built
+    std::sort(uses.begin(), uses.end(), [](const Use& a, const Use& b) {
+        return a.key != b.key ? a.key < b.key : a.order < b.order;
+    });
+    Mesh mesh;
+    mesh.indices.resize(uses.size());
+    std::vector<std::pair<uint32_t, std::array<int32_t, 3>>> firsts;   // first use of each distinct corner
+    for (size_t i = 0; i < uses.size(); ++i)
+        if (i == 0 || uses[i].key != uses[i - 1].key) firsts.push_back({uses[i].order, uses[i].key});
+    const uint64_t bytes = firsts.size() * sizeof(Vertex) + uses.size() * sizeof(uint32_t);
+    if (bytes > budget_.gpuBytes) {
+        throw SceneError(source_ + ": " + std::to_string(firsts.size()) + " vertices and " + std::to_string(uses.size() / 3) +
+                         " triangles need more than the GPU memory budget; raise it with --budget gpu-mib=N");
+    }
+    std::sort(firsts.begin(), firsts.end());
+    mesh.vertices.reserve(firsts.size());
+    for (const auto& [order, key] : firsts) {
+        Vertex vertex{};
+        vertex.position = positions_[size_t(key[0])];
+        if (everyCornerHasNormal) {
+            const glm::vec3 normal = normals_[size_t(key[1])];
+            const float length = glm::length(normal);
+            vertex.normal = length > 0.0f && std::isfinite(length) ? normal / length : glm::vec3(0.0f, 1.0f, 0.0f);
+        }
+        if (key[2] >= 0) vertex.uv = uvs_[size_t(key[2])];
+        mesh.vertices.push_back(vertex);
+    }
+    // Each use gets the vertex of its key: walk the uses sorted by key, finding each key's vertex
+    // by its first use (firsts is sorted by that order now).
+    for (size_t i = 0; i < uses.size();) {
+        const auto found = std::lower_bound(firsts.begin(), firsts.end(), std::pair(uses[i].order, uses[i].key));
+        const uint32_t vertex = static_cast<uint32_t>(found - firsts.begin());
+        size_t j = i;
+        for (; j < uses.size() && uses[j].key == uses[i].key; ++j) mesh.indices[uses[j].order] = vertex;
+        i = j;
     }
     if (!everyCornerHasNormal) generateNormals(mesh);
     return mesh;
@@ -323,8 +356,8 @@ Mesh ObjParser::finish() {
 
 } // namespace
 
-Mesh parseObj(const std::string& text, const std::string& source) {
-    ObjParser parser(source);
+Mesh parseObj(const std::string& text, const std::string& source, const SceneBudget& budget) {
+    ObjParser parser(source, budget);
     parser.parse(text);
     return parser.finish();
 }
@@ -341,14 +374,22 @@ Mesh loadObj(const std::filesystem::path& path, uint64_t maxFileBytes) {
 void generateNormals(Mesh& mesh) {
     // Vertices at the same position share one normal, so uv seams do not show as creases. The
     // unnormalised cross product is twice the triangle's area: large faces weigh more than slivers.
-    std::map<std::array<float, 3>, uint32_t> groupOfPosition;
+    // Positions are grouped by sorting vertex numbers by position (8 bytes a vertex, no tree).
+    std::vector<uint32_t> byPosition(mesh.vertices.size());
+    for (size_t i = 0; i < byPosition.size(); ++i) byPosition[i] = static_cast<uint32_t>(i);
+    auto key = [&](uint32_t v) {
+        const glm::vec3& p = mesh.vertices[v].position;
+        return std::array<float, 3>{p.x, p.y, p.z};
+    };
+    std::sort(byPosition.begin(), byPosition.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
     std::vector<uint32_t> groupOfVertex(mesh.vertices.size());
-    for (size_t i = 0; i < mesh.vertices.size(); ++i) {
-        const glm::vec3& p = mesh.vertices[i].position;
-        auto found = groupOfPosition.try_emplace({p.x, p.y, p.z}, static_cast<uint32_t>(groupOfPosition.size()));
-        groupOfVertex[i] = found.first->second;
+    uint32_t groups = 0;
+    for (size_t i = 0; i < byPosition.size(); ++i) {
+        if (i > 0 && key(byPosition[i - 1]) < key(byPosition[i])) ++groups;
+        groupOfVertex[byPosition[i]] = groups;
     }
-    std::vector<glm::vec3> sums(groupOfPosition.size(), glm::vec3(0.0f));
+    if (!byPosition.empty()) ++groups;
+    std::vector<glm::vec3> sums(groups, glm::vec3(0.0f));
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
         const uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
         const glm::vec3 areaNormal = glm::cross(mesh.vertices[b].position - mesh.vertices[a].position,

@@ -194,8 +194,9 @@ MeshSize sizeOf(const Mesh& mesh);
 // convex, by ear clipping otherwise, up to kMaxPolygonCorners corners. Only a regular file of at
 // most `maxFileBytes` is read.
 Mesh loadObj(const std::filesystem::path& path, uint64_t maxFileBytes = sceneBudget().fileBytes);
-// The same from text already in memory; `source` names it in errors.
-Mesh parseObj(const std::string& text, const std::string& source);
+// The same from text already in memory; `source` names it in errors. The budget's triangles are
+// checked while reading, its GPU bytes before the vertices are built.
+Mesh parseObj(const std::string& text, const std::string& source, const SceneBudget& budget = sceneBudget());
 void generateNormals(Mesh& mesh);
 
 } // namespace shadowlab
