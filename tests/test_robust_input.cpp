@@ -110,7 +110,7 @@ TEST(RobustJson, NestingDeeperThanTheLimitIsRefusedWithItsPosition) {
     EXPECT_MENTIONS(message, "bad.json:1:");
     EXPECT_MENTIONS(message, "nested deeper than 64");
     // Brackets inside strings do not count.
-    EXPECT_NO_THROW(parseScene(R"({"name": ")" + std::string(500, '[') + R"(", "objects": [{"shape": "box"}]})", "ok.json",
+    EXPECT_NO_THROW(parseScene(R"({"description": ")" + std::string(500, '[') + R"(", "objects": [{"shape": "box"}]})", "ok.json",
                                fs::current_path()));
 }
 
@@ -178,6 +178,15 @@ TEST(RobustScene, TransformsMustStayFiniteInvertibleAndInRange) {
     EXPECT_MENTIONS(parseError(R"({"objects": [{"shape": "box", "translate": [9e8, 0, 0],
                                   "repeat": {"grid": [1000, 1], "spacing": [1e6, 1]}}]})"),
                     "in world space, beyond");
+}
+
+TEST(RobustScene, NamesAreBoundedSinceEveryInstanceCopiesIt) {
+    // A 1 MB name times a million instances would be a terabyte.
+    const std::string longName(1 << 20, 'n');
+    EXPECT_MENTIONS(parseError(R"({"objects": [{"shape": "box", "name": ")" + longName + R"(", "repeat": {"count": 1000000}}]})"),
+                    "objects[0].name: longer than 100 characters (1048576)");
+    EXPECT_MENTIONS(parseError(R"({"description": ")" + std::string(5000, 'd') + R"(", "objects": [{"shape": "box"}]})"),
+                    "description: longer than 4096 characters");
 }
 
 TEST(RobustScene, LightSizesHaveOneRangeForFilesAndOptions) {

@@ -402,7 +402,7 @@ int commandReport(const CommonOptions& common, const std::string& specFile, cons
     std::string error;
     if (!loadBenchSpecs(spec, specs, error)) return fail(error, kExitBadInput);
     std::printf("shadowlab report: sweep %s on %s\n", spec.string().c_str(), glRendererString().c_str());
-    const int code = runReport(app, specs, outDir, error);
+    const int code = runReport(app, specs, outDir, error, lightSizeOption(common));
     if (code) return fail(error, code);
     return 0;
 }

@@ -60,13 +60,14 @@ std::filesystem::path defaultReportSpec(bool softwareRenderer) {
     return dataRoot() / "assets" / "bench" / (softwareRenderer ? "quick.json" : "default.json");
 }
 
-int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesystem::path& outDir, std::string& error) {
+int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesystem::path& outDir, std::string& error,
+              std::optional<double> lightSize) {
     std::error_code ec;
     std::filesystem::create_directories(outDir / "images", ec);
     std::filesystem::create_directories(outDir / "charts", ec);
     // Every spec checked before the first frame of the first one.
     for (size_t i = 0; i < specs.size(); ++i) {
-        if (!checkBenchSpec(specs[i], app.techniques().techniques(), error)) {
+        if (!checkBenchSpec(specs[i], app.techniques().techniques(), error, lightSize)) {
             error = "benchmark spec " + std::to_string(i) + ": " + error;
             return 2;
         }

@@ -38,6 +38,8 @@ using nlohmann::json;
 constexpr float kRadiansPerDegree = glm::pi<float>() / 180.0f;
 constexpr int kMaxInstances = 1'000'000;   // a typo like count=5000000 should fail, not swap
 constexpr int kMaxSegments = 4096;
+constexpr size_t kMaxNameLength = 100;    // object and scene names (shown in lists and copied per instance)
+constexpr size_t kMaxTextLength = 4096;   // descriptions and other strings
 constexpr const char* kShapes = "plane, terrain, box, sphere, cylinder, torus, tree, bumpy, obj";
 // Per object, the renderer's transform buffer holds a model and a normal matrix.
 constexpr uint64_t kGpuBytesPerObject = 2 * sizeof(glm::mat4);
@@ -248,11 +250,15 @@ public:
         return value->get<bool>();
     }
 
-    std::string string(const std::string& key, const std::string& fallback) {
+    std::string string(const std::string& key, const std::string& fallback, size_t maxLength = kMaxTextLength) {
         const json* value = find(key);
         if (!value) return fallback;
         if (!value->is_string()) fail(key, "expected a string, got " + describe(*value));
-        return value->get<std::string>();
+        const std::string& text = value->get_ref<const std::string&>();
+        if (text.size() > maxLength) {
+            fail(key, "longer than " + std::to_string(maxLength) + " characters (" + std::to_string(text.size()) + ")");
+        }
+        return text;
     }
 
     void finish(const std::string& what) const {
@@ -625,7 +631,8 @@ void readObject(const json& node, const std::string& path, size_t ordinal, Scene
     const std::string shape = shapeValue.get<std::string>();
     const MeshRecipe recipe = readShape(fields, shape, builder.baseDir);
 
-    const std::string name = fields.string("name", shape + " " + std::to_string(ordinal));
+    // Bounded: every instance of a repeat block carries a copy.
+    const std::string name = fields.string("name", shape + " " + std::to_string(ordinal), kMaxNameLength);
     const uint32_t material = builder.materialFor(fields);
     const glm::vec3 translate = fields.vec("translate", glm::vec3(0.0f));
     const glm::vec3 rotate = fields.vec("rotate", glm::vec3(0.0f)) * kRadiansPerDegree;
@@ -799,7 +806,7 @@ void buildScene(const std::string& jsonText, SceneBuilder& builder, const std::m
 
     Scene& scene = builder.scene;
     scene.source = sourceName;
-    scene.name = fields.string("name", nameFromSource(sourceName));
+    scene.name = fields.string("name", nameFromSource(sourceName), kMaxNameLength);
     scene.description = fields.string("description", "");
     readParameters(fields.find("parameters"), overrides, builder.context);
     scene.parameters = builder.context.parameters;
