@@ -239,12 +239,17 @@ TEST(RobustBudget, TotalsOverEveryBlockAreCheckedBeforeAllocation) {
     EXPECT_MENTIONS(message, "objects[1]: the scene would draw");
     EXPECT_MENTIONS(message, "more than the budget of 50000000");
 
-    // loadScene stops before generating: one such sphere is over a 64 MiB GPU budget and nothing
-    // of it is made (it would take seconds and a gigabyte).
-    ScopedBudget small("gpu-mib=64");
-    const auto start = std::chrono::steady_clock::now();
-    message = sceneErrorOf([&] { loadScene(spheres.string()); });
+    // loadScene checks the whole scene before generating anything: the first sphere (a gigabyte,
+    // seconds to make) is within the budget, but it is not made, since the second is over it.
+    auto start = std::chrono::steady_clock::now();
+    EXPECT_EQ(sceneErrorOf([&] { loadScene(spheres.string()); }), message);
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.5);
+    start = std::chrono::steady_clock::now();
+    EXPECT_EQ(sceneErrorOf([&] { loadScene(many.string()); }), sceneErrorOf([&] { checkScene(many.string()); }));
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0)
+        << "the first million objects are checked, not made";
+    ScopedBudget small("gpu-mib=64");
+    message = sceneErrorOf([&] { loadScene(spheres.string()); });
     EXPECT_MENTIONS(message, "objects[0]: the scene's geometry would need about");
     EXPECT_MENTIONS(message, "more than the budget of 64.0 MiB");
 }

@@ -489,7 +489,9 @@ struct SceneBuilder {
     std::filesystem::path baseDir;
     Scene scene;
     SceneBudget budget;
-    bool checkOnly = false;                       // checkScene: sizes and checks only, no meshes, no objects
+    bool checkOnly = false;                       // the first pass: sizes and checks only, no meshes, no objects
+    // OBJ meshes read by the checking pass, handed to the building pass (files are read once).
+    std::map<std::string, Mesh>* objCache = nullptr;
     std::map<std::string, uint32_t> materialIndex;
     std::map<std::string, uint32_t> meshIndex;   // by MeshRecipe::key
     std::vector<MeshSize> meshSizes;              // by mesh index, also when checkOnly
@@ -536,7 +538,14 @@ struct SceneBuilder {
         const auto [found, inserted] = meshIndex.try_emplace(recipe.key, static_cast<uint32_t>(meshSizes.size()));
         if (!inserted) return found->second;
         Mesh mesh;
-        if (!recipe.size) mesh = recipe.make();
+        if (!recipe.size) {
+            if (objCache && objCache->count(recipe.key)) {
+                mesh = std::move(objCache->at(recipe.key));
+                objCache->erase(recipe.key);
+            } else {
+                mesh = recipe.make();
+            }
+        }
         const MeshSize size = recipe.size ? *recipe.size : sizeOf(mesh);
         storedVertices += size.vertices;
         storedIndices += size.indices;
@@ -545,6 +554,8 @@ struct SceneBuilder {
         if (!checkOnly) {
             if (recipe.size) mesh = recipe.make();
             scene.meshes.push_back(std::move(mesh));
+        } else if (!recipe.size && objCache) {
+            objCache->emplace(recipe.key, std::move(mesh));
         }
         return found->second;
     }
@@ -798,9 +809,8 @@ std::string nameFromSource(const std::string& source) {
     return std::filesystem::path(source).stem().string();
 }
 
-void buildScene(const std::string& jsonText, SceneBuilder& builder, const std::map<std::string, double>& overrides) {
+void buildScene(const json& root, SceneBuilder& builder, const std::map<std::string, double>& overrides) {
     const std::string& sourceName = builder.context.source;
-    const json root = parseJson(jsonText, sourceName);
     if (!root.is_object()) builder.context.fail("", "a scene is one JSON object, got " + describe(root));
     FieldReader fields(root, "", builder.context);
 
@@ -857,11 +867,26 @@ SceneText readSceneText(const std::string& nameOrPath) {
 
 Scene parseScene(const std::string& jsonText, const std::string& sourceName, const std::filesystem::path& baseDir,
                  const std::map<std::string, double>& overrides) {
+    const json root = parseJson(jsonText, sourceName);
+    // Two passes over the same JSON: the first checks every field and the whole budget without
+    // generating a mesh or an object, so a scene over the budget allocates nothing; the second,
+    // which cannot fail on anything the first checked, builds it.
+    std::map<std::string, Mesh> objMeshes;
+    {
+        SceneBuilder check;
+        check.context.source = sourceName;
+        check.baseDir = baseDir;
+        check.budget = sceneBudget();
+        check.checkOnly = true;
+        check.objCache = &objMeshes;
+        buildScene(root, check, overrides);
+    }
     SceneBuilder builder;
     builder.context.source = sourceName;
     builder.baseDir = baseDir;
     builder.budget = sceneBudget();
-    buildScene(jsonText, builder, overrides);
+    builder.objCache = &objMeshes;
+    buildScene(root, builder, overrides);
     return std::move(builder.scene);
 }
 
@@ -877,7 +902,7 @@ SceneCheck checkSceneText(const std::string& jsonText, const std::string& source
     builder.baseDir = baseDir;
     builder.budget = sceneBudget();
     builder.checkOnly = true;
-    buildScene(jsonText, builder, overrides);
+    buildScene(parseJson(jsonText, sourceName), builder, overrides);
     return {builder.scene.name, builder.scene.light.type, builder.objects, builder.triangles, builder.gpuBytes()};
 }
 
