@@ -221,33 +221,32 @@ TEST(RobustBudget, ParsesItsOptionStrictly) {
 }
 
 TEST(RobustBudget, TotalsOverEveryBlockAreCheckedBeforeAllocation) {
-    // 30 blocks of a million instances: in range one by one, refused at the second (default budget).
+    // 30 blocks each in range, refused at the second: the issue's 30 x 1,000,000 is in
+    // cli_errors.sh; here a budget of 10,000 keeps the test quick under the sanitizers.
+    ScopedBudget budget("objects=10000");
     std::string blocks;
-    for (int i = 0; i < 30; ++i) blocks += std::string(i ? "," : "") + R"({"shape": "box", "repeat": {"count": 1000000}})";
+    for (int i = 0; i < 30; ++i) blocks += std::string(i ? "," : "") + R"({"shape": "box", "repeat": {"count": 10000}})";
     TempDir dir;
     const fs::path many = dir.write("many.json", R"({"objects": [)" + blocks + "]}");
     std::string message = sceneErrorOf([&] { checkScene(many.string()); });
-    EXPECT_MENTIONS(message, "objects[1].repeat: the scene would have 2000000 objects, more than the budget of 1000000");
+    EXPECT_MENTIONS(message, "objects[1].repeat: the scene would have 20000 objects, more than the budget of 10000");
     EXPECT_MENTIONS(message, "--budget objects=N");
+    EXPECT_EQ(sceneErrorOf([&] { loadScene(many.string()); }), message) << "loadScene refuses it the same way";
 
-    // Three 4096 x 4096 spheres: each in range, the second over the triangle budget.
+    // Three 4096 x 4096 spheres, each in range: the second is over the default triangle budget.
     const fs::path spheres = dir.write("spheres.json", R"({"objects": [
         {"shape": "sphere", "segments": 4096, "rings": 4096},
         {"shape": "sphere", "segments": 4096, "rings": 4095},
         {"shape": "sphere", "segments": 4096, "rings": 4094}]})");
+    ScopedBudget defaults("objects=1000000");
     message = sceneErrorOf([&] { checkScene(spheres.string()); });
     EXPECT_MENTIONS(message, "objects[1]: the scene would draw");
     EXPECT_MENTIONS(message, "more than the budget of 50000000");
-
     // loadScene checks the whole scene before generating anything: the first sphere (a gigabyte,
-    // seconds to make) is within the budget, but it is not made, since the second is over it.
-    auto start = std::chrono::steady_clock::now();
+    // seconds to make) is within the budget but not made, since the second is over it.
+    const auto start = std::chrono::steady_clock::now();
     EXPECT_EQ(sceneErrorOf([&] { loadScene(spheres.string()); }), message);
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.5);
-    start = std::chrono::steady_clock::now();
-    EXPECT_EQ(sceneErrorOf([&] { loadScene(many.string()); }), sceneErrorOf([&] { checkScene(many.string()); }));
-    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0)
-        << "the first million objects are checked, not made";
     ScopedBudget small("gpu-mib=64");
     message = sceneErrorOf([&] { loadScene(spheres.string()); });
     EXPECT_MENTIONS(message, "objects[0]: the scene's geometry would need about");
