@@ -36,5 +36,134 @@ expect 0 "wrote" -- render --backend osmesa -t shadowmap --view "shadow map" --s
 [ -s "$tmp/map.png" ] || { echo "FAIL: no PNG written"; failures=$((failures + 1)); }
 expect 0 '"id": "shadowmap"' -- list --json
 
+# --- issue 13: every bad input is a clear error (exit 2 naming the file or option), never a
+# crash, a hang or an exhausted machine. Each run is bounded by `timeout`, so a hang fails.
+build=$(dirname "$shadowlab")
+expect_bounded() {   # like expect, but a run over 60 s is a failure (exit 124)
+    local code=$1 pattern=$2
+    shift 3
+    local output actual
+    output=$(timeout 60 "$shadowlab" "$@" 2>&1)
+    actual=$?
+    if [ "$actual" != "$code" ] || ! grep -q -- "$pattern" <<<"$output"; then
+        echo "FAIL: shadowlab $* -> exit $actual (want $code), output:"
+        echo "$output" | sed 's/^/    /'
+        failures=$((failures + 1))
+    else
+        echo "ok: shadowlab $* -> $code, '$pattern'"
+    fi
+}
+render=(render --backend osmesa --size 64x48 --frames 1 --out "$tmp/a.png")
+
+# JSON numbers, floats as stored, non-finite light
+echo '{"objects": [{"shape": "box", "size": [1e400, 1, 1]}]}' > "$tmp/e400.json"
+expect_bounded 2 "e400.json: JSON error: number overflow parsing '1e400'" -- "${render[@]}" --scene "$tmp/e400.json"
+echo '{"objects": [{"shape": "box", "size": [1e300, 1, 1]}]}' > "$tmp/e300.json"
+expect_bounded 2 "e300.json: objects\[0\].size\[0\]: too large for single precision" -- "${render[@]}" --scene "$tmp/e300.json"
+echo '{"objects": [{"shape": "sphere", "radius": 1e-300}]}' > "$tmp/em300.json"
+expect_bounded 2 "em300.json: objects\[0\].radius: too small" -- "${render[@]}" --scene "$tmp/em300.json"
+echo '{"light": {"type": "point", "position": [0, 1e300, 0], "size": 0.5}, "objects": [{"shape": "box"}]}' > "$tmp/inflight.json"
+expect_bounded 2 "light.position\[1\]: too large" -- eval --backend osmesa --size 64x48 --frames 1 --scene "$tmp/inflight.json"
+echo '{"light": {"type": "point", "position": [0, 5, 0], "size": 1e300}, "objects": [{"shape": "box"}]}' > "$tmp/infsize.json"
+expect_bounded 2 "light.size: too large" -- "${render[@]}" --view reference --scene "$tmp/infsize.json"
+expect_bounded 2 "\[json.exception\|number overflow" -- bench --backend osmesa --spec "$tmp/e400.json" --out "$tmp/b.csv"
+
+# Files that are not regular: a FIFO would block forever, /dev/zero never ends
+mkfifo "$tmp/fifo.json" "$tmp/fifo.obj" "$tmp/fifo.mtl"
+expect_bounded 2 "fifo.json: cannot read scene file: a FIFO, not a regular file" -- "${render[@]}" --scene "$tmp/fifo.json"
+expect_bounded 2 "/dev/zero: cannot read scene file: a character device" -- "${render[@]}" --scene /dev/zero
+expect_bounded 2 "fifo.json: cannot read benchmark spec: a FIFO" -- bench --backend osmesa --spec "$tmp/fifo.json" --out "$tmp/b.csv"
+echo '{"objects": [{"shape": "obj", "file": "fifo.obj"}]}' > "$tmp/fifo-obj.json"
+expect_bounded 2 "objects\[0\].file: .*fifo.obj: cannot read OBJ file: a FIFO" -- "${render[@]}" --scene "$tmp/fifo-obj.json"
+
+# OBJ: material libraries are never opened; indices are checked in 64 bits
+printf 'mtllib /dev/zero\nmtllib fifo.mtl\nv 0 0 0\nv 1 0 0\nv 0 0 -1\nf 1 2 3\n' > "$tmp/mtl.obj"
+echo '{"objects": [{"shape": "plane"}, {"shape": "obj", "file": "mtl.obj"}]}' > "$tmp/mtl.json"
+expect_bounded 0 "wrote" -- "${render[@]}" --scene "$tmp/mtl.json"
+printf 'v 0 0 0\nv 1 0 0\nv 0 0 -1\nf 1 2 4294967297\n' > "$tmp/wrap.obj"
+echo '{"objects": [{"shape": "obj", "file": "wrap.obj"}]}' > "$tmp/wrap.json"
+expect_bounded 2 "wrap.obj:4: face refers to vertex 4294967297 (index out of range)" -- "${render[@]}" --scene "$tmp/wrap.json"
+
+# The budget: totals over every block, checked before anything is generated; --budget changes it
+{ printf '{"objects": ['; for i in $(seq 30); do [ "$i" = 1 ] || printf ','; printf '{"shape": "box", "repeat": {"count": 1000000}}'; done; echo ']}'; } > "$tmp/many.json"
+expect_bounded 2 "objects\[1\].repeat: the scene would have 2000000 objects, more than the budget of 1000000" -- "${render[@]}" --scene "$tmp/many.json"
+echo '{"objects": [{"shape": "sphere", "segments": 4096, "rings": 4096}, {"shape": "sphere", "segments": 4096, "rings": 4095}, {"shape": "sphere", "segments": 4096, "rings": 4094}]}' > "$tmp/spheres.json"
+expect_bounded 2 "objects\[1\]: the scene would draw .* triangles per frame, more than the budget" -- "${render[@]}" --scene "$tmp/spheres.json"
+expect_bounded 2 "more than the budget of 10; raise it with --budget objects=N" -- "${render[@]}" --scene spheres --budget objects=10
+expect_bounded 0 "wrote" -- "${render[@]}" --scene spheres --budget objects=100,gpu-mib=512
+expect_bounded 2 "--budget 'objects=lots'" -- "${render[@]}" --budget objects=lots
+expect_bounded 2 "render targets .* would need more than the GPU memory budget" -- render --backend osmesa --size 16384x16384 --out "$tmp/a.png"
+
+# bench: the whole command checked before the first frame
+bench=(bench --backend osmesa --size 64x48 --frames 1 --warmup 0 --out "$tmp/b.csv")
+expect_bounded 2 "--sweep light.size=...: 'abc' is not a number" -- "${bench[@]}" --sweep light.size=abc
+expect_bounded 2 "--sweep resolution=...: shadowmap: parameter 'resolution': 'abc' is not a number" -- "${bench[@]}" -t shadowmap --techniques shadowmap --sweep resolution=256,abc --depth-floor
+expect_bounded 2 "--reference 'sofft': expected hard, soft, both or auto" -- "${bench[@]}" --accuracy --reference sofft
+expect_bounded 2 "--reference 'bogus'" -- "${bench[@]}" --accuracy --reference bogus
+expect_bounded 2 "--samples 0: expected 1 to 4096" -- "${bench[@]}" --accuracy --samples 0
+expect_bounded 2 "--size '64x64junk': expected WIDTHxHEIGHT" -- "${bench[@]}" --size 64x64junk
+expect_bounded 2 "--scenes 'nowhere': nowhere: cannot open scene file" -- "${bench[@]}" --scenes cube,contact,nowhere
+expect_bounded 2 "--techniques: no technique 'pfc'" -- "${bench[@]}" --techniques shadowmap,pfc
+expect_bounded 2 "--sweep scene.floating=...: '1x' is not a number" -- "${bench[@]}" --scenes spheres --sweep scene.floating=4,1x
+expect_bounded 2 "--sweep light.size=...: '60' on scene 'cube'" -- "${bench[@]}" --sweep light.size=1,60
+rm -f "$tmp/b.csv"
+expect_bounded 2 "--scenes 'nowhere'" -- "${bench[@]}" --techniques none --scenes cube,nowhere
+[ ! -e "$tmp/b.csv" ] || { echo "FAIL: a row was measured before the bad scene was found"; failures=$((failures + 1)); }
+
+# --light-size: one range with scene files (0 to 45 degrees for directional lights)
+for size in -1 nan -inf inf abc; do
+    expect_bounded 2 "--light-size '$size': expected a finite number >= 0" -- "${render[@]}" --light-size="$size"
+done
+expect_bounded 2 "--light-size 1000: a directional light's size is its angular radius in degrees, 0 to 45" -- "${render[@]}" --light-size 1000
+expect_bounded 0 "wrote" -- "${render[@]}" --light-size 2
+expect_bounded 2 "--light-size on scene 'cube'" -- "${bench[@]}" --techniques none --light-size 1000
+expect_bounded 2 "--light-dir '1e39,0,0'" -- "${render[@]}" --light-dir 1e39,0,0
+
+# What the device supports (llvmpipe: 4 samples); write errors
+expect_bounded 2 "--msaa 8: this device supports MSAA up to" -- "${render[@]}" --msaa 8
+expect_bounded 1 "/dev/full: write failed (No space left on device)" -- render --backend osmesa --size 64x48 --frames 1 --out /dev/full
+expect_bounded 1 "/dev/full: write failed" -- bench --backend osmesa --size 64x48 --frames 1 --warmup 0 --techniques none --out /dev/full
+output=$("$shadowlab" list --json 2>&1 >/dev/full); code=$?
+if [ "$code" = 1 ] && grep -q "standard output: write failed" <<<"$output"; then echo "ok: list --json > /dev/full -> 1"
+else echo "FAIL: list --json > /dev/full -> exit $code: $output"; failures=$((failures + 1)); fi
+
+# Broken plugins: list never crashes and names each file; duplicate ids name both; create() null
+mkdir -p "$tmp/plugins"
+cp "$build"/test_plugins/bad_*.so "$build"/test_plugins/reload_v1.so "$tmp/plugins/"
+export SHADOWLAB_PLUGIN_DIR="$tmp/plugins"
+expect_bounded 0 "bad_huge_param_count.so: invalid descriptor: paramCount 100000000 is more than 256" -- list
+expect_bounded 0 "claimed by 2 libraries: .*bad_duplicate_a.so, .*bad_duplicate_b.so" -- list --json
+expect_bounded 1 "bad_create_null.so: create() returned nothing" -- "${render[@]}" -t create_null
+unset SHADOWLAB_PLUGIN_DIR
+
+# The scratch folder: gone after a run, after SIGINT and SIGTERM; stale ones of dead processes cleaned
+mkdir -p "$tmp/t/shadowlab-999999999" && touch "$tmp/t/shadowlab-999999999/old.so" && touch -d '-1 hour' "$tmp/t/shadowlab-999999999"
+TMPDIR="$tmp/t" "$shadowlab" list >/dev/null 2>&1
+left=$(ls "$tmp/t")
+if [ -z "$left" ]; then echo "ok: no scratch folder left after list, the stale one removed"
+else echo "FAIL: left in TMPDIR after list: $left"; failures=$((failures + 1)); fi
+for signal in INT TERM; do
+    mkdir -p "$tmp/s$signal"
+    result=$(TMPDIR="$tmp/s$signal" python3 - "$shadowlab" "$tmp/s$signal" "$signal" <<'PY'
+import glob, os, signal, subprocess, sys, time
+shadowlab, tmp, name = sys.argv[1:4]
+signal.signal(signal.SIGINT, signal.SIG_DFL)   # a background shell would hand SIGINT down ignored
+child = subprocess.Popen([shadowlab, "bench", "--backend", "osmesa", "--techniques", "shadowmap", "--size", "64x48",
+                          "--frames", "100000", "--out", os.path.join(tmp, "b.csv")],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+deadline = time.time() + 30
+while time.time() < deadline and not glob.glob(os.path.join(tmp, "shadowlab-*", "*.so")):
+    time.sleep(0.05)
+time.sleep(0.3)
+child.send_signal(getattr(signal, "SIG" + name))
+code = child.wait(timeout=30)
+print(code, len(glob.glob(os.path.join(tmp, "shadowlab-*"))))
+PY
+)
+    expected="-$( [ $signal = INT ] && echo 2 || echo 15) 0"
+    if [ "$result" = "$expected" ]; then echo "ok: SIG$signal during a run -> killed by it, scratch folder removed"
+    else echo "FAIL: SIG$signal: got '$result' (exit status, folders left), want '$expected'"; failures=$((failures + 1)); fi
+done
+
 [ $failures = 0 ] || { echo "$failures failure(s)"; exit 1; }
 echo "all CLI error checks passed"

@@ -94,16 +94,3 @@ TEST(Params, RemapKeepsValuesByIdAndClampsToNewRanges) {
     store.remap(before, after);
     EXPECT_EQ(store.values(after), (std::vector<double>{4096, 3, 2, 3}));
 }
-
-TEST(Params, DescriptorValidation) {
-    auto info = sampleTechnique();
-    EXPECT_EQ(validateDescriptor(info), "");
-    info.params[1].defaultValue = 9;
-    EXPECT_NE(validateDescriptor(info).find("bias"), std::string::npos);
-    info = sampleTechnique();
-    info.params.push_back(info.params[0]);
-    EXPECT_NE(validateDescriptor(info).find("declared twice"), std::string::npos);
-    info = sampleTechnique();
-    info.params[3].enumLabels.pop_back();
-    EXPECT_NE(validateDescriptor(info).find("enum labels"), std::string::npos);
-}

@@ -14,6 +14,7 @@
 #include "render/light_space.h"
 #include "shadowlab/kit/depth_map_shared.h"
 #include "ui/ui.h"
+#include "util/gl_limits.h"
 #include "util/log.h"
 #include "util/paths.h"
 
@@ -55,7 +56,14 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
     renderer_ = std::make_unique<Renderer>(*shaders_);
     if (!renderer_->init(error)) return false;
     const glm::ivec2 size = windowed ? backend_->framebufferSize() : options.size;
-    if (!renderer_->resize(size, options.msaaSamples, error)) return false;
+    if (!checkRenderTargets(size, options.msaaSamples, sceneGeometryBytes(*scene_), error)) {
+        badInput = true;   // more than the device or the budget allows: say what it supports
+        return false;
+    }
+    if (!renderer_->resize(size, options.msaaSamples, error)) {
+        error += " (" + describeRenderLimits() + ")";
+        return false;
+    }
     renderer_->setScene(*scene_);
     camera_.reset(scene_->camera);
     light_ = scene_->light;
@@ -242,6 +250,7 @@ bool App::measure(const std::string& technique, int warmupFrames, int frames, Me
 }
 
 bool App::setRenderSize(glm::ivec2 size, std::string& error) {
+    if (!checkRenderTargets(size, renderer_->msaaSamples(), sceneGeometryBytes(*scene_), error)) return false;
     return renderer_->resize(size, renderer_->msaaSamples(), error);
 }
 

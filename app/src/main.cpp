@@ -4,6 +4,8 @@
 //   shadowlab list [--json]   techniques and their parameters (no GL needed)
 //   shadowlab render ...      one frame headless to a PNG
 // Exit codes: 0 success, 1 failure of the machine (no GL, ...), 2 bad input (with a message).
+// Every input is checked before the first frame; whatever still escapes as an exception is
+// reported by main()'s last-resort handler, never by std::terminate.
 #include <algorithm>
 #include <cmath>
 #include <chrono>
@@ -20,8 +22,10 @@
 #include "bench/bench.h"
 #include "bench/report.h"
 #include "groundtruth/reference_technique.h"
+#include "util/gl_limits.h"
 #include "util/log.h"
 #include "util/paths.h"
+#include "util/text_file.h"
 
 using namespace shadowlab;
 
@@ -38,37 +42,41 @@ struct CommonOptions {
     std::string size = "1280x720";
     std::vector<std::string> sets;
     std::string lightDirection;
-    float lightSize = -1.0f;
+    std::string lightSize;      // text: checked against the scene's light type once it is known
     int msaa = 0;
+    std::string budget;
     bool quiet = false;
 };
 
-bool parseSize(const std::string& text, glm::ivec2& size, std::string& error) {
-    int w = 0, h = 0;
-    char x = 0, rest = 0;
-    std::istringstream in(text);
-    if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> rest) || w < 16 || h < 16 || w > 16384 || h > 16384) {
-        error = "--size '" + text + "': expected WIDTHxHEIGHT between 16 and 16384, e.g. 1280x720";
+// Three finite numbers "x,y,z", not all zero, each within +-kMaxWorldCoordinate.
+bool parseVec3(const std::string& text, glm::vec3& v, std::string& error) {
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
+    bool valid = parts.size() == 3 && text.back() != ',';
+    for (size_t i = 0; valid && i < 3; ++i) {
+        const auto number = parseNumberText(parts[i]);
+        valid = number && std::abs(*number) <= kMaxWorldCoordinate;
+        if (valid) v[glm::length_t(i)] = static_cast<float>(*number);
+    }
+    if (!valid || !(glm::length(glm::dvec3(v)) > 1e-12)) {
+        error = "--light-dir '" + text + "': expected three finite numbers x,y,z, not all zero";
         return false;
     }
-    size = {w, h};
     return true;
 }
 
-bool parseVec3(const std::string& text, glm::vec3& v, std::string& error) {
-    std::istringstream in(text);
-    char c1 = 0, c2 = 0, rest = 0;
-    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || (in >> rest) || glm::length(v) == 0.0f) {
-        error = "--light-dir '" + text + "': expected three numbers x,y,z, not all zero";
-        return false;
-    }
-    return true;
+std::optional<double> lightSizeOption(const CommonOptions& common) {
+    if (common.lightSize.empty()) return std::nullopt;
+    return parseNumberText(common.lightSize);
 }
 
 bool buildOptions(const CommonOptions& common, AppOptions& options, std::string& error) {
     options.scene = common.scene;
     options.msaaSamples = common.msaa;
     if (!parseSize(common.size, options.size, error)) return false;
+    // The budget part of the render-target check needs no GL: before a context or buffer exists.
+    if (error = renderTargetBudgetProblem(options.size, options.msaaSamples, 0); !error.empty()) return false;
     if (!common.backend.empty()) {
         options.backend = parseBackend(common.backend);
         if (!options.backend) {
@@ -81,19 +89,23 @@ bool buildOptions(const CommonOptions& common, AppOptions& options, std::string&
         if (!parseVec3(common.lightDirection, dir, error)) return false;
         options.lightDirection = dir;
     }
-    if (common.lightSize >= 0.0f) options.lightSize = common.lightSize;
+    if (!common.lightSize.empty()) {
+        const auto size = lightSizeOption(common);
+        if (!size || *size < 0.0) {
+            error = "--light-size '" + common.lightSize + "': expected a finite number >= 0 (degrees for directional "
+                    "lights, 0 to 45; world units for spot and point lights)";
+            return false;
+        }
+        options.lightSize = static_cast<float>(*size);
+    }
     for (const auto& text : common.sceneParams) {
         const auto equals = text.find('=');
-        try {
-            if (equals == std::string::npos) throw std::invalid_argument("no =");
-            size_t used = 0;
-            const double value = std::stod(text.substr(equals + 1), &used);
-            if (used != text.size() - equals - 1) throw std::invalid_argument("trailing");
-            options.sceneParameters[text.substr(0, equals)] = value;
-        } catch (const std::exception&) {
+        const auto value = equals == std::string::npos ? std::nullopt : parseNumberText(text.substr(equals + 1));
+        if (equals == 0 || !value) {
             error = "--scene-param '" + text + "': expected name=number";
             return false;
         }
+        options.sceneParameters[text.substr(0, equals)] = *value;
     }
     return true;
 }
@@ -108,6 +120,9 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--backend", o.backend, "glfw | egl | osmesa (default: glfw with a display, else egl)")->group("Output");
     cmd.add_option("--size", o.size, "render size WIDTHxHEIGHT (default 1280x720)")->group("Output");
     cmd.add_option("--msaa", o.msaa, "MSAA samples of the main pass (0 = off)")->check(CLI::IsMember({0, 2, 4, 8}))->group("Output");
+    cmd.add_option("--budget", o.budget,
+                   "raise or lower the scene budget: objects=N,triangles=N,gpu-mib=N,file-mib=N (docs/scene-format.md, Limits)")
+        ->group("Scene");
     cmd.add_flag("--quiet,-q", o.quiet, "only warnings and errors on stderr");
 }
 
@@ -125,6 +140,11 @@ int startApp(App& app, const CommonOptions& common, bool windowed) {
     if (!windowed && options.backend == BackendKind::Glfw) windowed = true;
     bool badInput = false;
     if (!app.init(options, windowed, error, badInput)) return fail(error, badInput ? kExitBadInput : kExitFailure);
+    // The one range for --light-size and scene files, which depends on the scene's light.
+    if (options.lightSize) {
+        if (const std::string problem = lightSizeProblem(app.scene().light.type, *options.lightSize); !problem.empty())
+            return fail("--light-size " + common.lightSize + ": " + problem, kExitBadInput);
+    }
     return 0;
 }
 
@@ -295,35 +315,27 @@ int commandEval(const CommonOptions& common, const std::string& reference, int s
     return 0;
 }
 
-// Loads a spec file holding one spec object or an array of them (run one after the other).
-bool loadSpecs(const std::filesystem::path& file, std::vector<BenchSpec>& specs, std::string& error) {
-    std::ifstream in(file);
-    if (!in) {
-        error = file.string() + ": cannot open benchmark spec";
-        return false;
-    }
-    nlohmann::json json;
-    try {
-        json = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-        error = file.string() + ": JSON syntax error: " + e.what();
-        return false;
-    }
-    if (!json.is_array()) json = nlohmann::json::array({json});
-    for (size_t i = 0; i < json.size(); ++i) {
-        BenchSpec spec;
-        if (!parseBenchSpec(json[i], spec, error)) {
-            error = file.string() + ": spec " + std::to_string(i) + ": " + error;
-            return false;
-        }
-        specs.push_back(spec);
-    }
-    return true;
-}
-
 int commandBench(const CommonOptions& common, std::vector<BenchSpec> specs, const std::string& out) {
+    // Everything checked before a context exists or a frame is drawn: techniques from their
+    // descriptors (no GL), scenes with checkScene. The device's limits come right after.
+    {
+        PluginScan scan = scanPlugins(pluginDir());
+        scan.techniques.push_back(copyDescriptor(referenceDescriptor(), {}));
+        std::string error;
+        for (size_t i = 0; i < specs.size(); ++i) {
+            if (!checkBenchSpec(specs[i], scan.techniques, error, lightSizeOption(common))) {
+                return fail(specs.size() > 1 ? "benchmark spec " + std::to_string(i) + ": " + error : error, kExitBadInput);
+            }
+        }
+    }
     App app;
     if (int code = startApp(app, common, false)) return code;
+    for (const BenchSpec& spec : specs) {
+        for (const glm::ivec2 size : spec.sizes) {
+            std::string error;
+            if (!checkRenderTargets(size, app.renderer().msaaSamples(), 0, error)) return fail(error, kExitBadInput);
+        }
+    }
     std::vector<nlohmann::json> rows;
     std::string error;
     // The file is rewritten after every row, so a run cut short keeps what it measured.
@@ -388,16 +400,14 @@ int commandReport(const CommonOptions& common, const std::string& specFile, cons
     const std::filesystem::path spec = specFile.empty() ? defaultReportSpec(software) : std::filesystem::path(specFile);
     std::vector<BenchSpec> specs;
     std::string error;
-    if (!loadSpecs(spec, specs, error)) return fail(error, kExitBadInput);
+    if (!loadBenchSpecs(spec, specs, error)) return fail(error, kExitBadInput);
     std::printf("shadowlab report: sweep %s on %s\n", spec.string().c_str(), glRendererString().c_str());
-    const int code = runReport(app, specs, outDir, error);
+    const int code = runReport(app, specs, outDir, error, lightSizeOption(common));
     if (code) return fail(error, code);
     return 0;
 }
 
-} // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     CLI::App cli{"shadowlab: real-time shadow techniques as plugins, measured for speed and accuracy"};
     cli.fallthrough();
     cli.require_subcommand(0, 1);
@@ -440,8 +450,10 @@ int main(int argc, char** argv) {
     bench->add_option("--frames", benchSpec.frames, "timed frames per combination (default 200)")->check(CLI::Range(1, 100000));
     bench->add_option("--warmup", benchSpec.warmupFrames, "warm-up frames (default 20)")->check(CLI::Range(0, 100000));
     bench->add_flag("--accuracy", benchSpec.accuracy, "add the ground-truth metrics of each combination's last frame");
-    bench->add_option("--reference", benchSpec.reference, "with --accuracy: hard | soft | both | auto");
-    bench->add_option("--samples", benchSpec.referenceSamples, "soft reference rays per pixel (default 64)");
+    std::string benchReference = "auto";
+    int benchSamples = 64;
+    bench->add_option("--reference", benchReference, "with --accuracy: hard | soft | both | auto");
+    bench->add_option("--samples", benchSamples, "soft reference rays per pixel (default 64)");
     bench->add_flag("--depth-floor", benchSpec.depthFloor, "add a bare depth-only pass per shadow-map resolution");
     bench->add_option("--spec", benchSpecFile, "JSON spec (one object or an array); command-line lists are ignored then");
     bench->add_option("--out,-o", benchOut, "results file: .csv or .json")->required();
@@ -469,6 +481,12 @@ int main(int argc, char** argv) {
         const int code = cli.exit(e);
         return code == 0 ? 0 : kExitBadInput;
     }
+    if (!common.budget.empty()) {
+        SceneBudget budget = sceneBudget();
+        std::string error;
+        if (!parseSceneBudget(common.budget, budget, error)) return fail(error, kExitBadInput);
+        setSceneBudget(budget);
+    }
 
     if (*list) return commandList(listJson);
     if (*render) return commandRender(common, renderOut, renderView, renderFrames, reference, referenceSamples);
@@ -476,8 +494,11 @@ int main(int argc, char** argv) {
         std::vector<BenchSpec> specs;
         std::string error;
         if (!benchSpecFile.empty()) {
-            if (!loadSpecs(benchSpecFile, specs, error)) return fail(error, kExitBadInput);
+            if (!loadBenchSpecs(benchSpecFile, specs, error)) return fail(error, kExitBadInput);
         } else {
+            benchSpec.fromCommandLine = true;
+            benchSpec.reference = benchReference;
+            benchSpec.referenceSamples = benchSamples;
             auto split = [](const std::string& text) {
                 std::vector<std::string> items;
                 std::stringstream in(text);
@@ -493,7 +514,7 @@ int main(int argc, char** argv) {
             if (!benchSizes.empty()) benchSpec.sizes.clear();
             for (const auto& text : benchSizes) {
                 glm::ivec2 size;
-                if (!parseSize(text, size, error)) return fail(error, kExitBadInput);
+                if (!parseSize(text, size, error, "--size")) return fail(error, kExitBadInput);
                 benchSpec.sizes.push_back(size);
             }
             benchSpec.base = common.sets;
@@ -518,4 +539,34 @@ int main(int argc, char** argv) {
         return fail("--compare '" + compareWith + "': no such technique", kExitBadInput);
     if (windowFrames > 0) return app.runInteractive(technique, windowFrames, screenshot, false, compareWith);
     return app.runInteractive(technique, smokeFrames, screenshot, true, compareWith);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    // The last resort: every input is checked where it is read, but an exception that still
+    // escapes is reported as an error naming what it says, never std::terminate (exit 134).
+    int code = 0;
+    try {
+        code = run(argc, argv);
+    } catch (const SceneError& e) {
+        logError(e.what());
+        code = kExitBadInput;
+    } catch (const std::bad_alloc&) {
+        logError("out of memory (lower the scene or output size, or the --budget; docs/scene-format.md, \"Limits\")");
+        code = kExitFailure;
+    } catch (const std::exception& e) {
+        logError(std::string("unexpected error: ") + e.what());
+        code = kExitBadInput;
+    } catch (...) {
+        logError("unexpected error (an exception of unknown type)");
+        code = kExitBadInput;
+    }
+    // Output lost to a full disk or /dev/full is a failure, not a success.
+    std::string error;
+    if (!flushStandardOutput(error)) {
+        std::fprintf(stderr, "shadowlab: %s\n", error.c_str());
+        if (code == 0) code = kExitFailure;
+    }
+    return code;
 }

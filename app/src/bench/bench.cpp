@@ -4,13 +4,13 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
-#include <fstream>
 #include <functional>
 #include <set>
 #include <sstream>
 
 #include "app.h"
 #include "util/log.h"
+#include "util/text_file.h"
 
 namespace shadowlab {
 
@@ -18,44 +18,10 @@ extern const char* const kBuildCommit;
 
 namespace {
 
-using Setting = std::pair<std::string, std::string>;
-using SettingList = std::vector<std::pair<std::string, std::vector<std::string>>>;
-
-bool isSceneKey(const std::string& key) { return key.rfind("scene.", 0) == 0; }
-bool isLightKey(const std::string& key) { return key == "light.size"; }
-
-// The parameter id `key` names for `info`: "resolution" if it declares it, "pcf.kernel" for pcf.
-std::string paramFor(const TechniqueInfo& info, const std::string& key) {
-    if (const auto dot = key.find('.'); dot != std::string::npos)
-        return key.substr(0, dot) == info.id && info.findParam(key.substr(dot + 1)) ? key.substr(dot + 1) : "";
-    return info.findParam(key) ? key : "";
-}
-
-std::vector<std::vector<Setting>> cartesian(const SettingList& lists) {
-    std::vector<std::vector<Setting>> out{{}};
-    for (const auto& [key, values] : lists) {
-        std::vector<std::vector<Setting>> next;
-        for (const auto& partial : out)
-            for (const auto& value : values) {
-                auto combination = partial;
-                combination.push_back({key, value});
-                next.push_back(std::move(combination));
-            }
-        out = std::move(next);
-    }
-    return out;
-}
-
 std::string columnName(std::string text) {
     for (char& c : text)
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
     return text;
-}
-
-bool parseSize(const std::string& text, glm::ivec2& size) {
-    char x = 0;
-    std::istringstream in(text);
-    return bool(in >> size.x >> x >> size.y) && (x == 'x' || x == 'X') && size.x >= 16 && size.y >= 16;
 }
 
 std::string jsonValueText(const nlohmann::json& value) {
@@ -79,95 +45,6 @@ void addTiming(nlohmann::json& row, const Measurement& m) {
 }
 
 } // namespace
-
-bool addSweep(BenchSpec& spec, const std::string& text, std::string& error) {
-    const auto equals = text.find('=');
-    if (equals == std::string::npos || equals == 0 || equals + 1 == text.size()) {
-        error = "--sweep '" + text + "': expected key=value1,value2,...";
-        return false;
-    }
-    std::vector<std::string> values;
-    std::stringstream in(text.substr(equals + 1));
-    std::string value;
-    while (std::getline(in, value, ','))
-        if (!value.empty()) values.push_back(value);
-    spec.sweeps[text.substr(0, equals)] = values;
-    return true;
-}
-
-bool parseBenchSpec(const nlohmann::json& json, BenchSpec& spec, std::string& error) {
-    static const std::set<std::string> known{"techniques", "scenes", "sizes", "sweep", "base", "frames", "warmup",
-                                             "accuracy", "reference", "referenceSamples", "depthFloor", "description", "tag"};
-    if (!json.is_object()) {
-        error = "a benchmark spec is a JSON object";
-        return false;
-    }
-    try {
-        for (const auto& [key, value] : json.items())
-            if (!known.count(key)) {
-                error = "unknown field '" + key + "'";
-                return false;
-            }
-        if (json.contains("techniques")) spec.techniques = json["techniques"].get<std::vector<std::string>>();
-        if (json.contains("scenes")) spec.scenes = json["scenes"].get<std::vector<std::string>>();
-        if (json.contains("sizes")) {
-            spec.sizes.clear();
-            for (const auto& text : json["sizes"].get<std::vector<std::string>>()) {
-                glm::ivec2 size;
-                if (!parseSize(text, size)) {
-                    error = "sizes: '" + text + "' is not WIDTHxHEIGHT";
-                    return false;
-                }
-                spec.sizes.push_back(size);
-            }
-        }
-        if (json.contains("sweep"))
-            for (const auto& [key, values] : json["sweep"].items()) {
-                if (!values.is_array() || values.empty()) {
-                    error = "sweep." + key + ": expected a non-empty array";
-                    return false;
-                }
-                auto& list = spec.sweeps[key];
-                for (const auto& v : values) list.push_back(jsonValueText(v));
-            }
-        if (json.contains("base"))
-            for (const auto& [key, value] : json["base"].items()) spec.base.push_back(key + "=" + jsonValueText(value));
-        spec.frames = json.value("frames", spec.frames);
-        spec.warmupFrames = json.value("warmup", spec.warmupFrames);
-        spec.accuracy = json.value("accuracy", spec.accuracy);
-        spec.reference = json.value("reference", spec.reference);
-        spec.referenceSamples = json.value("referenceSamples", spec.referenceSamples);
-        spec.depthFloor = json.value("depthFloor", spec.depthFloor);
-        spec.tag = json.value("tag", spec.tag);
-    } catch (const nlohmann::json::exception& e) {
-        error = std::string("wrong type: ") + e.what();
-        return false;
-    }
-    if (spec.frames < 1 || spec.warmupFrames < 0) {
-        error = "frames must be >= 1 and warmup >= 0";
-        return false;
-    }
-    return true;
-}
-
-bool loadBenchSpec(const std::filesystem::path& file, BenchSpec& spec, std::string& error) {
-    std::ifstream in(file);
-    if (!in) {
-        error = file.string() + ": cannot open benchmark spec";
-        return false;
-    }
-    try {
-        const auto json = nlohmann::json::parse(in);
-        if (!parseBenchSpec(json, spec, error)) {
-            error = file.string() + ": " + error;
-            return false;
-        }
-    } catch (const nlohmann::json::parse_error& e) {
-        error = file.string() + ": JSON syntax error: " + e.what();
-        return false;
-    }
-    return true;
-}
 
 std::string rowSettings(const nlohmann::json& row) {
     std::string text;
@@ -209,51 +86,26 @@ nlohmann::json benchEnvironment(App& app) {
 
 bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows, std::string& error,
               const std::function<void(const nlohmann::json&)>& onRow) {
-    std::vector<const TechniqueInfo*> techniques;
-    if (spec.techniques.empty()) {
-        for (const auto& t : app.techniques().techniques())
-            if (t.category != "reference") techniques.push_back(&t);
-    } else {
-        for (const auto& id : spec.techniques) {
-            const TechniqueInfo* info = app.techniques().find(id);
-            if (!info) {
-                error = "benchmark: no technique '" + id + "'";
-                return false;
-            }
-            techniques.push_back(info);
-        }
+    // Every value checked before the first frame; below, conversions cannot fail.
+    if (!checkBenchSpec(spec, app.techniques().techniques(), error)) {
+        error = "benchmark: " + error;
+        return false;
     }
-    // Every key must mean something, so a typo fails loudly instead of sweeping nothing.
-    std::vector<std::string> keys;
-    for (const auto& [key, values] : spec.sweeps) keys.push_back(key);
-    for (const auto& text : spec.base) keys.push_back(text.substr(0, text.find('=')));
-    for (const auto& key : keys) {
-        if (isSceneKey(key) || isLightKey(key)) continue;
-        bool used = false;
-        for (const auto* t : techniques) used |= !paramFor(*t, key).empty();
-        if (!used) {
-            error = "benchmark: '" + key + "' is no parameter of the techniques measured (nor scene.*, light.size)";
-            return false;
-        }
-    }
+    const auto measured = benchTechniques(spec, app.techniques().techniques(), error);
+    if (!measured) return false;
+    const std::vector<const TechniqueInfo*>& techniques = *measured;
+    auto number = [](const std::string& text) { return parseNumberText(text).value_or(0.0); };
 
-    SettingList sceneLists;
+    BenchSettingLists sceneLists;
     for (const auto& [key, values] : spec.sweeps)
         if (isSceneKey(key)) sceneLists.push_back({key, values});
     const nlohmann::json environment = benchEnvironment(app);
     ReferenceOptions::Mode modes[2] = {ReferenceOptions::Mode::Hard, ReferenceOptions::Mode::Soft};
 
     for (const auto& sceneName : spec.scenes) {
-        for (const auto& sceneSettings : cartesian(sceneLists)) {
+        for (const auto& sceneSettings : benchCombinations(sceneLists)) {
             std::map<std::string, double> overrides;
-            for (const auto& [key, value] : sceneSettings) {
-                try {
-                    overrides[key.substr(6)] = std::stod(value);
-                } catch (const std::exception&) {
-                    error = "benchmark: " + key + "=" + value + " is not a number";
-                    return false;
-                }
-            }
+            for (const auto& [key, value] : sceneSettings) overrides[key.substr(6)] = number(value);
             if (!app.loadScene(sceneName, overrides, error)) return false;
             const LightInfo sceneLight = app.light();
             for (const glm::ivec2 size : spec.sizes) {
@@ -262,7 +114,7 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                 if (!spec.tag.empty()) common["spec"] = spec.tag;
                 common["scene"] = app.scene().name;
                 common["triangles"] = app.scene().triangleCount();
-                for (const auto& [key, value] : sceneSettings) common[key] = std::stod(value);
+                for (const auto& [key, value] : sceneSettings) common[key] = number(value);
                 common["width"] = size.x;
                 common["height"] = size.y;
                 common["pixels"] = size.x * size.y;
@@ -273,11 +125,12 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                     for (const auto& resolution : resolutions) {
                         Measurement m;
                         app.light() = sceneLight;
-                        if (!app.measureDepthFloor(std::stoi(resolution), spec.warmupFrames, spec.frames, m, error)) return false;
+                        const int pixels = static_cast<int>(number(resolution));
+                        if (!app.measureDepthFloor(pixels, spec.warmupFrames, spec.frames, m, error)) return false;
                         nlohmann::json row = common;
                         row["technique"] = "depth-floor";
                         row["category"] = "floor";
-                        row["param.resolution"] = std::stoi(resolution);
+                        row["param.resolution"] = pixels;
                         addTiming(row, m);
                         row["gpu_technique_ms"] = m.gpuMs["depth floor"].median;
                         rows.push_back(row);
@@ -286,23 +139,23 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                 }
 
                 for (const TechniqueInfo* info : techniques) {
-                    SettingList lists;
+                    BenchSettingLists lists;
                     for (const auto& [key, values] : spec.sweeps)
-                        if (isLightKey(key) || (!isSceneKey(key) && !paramFor(*info, key).empty())) lists.push_back({key, values});
-                    for (const auto& settings : cartesian(lists)) {
+                        if (isLightKey(key) || (!isSceneKey(key) && !benchParamFor(*info, key).empty())) lists.push_back({key, values});
+                    for (const auto& settings : benchCombinations(lists)) {
                         app.params().resetToDefaults(*info);
                         app.light() = sceneLight;
                         std::vector<std::string> assignments;
                         for (const auto& text : spec.base) {
-                            const std::string param = paramFor(*info, text.substr(0, text.find('=')));
+                            const std::string param = benchParamFor(*info, text.substr(0, text.find('=')));
                             if (!param.empty()) assignments.push_back(param + text.substr(text.find('=')));
                         }
                         for (const auto& [key, value] : settings) {
                             if (isLightKey(key)) {
-                                const float v = std::stof(value);
+                                const float v = static_cast<float>(number(value));
                                 app.light().size = app.light().type == LightType::Directional ? glm::radians(v) : v;
                             } else {
-                                assignments.push_back(paramFor(*info, key) + "=" + value);
+                                assignments.push_back(benchParamFor(*info, key) + "=" + value);
                             }
                         }
                         if (!app.applyAssignments(assignments, info->id, error)) return false;
@@ -358,41 +211,40 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
 }
 
 bool writeBenchResults(const std::filesystem::path& file, const std::vector<nlohmann::json>& rows, std::string& error) {
-    std::error_code ec;
-    if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), ec);
-    std::ofstream out(file);
-    if (!out) {
-        error = file.string() + ": cannot write results";
-        return false;
-    }
+    std::ostringstream out;
     if (file.extension() != ".csv") {
         out << nlohmann::json(rows).dump(1) << "\n";
-        return bool(out);
-    }
-    std::vector<std::string> columns;
-    std::set<std::string> seen;
-    for (const auto& row : rows)
-        for (const auto& [key, value] : row.items())
-            if (seen.insert(key).second) columns.push_back(key);
-    auto cell = [](const nlohmann::json& value) {
-        std::string text = value.is_string() ? value.get<std::string>() : value.dump();
-        if (text.find_first_of(",\"\n") != std::string::npos) {
-            std::string quoted = "\"";
-            for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-            return quoted + "\"";
-        }
-        return text;
-    };
-    for (size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
-    out << "\n";
-    for (const auto& row : rows) {
-        for (size_t i = 0; i < columns.size(); ++i) {
-            if (i) out << ",";
-            if (row.contains(columns[i])) out << cell(row[columns[i]]);
-        }
+    } else {
+        std::vector<std::string> columns;
+        std::set<std::string> seen;
+        for (const auto& row : rows)
+            for (const auto& [key, value] : row.items())
+                if (seen.insert(key).second) columns.push_back(key);
+        auto cell = [](const nlohmann::json& value) {
+            std::string text = value.is_string() ? value.get<std::string>() : value.dump();
+            if (text.find_first_of(",\"\n") != std::string::npos) {
+                std::string quoted = "\"";
+                for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+                return quoted + "\"";
+            }
+            return text;
+        };
+        for (size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
         out << "\n";
+        for (const auto& row : rows) {
+            for (size_t i = 0; i < columns.size(); ++i) {
+                if (i) out << ",";
+                if (row.contains(columns[i])) out << cell(row[columns[i]]);
+            }
+            out << "\n";
+        }
     }
-    return bool(out);
+    // Every byte checked: a full disk (or /dev/full) is an error, not a results file that is not there.
+    if (!writeWholeFile(file, out.str(), error)) {
+        error += " (results)";
+        return false;
+    }
+    return true;
 }
 
 } // namespace shadowlab

@@ -3,13 +3,14 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <sstream>
 #include <map>
 #include <set>
 
 #include "app.h"
 #include "util/log.h"
 #include "util/paths.h"
+#include "util/text_file.h"
 
 namespace shadowlab {
 namespace {
@@ -59,10 +60,18 @@ std::filesystem::path defaultReportSpec(bool softwareRenderer) {
     return dataRoot() / "assets" / "bench" / (softwareRenderer ? "quick.json" : "default.json");
 }
 
-int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesystem::path& outDir, std::string& error) {
+int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesystem::path& outDir, std::string& error,
+              std::optional<double> lightSize) {
     std::error_code ec;
     std::filesystem::create_directories(outDir / "images", ec);
     std::filesystem::create_directories(outDir / "charts", ec);
+    // Every spec checked before the first frame of the first one.
+    for (size_t i = 0; i < specs.size(); ++i) {
+        if (!checkBenchSpec(specs[i], app.techniques().techniques(), error, lightSize)) {
+            error = "benchmark spec " + std::to_string(i) + ": " + error;
+            return 2;
+        }
+    }
     std::vector<nlohmann::json> rows;
     printBenchHeader();
     for (const BenchSpec& spec : specs)
@@ -90,7 +99,7 @@ int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesyst
     }
 
     const nlohmann::json environment = rows.empty() ? benchEnvironment(app) : rows.front();
-    std::ofstream page(outDir / "README.md");
+    std::ostringstream page;
     page << "# shadowlab report\n\n"
          << "- GPU: " << environment.value("gpu", "") << "\n- driver: " << environment.value("driver", "")
          << "\n- backend: " << environment.value("backend", "") << "\n- date: " << environment.value("date", "")
@@ -116,7 +125,7 @@ int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesyst
     page << "\n## Images\n\nEach technique with its defaults, and its error heatmap (magenta: false shadow, "
             "green: false light).\n\n";
     for (const auto& image : images) page << "![" << image << "](images/" << image << ")\n";
-    page.close();
+    if (!writeWholeFile(outDir / "README.md", page.str(), error)) return 1;
     std::printf("report: %zu rows, %zu charts, %zu images in %s\n", rows.size(), charts.size(), images.size(),
                 outDir.string().c_str());
     return 0;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,8 @@ namespace shadowlab {
 // (llvmpipe), where the full sweep would take hours.
 std::filesystem::path defaultReportSpec(bool softwareRenderer);
 
-int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesystem::path& outDir, std::string& error);
+// `lightSize` is a --light-size applied to every scene, checked against each scene's light first.
+int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesystem::path& outDir, std::string& error,
+              std::optional<double> lightSize = std::nullopt);
 
 } // namespace shadowlab

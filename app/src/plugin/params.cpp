@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <set>
 #include <sstream>
 
 namespace shadowlab {
@@ -86,24 +85,6 @@ TechniqueInfo copyDescriptor(const TechniqueDesc& desc, const std::filesystem::p
                                text(p.unit), text(p.help), splitLabels(p.type == ParamType::Enum ? p.enumLabels : nullptr)});
     }
     return info;
-}
-
-std::string validateDescriptor(const TechniqueInfo& info) {
-    if (info.descriptorSize < offsetof(TechniqueDesc, paramCount) + sizeof(uint32_t))
-        return "descriptor structSize " + std::to_string(info.descriptorSize) + " is too small for an ABI " +
-               std::to_string(SHADOWLAB_ABI_VERSION) + " TechniqueDesc";
-    if (info.id.empty()) return "descriptor has an empty id";
-    if (info.shadowGlsl.empty()) return "descriptor names no shadowGlsl file";
-    std::set<std::string> seen;
-    for (const ParamSpec& p : info.params) {
-        if (p.id.empty()) return "a parameter has an empty id";
-        if (!seen.insert(p.id).second) return "parameter '" + p.id + "' is declared twice";
-        if (!(p.minValue <= p.defaultValue && p.defaultValue <= p.maxValue))
-            return "parameter '" + p.id + "': default outside its range";
-        if (p.type == ParamType::Enum && (p.enumLabels.empty() || p.maxValue != double(p.enumLabels.size() - 1)))
-            return "parameter '" + p.id + "': enum labels do not match its range";
-    }
-    return "";
 }
 
 std::optional<double> parseParamValue(const ParamSpec& spec, const std::string& text, std::string& error) {

@@ -40,10 +40,8 @@ struct TechniqueInfo {
     int paramIndex(const std::string& paramId) const;
 };
 
+// Copies a descriptor the host has validated (validateDescriptor in plugin_library.h).
 TechniqueInfo copyDescriptor(const TechniqueDesc& desc, const std::filesystem::path& library);
-// A descriptor the host can trust: ids unique and non-empty, min <= default <= max, enum labels
-// present for enums. Returns an error naming the offending parameter, or "".
-std::string validateDescriptor(const TechniqueInfo& info);
 
 // Parses `text` for `spec`: numbers for Float/Int (Int must be integral), true/false/on/off/1/0
 // for Bool, a label or an index for Enum. Range is checked. Errors name the parameter.

@@ -6,17 +6,95 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
 #include <system_error>
+
+#include "groundtruth/reference_technique.h"
+#include "util/scratch_dir.h"
+#include "util/strings.h"
 
 namespace shadowlab {
 namespace {
 
-std::filesystem::path scratchDir() {
-    std::error_code ec;
-    auto dir = std::filesystem::temp_directory_path(ec) / ("shadowlab-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir, ec);
-    return dir;
+// Lengths a descriptor string may have: a string without its terminator within this many bytes is
+// garbage, not text (explanations are a paragraph).
+constexpr size_t kMaxIdLength = 64;
+constexpr size_t kMaxTextLength = 64 * 1024;
+
+// "" when `text` is a terminated string of at most `limit` bytes (and, for ids, non-empty and
+// made of [A-Za-z0-9_-]: ids are --set keys, file names and CSV columns), else the problem.
+std::string checkText(const char* text, size_t limit, bool isId, bool required) {
+    if (!text) return required ? "is null" : "";
+    const size_t length = ::strnlen(text, limit + 1);
+    if (length > limit) return "is longer than " + std::to_string(limit) + " bytes (or not terminated)";
+    if (isId) {
+        if (length == 0) return "is empty";
+        for (size_t i = 0; i < length; ++i) {
+            const unsigned char c = static_cast<unsigned char>(text[i]);
+            if (!std::isalnum(c) && c != '_' && c != '-') return "'" + std::string(text) + "' has a character other than A-Z, a-z, 0-9, _ and -";
+        }
+    }
+    return "";
 }
+
+} // namespace
+
+std::string validateDescriptor(const TechniqueDesc& desc) {
+    // An ABI 3 descriptor reaches at least to paramCount; fields after it (flags) are optional.
+    if (desc.structSize < offsetof(TechniqueDesc, paramCount) + sizeof(desc.paramCount))
+        return "descriptor structSize " + std::to_string(desc.structSize) + " is too small for an ABI " +
+               std::to_string(SHADOWLAB_ABI_VERSION) + " TechniqueDesc";
+    if (std::string problem = checkText(desc.id, kMaxIdLength, true, true); !problem.empty()) return "id " + problem;
+    const std::string id = desc.id;
+    const std::pair<const char*, const char*> texts[] = {{"displayName", desc.displayName},
+                                                         {"category", desc.category},
+                                                         {"explanation", desc.explanation}};
+    for (const auto& [name, text] : texts)
+        if (std::string problem = checkText(text, kMaxTextLength, false, false); !problem.empty()) return std::string(name) + " " + problem;
+    if (std::string problem = checkText(desc.shadowGlsl, kMaxTextLength, false, true); !problem.empty() || !*desc.shadowGlsl)
+        return "shadowGlsl " + (problem.empty() ? std::string("is empty") : problem) + " (it names the GLSL file with shadowTerm)";
+    if (desc.paramCount > kMaxParams)
+        return "paramCount " + std::to_string(desc.paramCount) + " is more than " + std::to_string(kMaxParams);
+    if (desc.paramCount > 0 && !desc.params) return "paramCount is " + std::to_string(desc.paramCount) + " but params is null";
+    std::set<std::string> seen;
+    for (uint32_t i = 0; i < desc.paramCount; ++i) {
+        const ParamDesc& p = desc.params[i];
+        std::string name = "parameter " + std::to_string(i);
+        if (std::string problem = checkText(p.id, kMaxIdLength, true, true); !problem.empty()) return name + ": id " + problem;
+        name = "parameter '" + std::string(p.id) + "'";
+        if (!seen.insert(p.id).second) return name + " is declared twice";
+        for (const auto& [field, text] : {std::pair{"label", p.label}, std::pair{"unit", p.unit}, std::pair{"help", p.help}})
+            if (std::string problem = checkText(text, kMaxTextLength, false, false); !problem.empty()) return name + ": " + field + " " + problem;
+        const uint32_t type = static_cast<uint32_t>(p.type);
+        if (type > static_cast<uint32_t>(ParamType::Enum)) return name + ": unknown type " + std::to_string(type);
+        if (!std::isfinite(p.minValue) || !std::isfinite(p.maxValue) || !std::isfinite(p.defaultValue))
+            return name + ": min, max and default must be finite numbers";
+        if (!(p.minValue <= p.defaultValue && p.defaultValue <= p.maxValue))
+            return name + ": default outside its range (min <= default <= max)";
+        const bool whole = p.minValue == std::floor(p.minValue) && p.maxValue == std::floor(p.maxValue) &&
+                           p.defaultValue == std::floor(p.defaultValue);
+        if ((p.type == ParamType::Int || p.type == ParamType::Enum) && !whole)
+            return name + ": an int or enum parameter needs whole min, max and default";
+        if (p.type == ParamType::Bool && !(p.minValue == 0.0 && p.maxValue == 1.0 && whole))
+            return name + ": a bool parameter has the range 0 to 1 and a default of 0 or 1";
+        if (p.type == ParamType::Enum) {
+            if (std::string problem = checkText(p.enumLabels, kMaxTextLength, false, true); !problem.empty())
+                return name + ": enumLabels " + problem;
+            size_t labels = 1;
+            for (const char* c = p.enumLabels; *c; ++c) labels += *c == '|';
+            if (p.minValue != 0.0 || p.maxValue != double(labels - 1))
+                return name + ": enum labels do not match its range (" + std::to_string(labels) +
+                       " labels need min 0 and max " + std::to_string(labels - 1) + ")";
+        }
+    }
+    return "";
+}
+
+namespace {
 
 int categoryRank(const std::string& category) {
     static const char* order[] = {"baseline", "hard", "filtered", "soft", "coloured", "reference"};
@@ -38,7 +116,13 @@ std::unique_ptr<PluginLibrary> PluginLibrary::open(const std::filesystem::path& 
         error = file.string() + ": cannot read plugin library (" + ec.message() + ")";
         return nullptr;
     }
-    library->loadedCopy_ = scratchDir() / (file.stem().string() + "-" + std::to_string(loadCounter++) + ".so");
+    std::string scratchError;
+    const std::filesystem::path scratch = scratchDir(scratchError);
+    if (scratch.empty()) {
+        error = file.string() + ": cannot copy plugin for loading (" + scratchError + ")";
+        return nullptr;
+    }
+    library->loadedCopy_ = scratch / (file.stem().string() + "-" + std::to_string(loadCounter++) + ".so");
     std::filesystem::copy_file(file, library->loadedCopy_, std::filesystem::copy_options::overwrite_existing, ec);
     if (ec) {
         error = file.string() + ": cannot copy plugin for loading (" + ec.message() + ")";
@@ -70,12 +154,14 @@ std::unique_ptr<PluginLibrary> PluginLibrary::open(const std::filesystem::path& 
         error = file.string() + ": plugin entry is incomplete (describe/create/destroy missing)";
         return nullptr;
     }
-    library->entry_ = entry;
-    library->info_ = copyDescriptor(*entry->describe(), file);
-    if (const std::string problem = validateDescriptor(library->info_); !problem.empty()) {
+    // Checked before anything in it is copied or used: a paramCount of 1e8 would otherwise be read.
+    const TechniqueDesc& desc = *entry->describe();
+    if (const std::string problem = validateDescriptor(desc); !problem.empty()) {
         error = file.string() + ": invalid descriptor: " + problem;
         return nullptr;
     }
+    library->entry_ = entry;
+    library->info_ = copyDescriptor(desc, file);
     return library;
 }
 
@@ -96,6 +182,10 @@ PluginScan scanPlugins(const std::filesystem::path& dir) {
     for (const auto& item : std::filesystem::directory_iterator(dir, ec))
         if (item.path().extension() == ".so") files.push_back(item.path());
     std::sort(files.begin(), files.end());
+    // Two libraries claiming one id: neither is loaded, since which one is meant cannot be known
+    // (a stale copy, a renamed build) and taking either silently changes what is measured.
+    std::map<std::string, std::vector<TechniqueInfo>> byId;
+    const std::string builtinId = referenceDescriptor().id;
     for (const auto& file : files) {
         std::string error;
         auto library = PluginLibrary::open(file, error);
@@ -103,13 +193,21 @@ PluginScan scanPlugins(const std::filesystem::path& dir) {
             scan.errors.push_back(error);
             continue;
         }
-        const bool duplicate = std::any_of(scan.techniques.begin(), scan.techniques.end(),
-                                           [&](const TechniqueInfo& t) { return t.id == library->info().id; });
-        if (duplicate) {
-            scan.errors.push_back(file.string() + ": technique id '" + library->info().id + "' is already provided by another library");
+        if (library->info().id == builtinId) {
+            scan.errors.push_back(file.string() + ": technique id '" + builtinId + "' belongs to the host's built-in technique");
             continue;
         }
-        scan.techniques.push_back(library->info());
+        byId[library->info().id].push_back(library->info());
+    }
+    for (auto& [id, claims] : byId) {
+        if (claims.size() == 1) {
+            scan.techniques.push_back(std::move(claims.front()));
+            continue;
+        }
+        std::string files;
+        for (const auto& claim : claims) appendListItem(files, claim.library.string());
+        scan.errors.push_back("technique id '" + id + "' is claimed by " + std::to_string(claims.size()) +
+                              " libraries: " + files + "; none of them is loaded (remove or rename all but one)");
     }
     std::stable_sort(scan.techniques.begin(), scan.techniques.end(), [](const TechniqueInfo& a, const TechniqueInfo& b) {
         return std::pair(categoryRank(a.category), a.id) < std::pair(categoryRank(b.category), b.id);

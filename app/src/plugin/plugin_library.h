@@ -40,12 +40,24 @@ private:
     uintmax_t fileSize_ = 0;
 };
 
+// Most parameters a descriptor may declare (the largest plugin has about twenty).
+constexpr uint32_t kMaxParams = 256;
+
+// A descriptor the host can trust, checked on the plugin's own struct before anything in it is
+// copied: id (non-empty, [A-Za-z0-9_-], at most 64 bytes) and strings terminated within bounds,
+// shadowGlsl named, paramCount at most kMaxParams with params non-null, each parameter's id
+// unique and valid, its type known, min <= default <= max all finite (whole for int and enum,
+// 0..1 for bool), and enum labels as many as the range. Returns the problem, or "".
+// The one place descriptors are validated.
+std::string validateDescriptor(const TechniqueDesc& desc);
+
 struct PluginScan {
     std::vector<TechniqueInfo> techniques;   // sorted by category order, then id
     std::vector<std::string> errors;         // one line per skipped library
 };
 
-// Opens every *.so in `dir` to read its descriptor (no GL involved) and closes it again.
+// Opens every *.so in `dir` to read its descriptor (no GL involved) and closes it again. An id
+// claimed by two libraries is refused for both, with an error naming both files.
 PluginScan scanPlugins(const std::filesystem::path& dir);
 
 } // namespace shadowlab

@@ -325,6 +325,12 @@ LoadedTechnique* TechniqueManager::get(const std::string& id, std::string& error
     return raw;
 }
 
+std::vector<LoadedTechnique*> TechniqueManager::loadedTechniques() {
+    std::vector<LoadedTechnique*> out;
+    for (auto& [id, t] : loaded_) out.push_back(t.get());
+    return out;
+}
+
 std::vector<std::string> TechniqueManager::pollForChanges(ParamStore& params, std::chrono::milliseconds interval) {
     std::vector<std::string> reloaded;
     const auto now = std::chrono::steady_clock::now();

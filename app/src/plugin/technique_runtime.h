@@ -134,6 +134,8 @@ public:
     const TechniqueInfo* find(const std::string& id) const;
     // Loads on first use (GL current); nullptr and an error when it cannot.
     LoadedTechnique* get(const std::string& id, std::string& error);
+    // The techniques loaded so far (the soak tests sum their tracked memory).
+    std::vector<LoadedTechnique*> loadedTechniques();
     // Hot reload: a library rebuilt on disk replaces the loaded one in place (values kept by
     // parameter id); a failed load or init keeps the old one. Returns ids reloaded this call.
     std::vector<std::string> pollForChanges(ParamStore& params,

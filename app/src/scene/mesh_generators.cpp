@@ -234,4 +234,71 @@ Mesh makeBumpySphere(float radius, float amplitude, float frequency, int segment
     return mesh;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Sizes, from the arguments alone (tests/test_scene.cpp checks each against the generated mesh).
+
+namespace {
+
+MeshSize sized(uint64_t vertices, uint64_t triangles, glm::vec3 low, glm::vec3 high) {
+    return {vertices, 3 * triangles, {low, high}};
+}
+
+uint64_t count(int value, int minimum) { return static_cast<uint64_t>(std::max(value, minimum)); }
+
+} // namespace
+
+MeshSize planeSize(float sizeX, float sizeZ, int subdivisions) {
+    const uint64_t cells = count(subdivisions, 1);
+    const glm::vec3 half{0.5f * sizeX, 0.0f, 0.5f * sizeZ};
+    return sized((cells + 1) * (cells + 1), 2 * cells * cells, -half, half);
+}
+
+MeshSize boxSize(glm::vec3 size) { return sized(24, 12, -0.5f * size, 0.5f * size); }
+
+MeshSize sphereSize(float radius, int segments, int rings) {
+    const uint64_t s = count(segments, 3), r = count(rings, 2);
+    return sized((r + 1) * (s + 1), s * (2 * r - 2), glm::vec3(-radius), glm::vec3(radius));
+}
+
+MeshSize cylinderSize(float radius, float height, int segments) {
+    const uint64_t s = count(segments, 3);
+    return sized(4 * s + 6, 4 * s, {-radius, 0.0f, -radius}, {radius, height, radius});
+}
+
+MeshSize torusSize(float majorRadius, float minorRadius, int segments, int sides) {
+    const uint64_t s = count(segments, 3), t = count(sides, 3);
+    const float outer = majorRadius + minorRadius;
+    return sized((s + 1) * (t + 1), 2 * s * t, {-outer, -minorRadius, -outer}, {outer, minorRadius, outer});
+}
+
+MeshSize treeSize(float height, float crownRadius, int segments) {
+    const uint64_t s = count(segments, 3);
+    return sized(7 * s + 10, 6 * s, {-crownRadius, 0.0f, -crownRadius}, {crownRadius, height, crownRadius});
+}
+
+MeshSize bumpySphereSize(float radius, float amplitude, int segments) {
+    // The ridges lie in [-1.5, 1.5], so |p| <= radius * (1 + 1.5 amplitude).
+    const MeshSize sphere = sphereSize(radius, segments, std::max(segments / 2, 2));
+    const float extent = radius * (1.0f + 1.5f * amplitude);
+    return {sphere.vertices, sphere.indices, {glm::vec3(-extent), glm::vec3(extent)}};
+}
+
+MeshSize terrainSize(float sizeX, float sizeZ, int subdivisions, float amplitude) {
+    MeshSize size = planeSize(sizeX, sizeZ, subdivisions);
+    size.bounds.min.y = -0.75f * amplitude;   // terrainHeight is within +-0.75 amplitude
+    size.bounds.max.y = 0.75f * amplitude;
+    return size;
+}
+
+MeshSize sizeOf(const Mesh& mesh) {
+    MeshSize size{mesh.vertices.size(), mesh.indices.size(), {glm::vec3(0.0f), glm::vec3(0.0f)}};
+    if (mesh.vertices.empty()) return size;
+    size.bounds = {mesh.vertices.front().position, mesh.vertices.front().position};
+    for (const Vertex& v : mesh.vertices) {
+        size.bounds.min = glm::min(size.bounds.min, v.position);
+        size.bounds.max = glm::max(size.bounds.max, v.position);
+    }
+    return size;
+}
+
 } // namespace shadowlab

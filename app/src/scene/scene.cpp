@@ -5,6 +5,8 @@
 // nobody reads (a typo) is an error, because a silently ignored field quietly changes an experiment.
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cstdio>
 #include <climits>
 #include <cmath>
 #include <fstream>
@@ -21,6 +23,7 @@
 
 #include "scene/scene.h"
 #include "util/strings.h"
+#include "util/text_file.h"
 
 namespace shadowlab {
 
@@ -35,7 +38,24 @@ using nlohmann::json;
 constexpr float kRadiansPerDegree = glm::pi<float>() / 180.0f;
 constexpr int kMaxInstances = 1'000'000;   // a typo like count=5000000 should fail, not swap
 constexpr int kMaxSegments = 4096;
+constexpr size_t kMaxNameLength = 100;    // object and scene names (shown in lists and copied per instance)
+constexpr size_t kMaxTextLength = 4096;   // descriptions and other strings
 constexpr const char* kShapes = "plane, terrain, box, sphere, cylinder, torus, tree, bumpy, obj";
+// Per object, the renderer's transform buffer holds a model and a normal matrix.
+constexpr uint64_t kGpuBytesPerObject = 2 * sizeof(glm::mat4);
+constexpr const char* kBudgetHelp = "docs/scene-format.md, \"Limits\"";
+
+SceneBudget& processBudget() {
+    static SceneBudget budget;
+    return budget;
+}
+
+std::string formatBytes(uint64_t bytes) {
+    char text[32];
+    if (bytes >= (uint64_t(1) << 30)) std::snprintf(text, sizeof(text), "%.1f GiB", double(bytes) / double(1 << 30));
+    else std::snprintf(text, sizeof(text), "%.1f MiB", double(bytes) / double(1 << 20));
+    return text;
+}
 
 std::string formatNumber(double value, int precision = 6) {
     std::ostringstream text;
@@ -136,6 +156,24 @@ double readNumber(const json& value, const std::string& path, const ParseContext
     return number;
 }
 
+// A double as it will be stored: in a float. 1e300 would become inf and 1e-300 zero, so the range
+// of float is checked here, after any "must be positive" on the double.
+float toFloat(double number, const std::string& path, const ParseContext& context, Range range) {
+    if (std::abs(number) > double(std::numeric_limits<float>::max())) {
+        context.fail(path, "too large for single precision (at most 3.4e38, got " + formatNumber(number) + ")");
+    }
+    const float value = static_cast<float>(number);
+    if (range == Range::Positive && !(value >= std::numeric_limits<float>::min())) {
+        context.fail(path, "too small: " + formatNumber(number) +
+                               " is zero (or denormal) in single precision; the smallest positive value is 1.2e-38");
+    }
+    return value;
+}
+
+float readFloat(const json& value, const std::string& path, const ParseContext& context, Range range = Range::Any) {
+    return toFloat(readNumber(value, path, context, range), path, context, range);
+}
+
 int readInteger(const json& value, const std::string& path, const ParseContext& context, int minimum, int maximum) {
     const double number = readNumber(value, path, context);
     if (number != std::floor(number)) context.fail(path, "expected a whole number, got " + formatNumber(number));
@@ -155,7 +193,7 @@ glm::vec<N, float> readVector(const json& value, const std::string& path, const 
     glm::vec<N, float> result{};
     for (glm::length_t i = 0; i < N; ++i) {
         const size_t index = static_cast<size_t>(i);
-        result[i] = static_cast<float>(readNumber(value.at(index), elementPath(path, index), context, range));
+        result[i] = readFloat(value.at(index), elementPath(path, index), context, range);
     }
     return result;
 }
@@ -191,7 +229,7 @@ public:
 
     float number(const std::string& key, float fallback, Range range = Range::Any) {
         const json* value = find(key);
-        return value ? static_cast<float>(readNumber(*value, pathOf(key), context_, range)) : fallback;
+        return value ? readFloat(*value, pathOf(key), context_, range) : fallback;
     }
 
     int integer(const std::string& key, int fallback, int minimum, int maximum) {
@@ -212,11 +250,15 @@ public:
         return value->get<bool>();
     }
 
-    std::string string(const std::string& key, const std::string& fallback) {
+    std::string string(const std::string& key, const std::string& fallback, size_t maxLength = kMaxTextLength) {
         const json* value = find(key);
         if (!value) return fallback;
         if (!value->is_string()) fail(key, "expected a string, got " + describe(*value));
-        return value->get<std::string>();
+        const std::string& text = value->get_ref<const std::string&>();
+        if (text.size() > maxLength) {
+            fail(key, "longer than " + std::to_string(maxLength) + " characters (" + std::to_string(text.size()) + ")");
+        }
+        return text;
     }
 
     void finish(const std::string& what) const {
@@ -236,9 +278,12 @@ private:
 };
 
 // How to make an object's mesh, and a key naming it: objects with the same key share one mesh.
+// Procedural recipes know their size before they run (the budget is checked with it); an OBJ
+// file's size is known once it is read.
 struct MeshRecipe {
     std::string key;
     std::function<Mesh()> make;
+    std::optional<MeshSize> size;                      // nullopt: read from a file, size unknown
     bool isPlane = false;
     std::optional<glm::vec2> terrain = std::nullopt;   // amplitude and wavelength of a terrain shape
 };
@@ -257,25 +302,25 @@ MeshRecipe readShape(FieldReader& fields, const std::string& shape, const std::f
         const glm::vec2 size = fields.vec("size", glm::vec2(10.0f), Range::Positive);
         const int subdivisions = fields.integer("subdivisions", 1, 1, kMaxSegments);
         return {recipeKey(shape, {size.x, size.y, double(subdivisions)}),
-                [=] { return makePlane(size.x, size.y, subdivisions); }, true};
+                [=] { return makePlane(size.x, size.y, subdivisions); }, planeSize(size.x, size.y, subdivisions), true};
     }
     if (shape == "box") {
         const glm::vec3 size = fields.vec("size", glm::vec3(1.0f), Range::Positive);
-        return {recipeKey(shape, {size.x, size.y, size.z}), [=] { return makeBox(size); }};
+        return {recipeKey(shape, {size.x, size.y, size.z}), [=] { return makeBox(size); }, boxSize(size)};
     }
     if (shape == "sphere") {
         const float radius = fields.number("radius", 0.5f, Range::Positive);
         const int segments = fields.integer("segments", 32, 3, kMaxSegments);
         const int rings = fields.integer("rings", 16, 2, kMaxSegments);
         return {recipeKey(shape, {radius, double(segments), double(rings)}),
-                [=] { return makeSphere(radius, segments, rings); }};
+                [=] { return makeSphere(radius, segments, rings); }, sphereSize(radius, segments, rings)};
     }
     if (shape == "cylinder") {
         const float radius = fields.number("radius", 0.5f, Range::Positive);
         const float height = fields.number("height", 1.0f, Range::Positive);
         const int segments = fields.integer("segments", 32, 3, kMaxSegments);
         return {recipeKey(shape, {radius, height, double(segments)}),
-                [=] { return makeCylinder(radius, height, segments); }};
+                [=] { return makeCylinder(radius, height, segments); }, cylinderSize(radius, height, segments)};
     }
     if (shape == "torus") {
         const float majorRadius = fields.number("majorRadius", 0.5f, Range::Positive);
@@ -286,14 +331,15 @@ MeshRecipe readShape(FieldReader& fields, const std::string& shape, const std::f
         const int segments = fields.integer("segments", 48, 3, kMaxSegments);
         const int sides = fields.integer("sides", 16, 3, kMaxSegments);
         return {recipeKey(shape, {majorRadius, minorRadius, double(segments), double(sides)}),
-                [=] { return makeTorus(majorRadius, minorRadius, segments, sides); }};
+                [=] { return makeTorus(majorRadius, minorRadius, segments, sides); },
+                torusSize(majorRadius, minorRadius, segments, sides)};
     }
     if (shape == "tree") {
         const float height = fields.number("height", 2.0f, Range::Positive);
         const float crownRadius = fields.number("crownRadius", 0.6f, Range::Positive);
         const int segments = fields.integer("segments", 12, 3, kMaxSegments);
         return {recipeKey(shape, {height, crownRadius, double(segments)}),
-                [=] { return makeTree(height, crownRadius, segments); }};
+                [=] { return makeTree(height, crownRadius, segments); }, treeSize(height, crownRadius, segments)};
     }
     if (shape == "terrain") {
         const glm::vec2 size = fields.vec("size", glm::vec2(100.0f), Range::Positive);
@@ -301,7 +347,8 @@ MeshRecipe readShape(FieldReader& fields, const std::string& shape, const std::f
         const float amplitude = fields.number("amplitude", 2.0f, Range::NonNegative);
         const float wavelength = fields.number("wavelength", 60.0f, Range::Positive);
         MeshRecipe recipe{recipeKey(shape, {size.x, size.y, double(subdivisions), amplitude, wavelength}),
-                          [=] { return makeTerrain(size.x, size.y, subdivisions, amplitude, wavelength); }};
+                          [=] { return makeTerrain(size.x, size.y, subdivisions, amplitude, wavelength); },
+                          terrainSize(size.x, size.y, subdivisions, amplitude)};
         recipe.terrain = glm::vec2(amplitude, wavelength);
         return recipe;
     }
@@ -311,7 +358,8 @@ MeshRecipe readShape(FieldReader& fields, const std::string& shape, const std::f
         const float frequency = fields.number("frequency", 6.0f, Range::Positive);
         const int segments = fields.integer("segments", 96, 3, kMaxSegments);
         return {recipeKey(shape, {radius, amplitude, frequency, double(segments)}),
-                [=] { return makeBumpySphere(radius, amplitude, frequency, segments); }};
+                [=] { return makeBumpySphere(radius, amplitude, frequency, segments); },
+                bumpySphereSize(radius, amplitude, segments)};
     }
     if (shape == "obj") {
         const json& value = fields.required("file", "an obj object needs a file, relative to the scene file");
@@ -321,7 +369,7 @@ MeshRecipe readShape(FieldReader& fields, const std::string& shape, const std::f
         const ParseContext& context = fields.context();
         return {"obj " + file.string(), [file, path, &context] {
                     std::error_code error;
-                    if (!std::filesystem::is_regular_file(file, error)) {
+                    if (!std::filesystem::exists(file, error)) {
                         context.fail(path, "missing OBJ file '" + file.string() + "'");
                     }
                     try {
@@ -329,7 +377,7 @@ MeshRecipe readShape(FieldReader& fields, const std::string& shape, const std::f
                     } catch (const SceneError& objError) {
                         context.fail(path, objError.what());
                     }
-                }};
+                }, std::nullopt};
     }
     fields.fail("shape", "unknown shape '" + shape + "' (expected one of: " + kShapes + ")");
 }
@@ -377,8 +425,8 @@ Repeat readRepeat(const json& node, const std::string& path, const ParseContext&
     if (const json* jitter = fields.find("jitter")) {
         repeat.jitter = jitter->is_array()
                             ? readVector<3>(*jitter, fields.pathOf("jitter"), context, Range::NonNegative)
-                            : glm::vec3(1.0f, 0.0f, 1.0f) * static_cast<float>(readNumber(
-                                  *jitter, fields.pathOf("jitter"), context, Range::NonNegative));
+                            : glm::vec3(1.0f, 0.0f, 1.0f) *
+                                  readFloat(*jitter, fields.pathOf("jitter"), context, Range::NonNegative);
     }
     repeat.scaleRange = fields.vec("scaleRange", repeat.scaleRange, Range::Positive);
     if (repeat.scaleRange.x > repeat.scaleRange.y) fields.fail("scaleRange", "minimum exceeds maximum");
@@ -397,6 +445,36 @@ glm::mat4 objectToWorld(glm::vec3 translate, glm::vec3 rotateRadians, glm::vec3 
     return glm::scale(transform, scale);
 }
 
+bool finiteMatrix(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+// Where a transform stops being usable in single precision: not finite, not invertible (a scale
+// that underflows), or geometry beyond +-kMaxWorldCoordinate, where squared lengths overflow.
+void checkTransform(const glm::mat4& transform, const Bounds& local, const std::string& path, const ParseContext& context) {
+    const glm::mat3 linear(transform);
+    const float determinant = glm::determinant(linear);
+    if (!finiteMatrix(transform) || !std::isnormal(determinant) ||
+        !finiteMatrix(glm::mat4(glm::transpose(glm::inverse(linear))))) {
+        context.fail(path, "transform is not finite and invertible in single precision (scale " +
+                               formatNumber(std::cbrt(std::abs(double(determinant)))) + "; check scale, scaleRange and translate)");
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 point{(corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
+                              (corner & 4) ? local.max.z : local.min.z};
+        const glm::vec3 world{transform * glm::vec4(point, 1.0f)};
+        for (int axis = 0; axis < 3; ++axis) {
+            if (!(std::abs(world[axis]) <= kMaxWorldCoordinate)) {
+                context.fail(path, "reaches " + formatNumber(world[axis]) + " in world space, beyond +-" +
+                                       formatNumber(kMaxWorldCoordinate) + " (the largest coordinate shadowlab handles)");
+            }
+        }
+    }
+}
+
 // World plane (n, d) of a "plane" object: its object-space plane y = 0 with normal +y.
 glm::vec4 worldPlane(const glm::mat4& transform) {
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(transform)));
@@ -410,19 +488,83 @@ struct SceneBuilder {
     ParseContext context;
     std::filesystem::path baseDir;
     Scene scene;
+    SceneBudget budget;
+    bool checkOnly = false;                       // the first pass: sizes and checks only, no meshes, no objects
+    // OBJ meshes read by the checking pass, handed to the building pass (files are read once).
+    std::map<std::string, Mesh>* objCache = nullptr;
     std::map<std::string, uint32_t> materialIndex;
     std::map<std::string, uint32_t> meshIndex;   // by MeshRecipe::key
+    std::vector<MeshSize> meshSizes;              // by mesh index, also when checkOnly
     struct Terrain {
         glm::vec3 origin;
         float amplitude;
         float wavelength;
     };
     std::optional<Terrain> terrain;               // the last terrain object read, for followTerrain
+    // Totals so far, checked against the budget before each allocation.
+    uint64_t objects = 0, triangles = 0, storedVertices = 0, storedIndices = 0;
 
-    uint32_t meshFor(const MeshRecipe& recipe) {
-        const auto [found, inserted] = meshIndex.try_emplace(recipe.key, static_cast<uint32_t>(scene.meshes.size()));
-        if (inserted) scene.meshes.push_back(recipe.make());
+    uint64_t gpuBytes() const {
+        return storedVertices * sizeof(Vertex) + storedIndices * sizeof(uint32_t) + objects * kGpuBytesPerObject;
+    }
+
+    void checkBudget(const std::string& path) const {
+        const std::string raise = "; raise it with --budget ";
+        if (objects > budget.objects) {
+            context.fail(path, "the scene would have " + std::to_string(objects) + " objects, more than the budget of " +
+                                   std::to_string(budget.objects) + raise + "objects=N (" + kBudgetHelp + ")");
+        }
+        if (triangles > budget.triangles) {
+            context.fail(path, "the scene would draw " + std::to_string(triangles) +
+                                   " triangles per frame, more than the budget of " + std::to_string(budget.triangles) +
+                                   raise + "triangles=N (" + kBudgetHelp + ")");
+        }
+        if (gpuBytes() > budget.gpuBytes) {
+            context.fail(path, "the scene's geometry would need about " + formatBytes(gpuBytes()) +
+                                   " of GPU memory, more than the budget of " + formatBytes(budget.gpuBytes) + raise +
+                                   "gpu-mib=N (" + kBudgetHelp + ")");
+        }
+        // What the renderer can address, whatever the budget: int32 base vertices, uint32 indices.
+        if (storedVertices > uint64_t(INT32_MAX) || storedIndices > uint64_t(UINT32_MAX) || objects > uint64_t(INT32_MAX)) {
+            context.fail(path, "the scene's meshes would hold " + std::to_string(storedVertices) + " vertices and " +
+                                   std::to_string(storedIndices) + " indices in " + std::to_string(objects) +
+                                   " objects: more than the renderer addresses (2^31 vertices, 2^32 indices, 2^31 objects)");
+        }
+    }
+
+    // The mesh of `recipe`, made once per key; the budget is checked before a procedural mesh is
+    // generated (OBJ files are bounded by the file size and checked once read).
+    uint32_t meshFor(const MeshRecipe& recipe, const std::string& path) {
+        const auto [found, inserted] = meshIndex.try_emplace(recipe.key, static_cast<uint32_t>(meshSizes.size()));
+        if (!inserted) return found->second;
+        Mesh mesh;
+        if (!recipe.size) {
+            if (objCache && objCache->count(recipe.key)) {
+                mesh = std::move(objCache->at(recipe.key));
+                objCache->erase(recipe.key);
+            } else {
+                mesh = recipe.make();
+            }
+        }
+        const MeshSize size = recipe.size ? *recipe.size : sizeOf(mesh);
+        storedVertices += size.vertices;
+        storedIndices += size.indices;
+        checkBudget(path);
+        meshSizes.push_back(size);
+        if (!checkOnly) {
+            if (recipe.size) mesh = recipe.make();
+            scene.meshes.push_back(std::move(mesh));
+        } else if (!recipe.size && objCache) {
+            objCache->emplace(recipe.key, std::move(mesh));
+        }
         return found->second;
+    }
+
+    // `count` more instances of `mesh`.
+    void addObjects(uint64_t count, uint32_t mesh, const std::string& path) {
+        objects += count;
+        triangles += count * (meshSizes[mesh].indices / 3);
+        checkBudget(path);
     }
 
     uint32_t materialFor(FieldReader& fields) {
@@ -500,15 +642,15 @@ void readObject(const json& node, const std::string& path, size_t ordinal, Scene
     const std::string shape = shapeValue.get<std::string>();
     const MeshRecipe recipe = readShape(fields, shape, builder.baseDir);
 
-    const std::string name = fields.string("name", shape + " " + std::to_string(ordinal));
+    // Bounded: every instance of a repeat block carries a copy.
+    const std::string name = fields.string("name", shape + " " + std::to_string(ordinal), kMaxNameLength);
     const uint32_t material = builder.materialFor(fields);
     const glm::vec3 translate = fields.vec("translate", glm::vec3(0.0f));
     const glm::vec3 rotate = fields.vec("rotate", glm::vec3(0.0f)) * kRadiansPerDegree;
     glm::vec3 scale{1.0f};
     if (const json* value = fields.find("scale")) {
         scale = value->is_array() ? readVector<3>(*value, fields.pathOf("scale"), builder.context, Range::Positive)
-                                  : glm::vec3(static_cast<float>(
-                                        readNumber(*value, fields.pathOf("scale"), builder.context, Range::Positive)));
+                                  : glm::vec3(readFloat(*value, fields.pathOf("scale"), builder.context, Range::Positive));
     }
     const bool castsShadow = fields.boolean("castsShadow", true);
     const bool receivesShadow = fields.boolean("receivesShadow", true);
@@ -520,7 +662,9 @@ void readObject(const json& node, const std::string& path, size_t ordinal, Scene
     if (recipe.terrain) builder.terrain = SceneBuilder::Terrain{translate, recipe.terrain->x, recipe.terrain->y};
 
     SceneObject object;
-    object.mesh = builder.meshFor(recipe);
+    object.mesh = builder.meshFor(recipe, path);
+    builder.addObjects(static_cast<uint64_t>(repeat.count), object.mesh, repeatNode ? fields.pathOf("repeat") : path);
+    const Bounds local = builder.meshSizes[object.mesh].bounds;
     object.material = material;
     object.castsShadow = castsShadow;
     object.receivesShadow = receivesShadow;
@@ -547,11 +691,25 @@ void readObject(const json& node, const std::string& path, size_t ordinal, Scene
         }
         const float instanceScale = glm::mix(repeat.scaleRange.x, repeat.scaleRange.y, scaleChoice);
 
-        object.name = repeatNode ? name + "#" + std::to_string(i) : name;
         object.transform = objectToWorld(translate + offset, rotate, scale * instanceScale);
+        checkTransform(object.transform, local, repeatNode ? path + " (instance " + std::to_string(i) + ")" : path,
+                       builder.context);
+        if (builder.checkOnly) continue;
+        object.name = repeatNode ? name + "#" + std::to_string(i) : name;
         if (object.isPlane) object.plane = worldPlane(object.transform);
         builder.scene.objects.push_back(object);
     }
+}
+
+// A position in world space, within +-kMaxWorldCoordinate.
+glm::vec3 checkedPoint(FieldReader& fields, const std::string& key, glm::vec3 point) {
+    for (int axis = 0; axis < 3; ++axis) {
+        if (std::abs(point[axis]) > kMaxWorldCoordinate) {
+            fields.fail(key, "coordinate " + formatNumber(point[axis]) + " is beyond +-" + formatNumber(kMaxWorldCoordinate) +
+                                 " (the largest coordinate shadowlab handles)");
+        }
+    }
+    return point;
 }
 
 glm::vec3 readDirection(FieldReader& fields, const std::string& key, const std::string& why) {
@@ -593,13 +751,15 @@ LightInfo readLight(const json& node, const ParseContext& context) {
         light.size = readDegrees(fields, "size", 0.0f, 0.0f, 45.0f);
     } else if (type == "spot" || type == "point") {
         light.type = type == "spot" ? LightType::Spot : LightType::Point;
-        light.position = readVector<3>(fields.required("position", "a " + type + " light needs a position"),
-                                       fields.pathOf("position"), context);
+        light.position = checkedPoint(fields, "position",
+                                      readVector<3>(fields.required("position", "a " + type + " light needs a position"),
+                                                    fields.pathOf("position"), context));
         light.size = fields.number("size", 0.0f, Range::NonNegative);
+        if (const std::string problem = lightSizeProblem(light.type, light.size); !problem.empty()) fields.fail("size", problem);
         if (type == "spot") {
             if (fields.has("target")) {
                 if (fields.has("direction")) fields.fail("direction", "give either direction or target, not both");
-                const glm::vec3 toTarget = fields.vec("target", glm::vec3(0.0f)) - light.position;
+                const glm::vec3 toTarget = checkedPoint(fields, "target", fields.vec("target", glm::vec3(0.0f))) - light.position;
                 if (!(glm::length(toTarget) > 1e-6f)) fields.fail("target", "target is at the light's position");
                 light.direction = glm::normalize(toTarget);
             } else {
@@ -619,8 +779,8 @@ LightInfo readLight(const json& node, const ParseContext& context) {
 SceneCamera readCamera(const json& node, const ParseContext& context) {
     FieldReader fields(node, "camera", context);
     SceneCamera camera;
-    camera.position = fields.vec("position", camera.position);
-    camera.target = fields.vec("target", camera.target);
+    camera.position = checkedPoint(fields, "position", fields.vec("position", camera.position));
+    camera.target = checkedPoint(fields, "target", fields.vec("target", camera.target));
     camera.up = fields.vec("up", camera.up);
     camera.fovY = readDegrees(fields, "fovY", 45.0f, 1.0f, 170.0f);
     camera.nearPlane = fields.number("near", camera.nearPlane, Range::Positive);
@@ -636,28 +796,10 @@ SceneCamera readCamera(const json& node, const ParseContext& context) {
 }
 
 json parseJson(const std::string& text, const std::string& source) {
-    try {
-        return json::parse(text);
-    } catch (const json::parse_error& error) {
-        // nlohmann counts bytes up to the offending character; editors want line:column.
-        const size_t end = std::min(text.size(), error.byte > 0 ? error.byte - 1 : 0);
-        size_t line = 1, column = 1;
-        for (size_t i = 0; i < end; ++i) {
-            if (text[i] == '\n') {
-                ++line;
-                column = 1;
-            } else {
-                ++column;
-            }
-        }
-        // Its message starts "[json.exception.parse_error.101] parse error at line 1, column 2: ".
-        std::string detail = error.what();
-        const size_t colon = detail.find(": ", detail.find("parse error"));
-        if (colon != std::string::npos) detail = detail.substr(colon + 2);
-        detail = detail.starts_with("syntax error ") ? detail.substr(13) : ": " + detail;
-        throw SceneError(source + ":" + std::to_string(line) + ":" + std::to_string(column) +
-                         ": JSON syntax error " + detail);
-    }
+    json root;
+    std::string error;
+    if (!parseJsonText(text, source, root, error)) throw SceneError(error);
+    return root;
 }
 
 // "builtin:cube" -> "cube", "scenes/forest.json" -> "forest".
@@ -667,20 +809,14 @@ std::string nameFromSource(const std::string& source) {
     return std::filesystem::path(source).stem().string();
 }
 
-} // namespace
-
-Scene parseScene(const std::string& jsonText, const std::string& sourceName, const std::filesystem::path& baseDir,
-                 const std::map<std::string, double>& overrides) {
-    SceneBuilder builder;
-    builder.context.source = sourceName;
-    builder.baseDir = baseDir;
-    const json root = parseJson(jsonText, sourceName);
+void buildScene(const json& root, SceneBuilder& builder, const std::map<std::string, double>& overrides) {
+    const std::string& sourceName = builder.context.source;
     if (!root.is_object()) builder.context.fail("", "a scene is one JSON object, got " + describe(root));
     FieldReader fields(root, "", builder.context);
 
     Scene& scene = builder.scene;
     scene.source = sourceName;
-    scene.name = fields.string("name", nameFromSource(sourceName));
+    scene.name = fields.string("name", nameFromSource(sourceName), kMaxNameLength);
     scene.description = fields.string("description", "");
     readParameters(fields.find("parameters"), overrides, builder.context);
     scene.parameters = builder.context.parameters;
@@ -697,30 +833,160 @@ Scene parseScene(const std::string& jsonText, const std::string& sourceName, con
     scene.ambient = fields.vec("ambient", scene.ambient, Range::NonNegative);
     scene.background = fields.vec("background", scene.background, Range::NonNegative);
     fields.finish("a scene");
-    scene.computeDerived();
+}
+
+// The text of a built-in scene or a scene file, with its source name and the folder OBJ paths
+// are relative to.
+struct SceneText {
+    std::string text;
+    std::string source;
+    std::filesystem::path baseDir;
+};
+
+SceneText readSceneText(const std::string& nameOrPath) {
+    const std::string name = nameFromSource(nameOrPath.starts_with("builtin:") ? nameOrPath : "builtin:" + nameOrPath);
+    for (unsigned i = 0; i < kBuiltinSceneCount; ++i) {
+        if (kBuiltinScenes[i].first == name)
+            return {std::string(kBuiltinScenes[i].second), "builtin:" + name, std::filesystem::current_path()};
+    }
+    std::error_code ignored;
+    if (!std::filesystem::exists(nameOrPath, ignored)) {
+        throw SceneError(nameOrPath + ": cannot open scene file (not a built-in scene either; built-in: " +
+                         joined(builtinSceneNames()) + ")");
+    }
+    SceneText scene;
+    std::string error;
+    if (!readRegularFile(nameOrPath, kMaxJsonFileBytes, scene.text, error, "scene file")) throw SceneError(error);
+    scene.source = nameOrPath;
+    scene.baseDir = std::filesystem::path(nameOrPath).parent_path();
+    if (scene.baseDir.empty()) scene.baseDir = ".";
+    return scene;
+}
+
+} // namespace
+
+Scene parseScene(const std::string& jsonText, const std::string& sourceName, const std::filesystem::path& baseDir,
+                 const std::map<std::string, double>& overrides) {
+    const json root = parseJson(jsonText, sourceName);
+    // Two passes over the same JSON: the first checks every field and the whole budget without
+    // generating a mesh or an object, so a scene over the budget allocates nothing; the second,
+    // which cannot fail on anything the first checked, builds it.
+    std::map<std::string, Mesh> objMeshes;
+    {
+        SceneBuilder check;
+        check.context.source = sourceName;
+        check.baseDir = baseDir;
+        check.budget = sceneBudget();
+        check.checkOnly = true;
+        check.objCache = &objMeshes;
+        buildScene(root, check, overrides);
+    }
+    SceneBuilder builder;
+    builder.context.source = sourceName;
+    builder.baseDir = baseDir;
+    builder.budget = sceneBudget();
+    builder.objCache = &objMeshes;
+    buildScene(root, builder, overrides);
+    builder.scene.computeDerived();
     return std::move(builder.scene);
 }
 
 Scene loadScene(const std::string& nameOrPath, const std::map<std::string, double>& overrides) {
-    const std::string name = nameFromSource(nameOrPath.starts_with("builtin:") ? nameOrPath : "builtin:" + nameOrPath);
-    for (unsigned i = 0; i < kBuiltinSceneCount; ++i) {
-        if (kBuiltinScenes[i].first == name) {
-            return parseScene(std::string(kBuiltinScenes[i].second), "builtin:" + name,
-                              std::filesystem::current_path(), overrides);
+    const SceneText scene = readSceneText(nameOrPath);
+    return parseScene(scene.text, scene.source, scene.baseDir, overrides);
+}
+
+SceneCheck checkSceneText(const std::string& jsonText, const std::string& sourceName, const std::filesystem::path& baseDir,
+                          const std::map<std::string, double>& overrides) {
+    SceneBuilder builder;
+    builder.context.source = sourceName;
+    builder.baseDir = baseDir;
+    builder.budget = sceneBudget();
+    builder.checkOnly = true;
+    buildScene(parseJson(jsonText, sourceName), builder, overrides);
+    return {builder.scene.name, builder.scene.light.type, builder.objects, builder.triangles, builder.gpuBytes()};
+}
+
+SceneCheck checkScene(const std::string& nameOrPath, const std::map<std::string, double>& overrides) {
+    const SceneText text = readSceneText(nameOrPath);
+    return checkSceneText(text.text, text.source, text.baseDir, overrides);
+}
+
+const SceneBudget& sceneBudget() { return processBudget(); }
+void setSceneBudget(const SceneBudget& budget) { processBudget() = budget; }
+
+uint64_t sceneGeometryBytes(const Scene& scene) {
+    uint64_t bytes = scene.objects.size() * kGpuBytesPerObject;
+    for (const Mesh& mesh : scene.meshes) bytes += mesh.vertices.size() * sizeof(Vertex) + mesh.indices.size() * sizeof(uint32_t);
+    return bytes;
+}
+
+bool parseSceneBudget(const std::string& text, SceneBudget& budget, std::string& error) {
+    SceneBudget result = budget;
+    std::stringstream items(text);
+    std::string item;
+    bool any = false;
+    while (std::getline(items, item, ',')) {
+        if (item.empty()) continue;
+        any = true;
+        const size_t equals = item.find('=');
+        const std::string key = item.substr(0, equals);
+        const std::string value = equals == std::string::npos ? "" : item.substr(equals + 1);
+        // Whole numbers, written plainly or as 1e8; at most 1e15 (beyond any machine).
+        double number = 0.0;
+        const auto parsed = std::from_chars(value.data(), value.data() + value.size(), number);
+        const bool valid = equals != std::string::npos && !value.empty() && parsed.ec == std::errc() &&
+                           parsed.ptr == value.data() + value.size() && number >= 1 && number <= 1e15 &&
+                           number == std::floor(number);
+        if (!valid) {
+            error = "--budget '" + item + "': expected key=N with N a whole number from 1 to 1e15 "
+                    "(keys: objects, triangles, gpu-mib, file-mib)";
+            return false;
+        }
+        const uint64_t n = static_cast<uint64_t>(number);
+        if (key == "objects") result.objects = n;
+        else if (key == "triangles") result.triangles = n;
+        else if (key == "gpu-mib" && n <= (uint64_t(1) << 40)) result.gpuBytes = n << 20;
+        else if (key == "file-mib" && n <= (uint64_t(1) << 40)) result.fileBytes = n << 20;
+        else {
+            error = "--budget '" + item + "': unknown key or value too large (keys: objects, triangles, gpu-mib, "
+                    "file-mib; see " + std::string(kBudgetHelp) + ")";
+            return false;
         }
     }
-    std::error_code error;
-    std::ifstream file;
-    if (std::filesystem::is_regular_file(nameOrPath, error)) file.open(nameOrPath, std::ios::binary);
-    if (!file.is_open()) {
-        throw SceneError(nameOrPath + ": cannot open scene file (not a built-in scene either; built-in: " +
-                         joined(builtinSceneNames()) + ")");
+    if (!any) {
+        error = "--budget '" + text + "': expected key=N,... (keys: objects, triangles, gpu-mib, file-mib)";
+        return false;
     }
-    std::ostringstream text;
-    text << file.rdbuf();
-    std::filesystem::path baseDir = std::filesystem::path(nameOrPath).parent_path();
-    if (baseDir.empty()) baseDir = ".";
-    return parseScene(text.str(), nameOrPath, baseDir, overrides);
+    budget = result;
+    return true;
+}
+
+uint64_t mainTargetBytes(glm::ivec2 size, int msaaSamples) {
+    const uint64_t pixels = uint64_t(std::max(size.x, 1)) * uint64_t(std::max(size.y, 1));
+    return pixels * (44 + 4 + 44 * uint64_t(std::max(msaaSamples, 0)));
+}
+
+std::string renderTargetBudgetProblem(glm::ivec2 size, int msaaSamples, uint64_t geometryBytes) {
+    const uint64_t targets = mainTargetBytes(size, msaaSamples);
+    const uint64_t budget = sceneBudget().gpuBytes;
+    if (targets + geometryBytes <= budget) return "";
+    return "--size " + std::to_string(size.x) + "x" + std::to_string(size.y) +
+           (msaaSamples > 0 ? " with --msaa " + std::to_string(msaaSamples) : std::string()) + ": the render targets (" +
+           formatBytes(targets) + ") and the scene's geometry (" + formatBytes(geometryBytes) +
+           ") would need more than the GPU memory budget of " + formatBytes(budget) + "; raise it with --budget gpu-mib=N (" +
+           kBudgetHelp + ")";
+}
+
+std::string lightSizeProblem(LightType type, double size) {
+    if (type == LightType::Directional) {
+        if (!(size >= 0.0 && size <= kMaxDirectionalLightSizeDegrees))
+            return "a directional light's size is its angular radius in degrees, 0 to 45 (got " + formatNumber(size) + ")";
+    } else if (!(size >= 0.0 && size <= kMaxWorldCoordinate)) {
+        return "a spot or point light's size is its emitter radius in world units, 0 to " +
+               formatNumber(kMaxWorldCoordinate) + " (got " + formatNumber(size) + ")";
+    }
+    return "";
 }
 
 std::vector<std::string> builtinSceneNames() {

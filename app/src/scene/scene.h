@@ -84,6 +84,46 @@ struct Scene {
     bool inSet(const SceneObject& object, DrawSet set) const;
 };
 
+// What one scene may cost, checked while it is parsed, before any mesh or buffer is allocated,
+// so that a typo (count=5000000) or a hostile file gets a message instead of exhausting the
+// machine. Totals over the whole scene, every object and repeat block together. Raise them with
+// `--budget objects=N,triangles=N,gpu-mib=N,file-mib=N` (docs/scene-format.md, "Limits").
+struct SceneBudget {
+    uint64_t objects = 1'000'000;          // instances
+    uint64_t triangles = 50'000'000;       // drawn per frame: each instance counts its mesh's triangles
+    uint64_t gpuBytes = uint64_t(4) << 30; // estimated GPU memory of the geometry (vertex and index
+                                           // buffers, per-object transforms) plus the main render targets
+    uint64_t fileBytes = uint64_t(256) << 20; // largest OBJ file read
+};
+// Parses "objects=2000000,triangles=1e8,gpu-mib=8192,file-mib=1024" into `budget`; fields not
+// named keep their value. False with an error naming the item otherwise.
+bool parseSceneBudget(const std::string& text, SceneBudget& budget, std::string& error);
+// The budget loadScene, parseScene and checkScene apply (the defaults until set).
+const SceneBudget& sceneBudget();
+void setSceneBudget(const SceneBudget& budget);
+// Estimated GPU bytes of a scene's geometry as the renderer uploads it (the figure the budget checks).
+uint64_t sceneGeometryBytes(const Scene& scene);
+
+// Bytes of the host's main render targets at `size`: RGBA16F colour, visibility and normal,
+// RGBA32F position, depth24-stencil8 (44 bytes a sample; the multisampled set too with MSAA) and
+// the RGBA8 display texture.
+uint64_t mainTargetBytes(glm::ivec2 size, int msaaSamples);
+// "" when the main render targets at `size` plus `geometryBytes` fit the GPU budget, else a message
+// naming --size (and --msaa) and the budget. No GL needed: checked before a context exists.
+std::string renderTargetBudgetProblem(glm::ivec2 size, int msaaSamples, uint64_t geometryBytes);
+
+// Limits that hold whatever the budget: world coordinates (positions after transforms, light and
+// camera positions, spot and point light sizes) within +-kMaxWorldCoordinate, so that squared
+// lengths stay finite in single precision; polygons of OBJ files up to kMaxPolygonCorners corners.
+constexpr double kMaxWorldCoordinate = 1e9;
+constexpr int kMaxPolygonCorners = 255;
+constexpr double kMaxDirectionalLightSizeDegrees = 45.0;
+
+// "" when `size` is a valid light size for a light of `type` (degrees, 0 to 45, for directional
+// lights; world units, 0 to kMaxWorldCoordinate, otherwise), else what is wrong with it. The one
+// range for scene files, --light-size and the light.size benchmark sweep.
+std::string lightSizeProblem(LightType type, double size);
+
 // Thrown for every problem in a scene or OBJ file; what() names the file, the field or line, and
 // the problem, e.g. "scenes/x.json: objects[2].shape: unknown shape 'cone' (expected one of ...)".
 class SceneError : public std::runtime_error {
@@ -97,6 +137,21 @@ Scene loadScene(const std::string& nameOrPath, const std::map<std::string, doubl
 Scene parseScene(const std::string& jsonText, const std::string& sourceName,
                  const std::filesystem::path& baseDir,
                  const std::map<std::string, double>& overrides = {});
+// What checkScene found: the scene as far as a caller needs it before loading it for real.
+struct SceneCheck {
+    std::string name;
+    LightType lightType = LightType::Directional;
+    uint64_t objects = 0;
+    uint64_t triangles = 0;   // drawn per frame
+    uint64_t gpuBytes = 0;    // sceneGeometryBytes of the loaded scene
+};
+// Everything loadScene checks (fields, ranges, parameters, the budget; OBJ files are read) without
+// generating procedural meshes or objects: throws the SceneError loadScene would throw. Cheap
+// enough to validate every scene of a benchmark sweep before the first frame.
+SceneCheck checkScene(const std::string& nameOrPath, const std::map<std::string, double>& overrides = {});
+// The same for text already in memory (as parseScene).
+SceneCheck checkSceneText(const std::string& jsonText, const std::string& sourceName, const std::filesystem::path& baseDir,
+                          const std::map<std::string, double>& overrides = {});
 std::vector<std::string> builtinSceneNames();
 const char* defaultSceneName();
 
@@ -116,8 +171,31 @@ Mesh makeTerrain(float sizeX, float sizeZ, int subdivisions, float amplitude, fl
 // to stand instances on the ground.
 float terrainHeight(float x, float z, float amplitude, float wavelength);
 
-// OBJ through tinyobjloader; smooth normals generated when the file has none.
-Mesh loadObj(const std::filesystem::path& path);
+// Vertex and index counts and object-space bounds of what each generator makes, computed from
+// its arguments alone: the budget is checked with these before anything is generated.
+struct MeshSize {
+    uint64_t vertices = 0;
+    uint64_t indices = 0;
+    Bounds bounds{glm::vec3(0.0f), glm::vec3(0.0f)};
+};
+MeshSize planeSize(float sizeX, float sizeZ, int subdivisions);
+MeshSize boxSize(glm::vec3 size);
+MeshSize sphereSize(float radius, int segments, int rings);
+MeshSize cylinderSize(float radius, float height, int segments);
+MeshSize torusSize(float majorRadius, float minorRadius, int segments, int sides);
+MeshSize treeSize(float height, float crownRadius, int segments);
+MeshSize bumpySphereSize(float radius, float amplitude, int segments);
+MeshSize terrainSize(float sizeX, float sizeZ, int subdivisions, float amplitude);
+MeshSize sizeOf(const Mesh& mesh);
+
+// Wavefront OBJ (v, vt, vn, f; everything else, mtllib included, is ignored and never opened);
+// smooth normals generated when the file has none. Polygons are triangulated in linear time when
+// convex, by ear clipping otherwise, up to kMaxPolygonCorners corners. Only a regular file of at
+// most `maxFileBytes` is read.
+Mesh loadObj(const std::filesystem::path& path, uint64_t maxFileBytes = sceneBudget().fileBytes);
+// The same from text already in memory; `source` names it in errors. The budget's triangles are
+// checked while reading, its GPU bytes before the vertices are built.
+Mesh parseObj(const std::string& text, const std::string& source, const SceneBudget& budget = sceneBudget());
 void generateNormals(Mesh& mesh);
 
 } // namespace shadowlab

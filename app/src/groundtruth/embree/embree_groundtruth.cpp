@@ -284,6 +284,10 @@ public:
                                          std::to_string(scene.meshes.size()));
             ++uses[object.mesh];
         }
+        for (size_t m = 0; m < scene.meshes.size(); ++m)
+            for (const Vertex& vertex : scene.meshes[m].vertices)
+                if (!finite(vertex.position))
+                    throw std::runtime_error("ground truth: mesh " + std::to_string(m) + ": a vertex position is not finite");
 
         top_ = rtcNewScene(device_);
         // Robust: watertight traversal, no shadow ray slips between two triangles of a shared edge.
@@ -368,6 +372,7 @@ public:
     void trace(const GBufferView& gbuffer, const LightInfo& light, const ReferenceOptions& options,
                std::vector<glm::vec3>& visibility) override {
         requireScene();
+        validateLight(light);
         if (gbuffer.width < 0 || gbuffer.height < 0 ||
             (gbuffer.width * gbuffer.height > 0 && (!gbuffer.positions || !gbuffer.normals)))
             throw std::invalid_argument("ground truth: trace: G-buffer without positions or normals");
@@ -492,7 +497,26 @@ private:
         if (!top_) throw std::logic_error("ground truth: setScene() was not called (or failed)");
     }
 
+    static bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+    // Embree's builders assume finite input (an inf bound trips its assertions): refused here with
+    // what is wrong, whoever the caller is. The scene parser already refuses such scenes.
+    static void validateLight(const LightInfo& light) {
+        auto fail = [](const std::string& what) {
+            throw std::invalid_argument("ground truth: trace: the light's " + what +
+                                        " (the reference needs finite light input)");
+        };
+        if (!finite(light.position)) fail("position is not finite");
+        if (!finite(light.direction) || !(glm::length(light.direction) > 0.0f)) fail("direction is not a finite non-zero vector");
+        if (!std::isfinite(light.size) || light.size < 0.0f) fail("size " + std::to_string(light.size) + " is not finite and >= 0");
+        if (!std::isfinite(light.spotOuterAngle) || !std::isfinite(light.spotInnerAngle)) fail("spot angles are not finite");
+    }
+
     static void validateMesh(const Mesh& mesh, const SceneObject& object, size_t index) {
+        for (int c = 0; c < 4; ++c)
+            if (!finite(glm::vec3(object.transform[c])) || !std::isfinite(object.transform[c][3]))
+                throw std::runtime_error("ground truth: objects[" + std::to_string(index) + "] ('" + object.name +
+                                         "'): transform is not finite");
         for (uint32_t vertex : mesh.indices)
             if (vertex >= mesh.vertices.size())
                 throw std::runtime_error("ground truth: objects[" + std::to_string(index) + "] ('" + object.name +

@@ -1,0 +1,81 @@
+// Benchmark specs: what a sweep measures, read from the command line or a JSON file, and checked
+// as a whole before the first frame, so that a bad value in the last row fails at once instead of
+// after an hour of measuring. No GL here: the checks need only technique descriptors and scenes
+// (checkScene), which is also what the fuzzer (tests/fuzz) drives.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include "plugin/params.h"
+
+namespace shadowlab {
+
+struct BenchSpec {
+    std::string tag;                         // copied into every row as "spec" (which sweep it came from)
+    std::vector<std::string> techniques;     // empty: every technique except the reference
+    std::vector<std::string> scenes{"cube"};
+    std::vector<glm::ivec2> sizes{{1280, 720}};
+    // Lists to permute. Keys: a technique parameter ("resolution", or "pcf.kernel" for one
+    // technique), a scene parameter ("scene.count"), or the light size ("light.size").
+    std::map<std::string, std::vector<std::string>> sweeps;
+    std::vector<std::string> base;           // key=value set before every combination
+    int warmupFrames = 20;
+    int frames = 200;
+    bool accuracy = false;
+    std::string reference = "auto";          // hard | soft | both | auto
+    int referenceSamples = 64;
+    bool depthFloor = false;                 // add "depth-floor" rows (bare depth pass per resolution)
+    bool fromCommandLine = false;            // errors name options (--sweep) rather than fields (sweep)
+};
+
+constexpr int kMaxBenchFrames = 100000;
+constexpr int kMaxReferenceSamples = 4096;
+constexpr int kMinRenderSize = 16;
+constexpr int kMaxRenderSize = 16384;
+
+// "WIDTHxHEIGHT", both 16 to 16384 and nothing else ("64x64junk" is an error).
+bool parseSize(const std::string& text, glm::ivec2& size, std::string& error, const std::string& option = "--size");
+// A finite number and nothing else ("5abc", "nan" and "1e400" are errors).
+std::optional<double> parseNumberText(const std::string& text);
+
+// "--sweep resolution=512,1024,2048" into spec.sweeps.
+bool addSweep(BenchSpec& spec, const std::string& text, std::string& error);
+// A spec from JSON: {"techniques": [...], "scenes": [...], "sizes": ["1280x720"], "frames": 200,
+// "warmup": 20, "base": {"key": value}, "sweep": {"key": [values]}, "accuracy": true, ...}.
+// Types and ranges are checked here; names and values against techniques and scenes by checkBenchSpec.
+bool parseBenchSpec(const nlohmann::json& json, BenchSpec& spec, std::string& error);
+// A spec file holding one spec object or an array of them (run one after the other).
+bool loadBenchSpecs(const std::filesystem::path& file, std::vector<BenchSpec>& specs, std::string& error);
+
+// Everything a sweep would use, checked before it runs: technique ids; every sweep and base key
+// means something; every value parses as the parameter of each technique that declares it; scene
+// parameters are numbers; light sizes are in range for each scene's light; every scene loads with
+// every combination of its swept parameters (checkScene: fields and budget, no meshes made);
+// reference mode, samples, frames. `lightSize` is a --light-size given for every scene.
+// The first problem, naming the option or field and the value.
+bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& techniques, std::string& error,
+                    std::optional<double> lightSize = std::nullopt);
+
+// Shared by the check and the run.
+inline bool isSceneKey(const std::string& key) { return key.rfind("scene.", 0) == 0; }
+inline bool isLightKey(const std::string& key) { return key == "light.size"; }
+// The parameter id `key` names for `info`: "resolution" if it declares it, "pcf.kernel" for pcf; "" if none.
+std::string benchParamFor(const TechniqueInfo& info, const std::string& key);
+using BenchSetting = std::pair<std::string, std::string>;
+using BenchSettingLists = std::vector<std::pair<std::string, std::vector<std::string>>>;
+std::vector<std::vector<BenchSetting>> benchCombinations(const BenchSettingLists& lists);
+// The techniques a spec measures (all but the reference when it names none); nullopt and an
+// error for an unknown id.
+std::optional<std::vector<const TechniqueInfo*>> benchTechniques(const BenchSpec& spec,
+                                                                 const std::vector<TechniqueInfo>& techniques,
+                                                                 std::string& error);
+
+} // namespace shadowlab

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (clang, AddressSanitizer, UndefinedBehaviorSanitizer) and runs each
+# for a bounded time, seeded from assets/scenes, assets/bench, tests/fuzz/corpus and the saved
+# regressions. A crash, a sanitizer report, an input running over 10 s (a hang) or over 2 GiB
+# (exhausting the machine) fails the run; the input is left in <build>/artifacts/<target>/, to be
+# copied to tests/fuzz/regressions/<kind>/ once fixed (test_fuzz_regressions.cpp replays them).
+#   tests/fuzz/run.sh [seconds per target, default 60] [build folder, default build-fuzz]
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+seconds=${1:-60}
+build=${2:-build-fuzz}
+cmake -S tests/fuzz -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ > /dev/null
+cmake --build "$build" -j"${JOBS:-$(nproc)}"
+
+status=0
+summary=""
+for target in scene obj bench_spec; do
+    case $target in
+    scene) seeds=(assets/scenes tests/fuzz/corpus/scene tests/fuzz/regressions/scene); dict=scene.dict; max_len=16384 ;;
+    obj) seeds=(tests/fuzz/corpus/obj tests/fuzz/regressions/obj); dict=obj.dict; max_len=16384 ;;
+    bench_spec) seeds=(assets/bench tests/fuzz/corpus/bench tests/fuzz/regressions/bench); dict=bench.dict; max_len=8192 ;;
+    esac
+    corpus="$build/corpus/$target"
+    artifacts="$build/artifacts/$target"
+    mkdir -p "$corpus" "$artifacts"
+    log="$build/$target.log"
+    echo "fuzz_$target: ${seconds}s"
+    set +e
+    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        "$build/fuzz_$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len="$max_len" \
+        -dict="tests/fuzz/$dict" -artifact_prefix="$artifacts/" -print_final_stats=1 \
+        "$corpus" "${seeds[@]}" > "$log" 2>&1
+    code=$?
+    set -e
+    runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
+    found=$(ls "$artifacts" | wc -l)
+    summary+="fuzz_$target: $runs executions in ${seconds}s, exit $code, $found finding(s)"$'\n'
+    if [ "$code" != 0 ] || [ "$found" != 0 ]; then
+        status=1
+        echo "fuzz_$target FAILED (exit $code); the end of $log:"
+        tail -40 "$log"
+        ls -l "$artifacts"
+    fi
+done
+printf '%s' "$summary"
+exit $status
