@@ -71,13 +71,30 @@ float discTapPair(vec4 pair, bool second, vec3 coord, vec2 radiusUv, float rimBi
     return lit;
 }
 
+// True in all four pixels of a 2x2 quad iff `v` holds in all four. Fine derivatives give each
+// pixel the difference to its horizontal, then its vertical neighbour; a "miss" flag summed with
+// the absolute differences in x and then in y reaches the whole quad (the diagonal through the
+// second step). Call it in uniform control flow (derivatives); helper pixels vote too.
+bool quadAll(bool v) {
+    float miss = v ? 0.0 : 1.0;
+    miss += abs(dFdxFine(miss));
+    miss += abs(dFdyFine(miss));
+    return miss == 0.0;
+}
+
 // Lit fraction over the n x n set of this pixel, scaled to `radiusUv` around coord.xy.
 // The outer ring (first n samples, rounded up to whole texels) is tested first; when all its
 // taps agree (all lit or all shadowed) the point is taken to be outside any penumbra and the
 // rest is skipped (`earlyOut`). Known artefact (seed 000 sec. 4.3.2): a lit gap narrower than
 // the disc, surrounded by shadow, is classified shadowed.
-float adaptiveDiscPcf(sampler3D offsets, ivec2 pixel, int n, vec3 coord, vec2 radiusUv, float rimBias,
-                      out bool earlyOut) {
+//
+// With `coherent` (a uniform; call in uniform control flow then) the decision is taken per 2x2
+// quad: a quad stops only when every pixel's ring agrees (pixels with `skip`, outside the map,
+// count as agreeing). GPUs shade quads together, and a warp runs as long as its slowest pixel,
+// so per-pixel early outs that differ inside a quad save nothing there and add divergence; seed
+// 000 measured its adaptive PCF on hardware that branched per pixel block, too.
+float adaptiveDiscPcf(sampler3D offsets, ivec2 pixel, int n, vec3 coord, vec2 radiusUv, float rimBias, bool coherent,
+                      bool skip, out bool earlyOut) {
     int count = n * n;
     int texels = (count + 1) / 2;
     int ringTexels = (n + 1) / 2;
@@ -86,13 +103,21 @@ float adaptiveDiscPcf(sampler3D offsets, ivec2 pixel, int n, vec3 coord, vec2 ra
     earlyOut = false;
     for (int t = 0; t < ringTexels; ++t)
         lit += discTapPair(discOffsetPair(offsets, pixel, t), 2 * t + 1 < count, coord, radiusUv, rimBias, taken);
-    if (ringTexels < texels && (lit == 0.0 || lit == float(taken))) {
+    bool agree = skip || lit == 0.0 || lit == float(taken);
+    bool stop = coherent ? quadAll(agree) : agree;
+    if (ringTexels < texels && stop) {
         earlyOut = true;
         return lit / float(taken);
     }
     for (int t = ringTexels; t < texels; ++t)
         lit += discTapPair(discOffsetPair(offsets, pixel, t), 2 * t + 1 < count, coord, radiusUv, rimBias, taken);
     return lit / float(taken);
+}
+
+// The per-pixel decision (pcss, which reaches this in non-uniform control flow).
+float adaptiveDiscPcf(sampler3D offsets, ivec2 pixel, int n, vec3 coord, vec2 radiusUv, float rimBias,
+                      out bool earlyOut) {
+    return adaptiveDiscPcf(offsets, pixel, n, coord, radiusUv, rimBias, false, false, earlyOut);
 }
 
 #endif

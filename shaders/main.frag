@@ -1,7 +1,8 @@
 // Host main pass, fragment stage: forward Blinn-Phong. The technique's shadow term multiplies
-// the direct light only; the ambient term is never shadowed. Besides the lit colour (linear,
-// encoded to sRGB by the present pass) it writes what accuracy measurement needs: the shadow term
-// with a mask of where it is comparable, and the world position and normal of the sample.
+// the direct light only; the ambient term is never shadowed. It writes the lit colour (linear,
+// encoded to sRGB by the present pass), as a real renderer would. Built a second time with
+// SHADOWLAB_ACCURACY_TARGETS for the frames measured for accuracy (never timed): those also write
+// the shadow term with a mask of where it is comparable, and the world position and normal.
 #include "common.glsl"
 
 in VertexOut {
@@ -12,9 +13,11 @@ in VertexOut {
 } vIn;
 
 layout(location = 0) out vec4 outColor;
+#ifdef SHADOWLAB_ACCURACY_TARGETS
 layout(location = 1) out vec4 outVisibility;  // rgb shadow term, a = 1 where lit side and in cone
 layout(location = 2) out vec4 outPosition;    // xyz world, w = 1 where geometry was drawn
 layout(location = 3) out vec4 outNormal;      // xyz world normal (geometric side facing the viewer)
+#endif
 
 #include "technique_shadow.glsl"
 
@@ -37,8 +40,10 @@ void main() {
     vec3 color = uAmbient.rgb * uBaseColor.rgb + direct * shadow;
 
     outColor = vec4(color, uBaseColor.a);
+#ifdef SHADOWLAB_ACCURACY_TARGETS
     bool compared = NdotL > 0.0 && spot > 0.0;
     outVisibility = vec4(shadow, compared ? 1.0 : 0.0);
     outPosition = vec4(vIn.worldPos, 1.0);
     outNormal = vec4(N, 0.0);
+#endif
 }

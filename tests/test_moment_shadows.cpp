@@ -299,8 +299,8 @@ bool rayHitsGrownBox(glm::vec3 origin, glm::vec3 direction, Bounds box, float gr
 OverlapRegions overlapRegions(App& app, float ringHalfWidth) {
     const Bounds low = worldBoxOf(app, "low plate"), high = worldBoxOf(app, "high plate");
     const glm::vec3 toLight = -glm::normalize(app.light().direction);
-    const auto positions = app.renderer().readTarget(MainTarget::Position);
-    const auto normals = app.renderer().readTarget(MainTarget::Normal);
+    const auto positions = test::readTarget(app, MainTarget::Position);
+    const auto normals = test::readTarget(app, MainTarget::Normal);
     OverlapRegions out{std::vector<uint8_t>(positions.size(), 0)};
     for (size_t i = 0; i < positions.size(); ++i) {
         const glm::vec3 p(positions[i]);
@@ -400,7 +400,7 @@ TEST_F(MomentShadows, MsmRenderedVisibilityMatchesTheCpuReconstructionOfItsMomen
             const kit::MomentLightSpace space = kit::fitMomentLightSpace(
                 fitLightSpace(app_->light(), app_->renderer().bounds(DrawSet::All)),
                 app_->renderer().bounds(DrawSet::Casters), app_->renderer().bounds(DrawSet::All));
-            const auto positions = app_->renderer().readTarget(MainTarget::Position);
+            const auto positions = test::readTarget(*app_, MainTarget::Position);
             int compared = 0, penumbra = 0, close = 0;
             double worst = 0.0;
             for (size_t i = 0; i < positions.size(); i += 7) {   // a spread-out subset of pixels

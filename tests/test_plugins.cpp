@@ -76,7 +76,7 @@ protected:
     }
 
     static float centreVisibility(App& app) {
-        const auto v = app.renderer().readTarget(MainTarget::Visibility);
+        const auto v = test::readTarget(app, MainTarget::Visibility);
         const glm::ivec2 size = app.renderer().size();
         return v[size_t(size.y / 2) * size_t(size.x) + size_t(size.x / 2)].r;
     }
@@ -161,14 +161,14 @@ TEST_F(PluginSandbox, DirtyStateLeftByATechniqueDoesNotReachTheMainPass) {
     ASSERT_TRUE(app);
     std::string error;
     ASSERT_TRUE(app->renderFrame("none", error)) << error;
-    const auto colour = app->renderer().readTarget(MainTarget::Color);
-    const auto position = app->renderer().readTarget(MainTarget::Position);
+    const auto colour = test::readTarget(*app, MainTarget::Color);
+    const auto position = test::readTarget(*app, MainTarget::Position);
     for (int frame = 0; frame < 2; ++frame) {   // a second frame starts from the dirty state too
         ASSERT_TRUE(app->renderFrame("dirty_state", error)) << error;
         EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)) << "the dirty plugin made no GL error";
     }
-    const auto dirtyColour = app->renderer().readTarget(MainTarget::Color);
-    const auto dirtyPosition = app->renderer().readTarget(MainTarget::Position);
+    const auto dirtyColour = test::readTarget(*app, MainTarget::Color);
+    const auto dirtyPosition = test::readTarget(*app, MainTarget::Position);
     ASSERT_EQ(colour.size(), dirtyColour.size());
     size_t differing = 0, drawn = 0;
     for (size_t i = 0; i < colour.size(); ++i) {

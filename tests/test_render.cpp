@@ -79,7 +79,7 @@ TEST_F(CubeScene, PlanarHandlesAPointLightBelowTheCasterTop) {
     app_->light().type = LightType::Point;
     app_->light().position = {2.5f, 0.6f, 0.0f};
     const auto planar = test::renderVisibility(*app_, "planar");
-    const auto positions = app_->renderer().readTarget(MainTarget::Position);
+    const auto positions = test::readTarget(*app_, MainTarget::Position);
     int beyondLight = 0, behindCube = 0;
     for (size_t i = 0; i < positions.size(); ++i) {
         if (positions[i].w < 0.5f || std::abs(positions[i].y) > 1e-3f) continue;

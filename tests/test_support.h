@@ -28,13 +28,23 @@ inline std::unique_ptr<App> makeHeadlessApp(const std::string& scene, glm::ivec2
     return app;
 }
 
+// A main target of the last frame. Timed frames write the colour only, so for the others the
+// frame's main pass is re-run with the accuracy targets first (App::renderAccuracyTargets).
+inline std::vector<glm::vec4> readTarget(App& app, MainTarget which) {
+    if (which != MainTarget::Color) {
+        std::string error;
+        EXPECT_TRUE(app.renderAccuracyTargets(error)) << error;
+    }
+    return app.renderer().readTarget(which);
+}
+
 // Renders `technique` and returns the visibility target (rgb shadow term, a = compared mask).
 inline std::vector<glm::vec4> renderVisibility(App& app, const std::string& technique,
                                                const std::vector<std::string>& sets = {}) {
     std::string error;
     EXPECT_TRUE(app.applyAssignments(sets, technique, error)) << error;
     EXPECT_TRUE(app.renderFrame(technique, error)) << error;
-    return app.renderer().readTarget(MainTarget::Visibility);
+    return test::readTarget(app, MainTarget::Visibility);
 }
 
 // Analytic shadow of the object named "cube" on the ground (y = 0) under the current directional
@@ -87,8 +97,8 @@ inline GroundClassification classifyGround(App& app) {
         boxMax = glm::max(boxMax, v.position);
     }
     const glm::vec3 toLight = -glm::normalize(app.light().direction);
-    const auto positions = app.renderer().readTarget(MainTarget::Position);
-    const auto normals = app.renderer().readTarget(MainTarget::Normal);
+    const auto positions = test::readTarget(app, MainTarget::Position);
+    const auto normals = test::readTarget(app, MainTarget::Normal);
     GroundClassification out{std::vector<int>(positions.size(), -1), app.renderer().size()};
     for (size_t i = 0; i < positions.size(); ++i) {
         const bool ground = positions[i].w > 0.5f && std::abs(positions[i].y) < 1e-3f && normals[i].y > 0.99f;

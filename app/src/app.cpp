@@ -1,6 +1,9 @@
 // The application (see app.h). A frame, top to bottom:
-//   poll hot reload -> camera and light into the frame uniforms -> technique.renderShadows()
-//   -> host main pass with the technique's shadowTerm() -> present -> (UI) -> swap
+//   poll hot reload -> camera and light into the frame uniforms -> (camera pre-pass)
+//   -> technique.renderShadows() -> (depth pre-pass) -> host main pass with the technique's
+//   shadowTerm() -> present -> (UI) -> swap
+// Timed frames write the lit colour only; a frame measured for accuracy re-runs its main pass
+// with the accuracy targets, untimed.
 #include "util/strings.h"
 #include "app.h"
 
@@ -68,6 +71,7 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
     camera_.reset(scene_->camera);
     light_ = scene_->light;
     applyLightOverrides();
+    depthPrepass_ = options.depthPrepass;
     techniques_ = std::make_unique<TechniqueManager>(HostContext{*renderer_, *shaders_, *timer_, backend_->loader()}, pluginDir());
     techniques_->scan();
     techniques_->registerBuiltin(copyDescriptor(referenceDescriptor(), {}), [this] {
@@ -144,7 +148,7 @@ uint32_t frameSeed(uint64_t frameIndex) {
 
 } // namespace
 
-bool App::renderFrame(const std::string& technique, std::string& error) {
+bool App::renderFrame(const std::string& technique, std::string& error, FrameOutputs outputs) {
     // May wait for the GPU to finish the frame 4 back (when it is the bottleneck); that wait is
     // not host work, so the CPU clock starts after it.
     timer_->beginFrame();
@@ -182,11 +186,36 @@ bool App::renderFrame(const std::string& technique, std::string& error) {
     }
     renderer_->applyDefaultState();
     loaded->technique().renderShadows(frame_, params);
+    if (depthPrepass_) {
+        timer_->begin("depth pre-pass");
+        renderer_->mainDepthPrepass(outputs);
+        timer_->end();
+    }
     timer_->begin("main");
-    renderer_->mainPass(loaded->mainProgram(), [&] { loaded->technique().bindMainPass(frame_, params); });
+    renderer_->mainPass(loaded->mainProgram(outputs), outputs, [&] { loaded->technique().bindMainPass(frame_, params); });
     timer_->end();
     timer_->endFrame();
+    lastTechnique_ = technique;
     lastCpuFrameMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
+    return true;
+}
+
+bool App::renderAccuracyTargets(std::string& error) {
+    if (renderer_->accuracyTargetsCurrent()) return true;
+    if (lastTechnique_.empty()) {
+        error = "no frame has been rendered yet";
+        return false;
+    }
+    LoadedTechnique* loaded = techniques_->get(lastTechnique_, error);
+    if (!loaded) return false;
+    const std::vector<double>& values = params_.values(loaded->info());
+    const ParamValues params(values.data(), uint32_t(values.size()));
+    // The technique's maps are those of the frame being measured; only its main pass runs again,
+    // with the frame context it had, outside any timer scope.
+    renderer_->setView(frame_.camera, frame_.light);
+    if (depthPrepass_) renderer_->mainDepthPrepass(FrameOutputs::Accuracy);
+    renderer_->mainPass(loaded->mainProgram(FrameOutputs::Accuracy), FrameOutputs::Accuracy,
+                        [&] { loaded->technique().bindMainPass(frame_, params); });
     return true;
 }
 
@@ -200,6 +229,7 @@ bool App::presentView(const std::string& technique, const ViewSelection& view, G
         renderer_->present(PresentMode::Lit, renderer_->target(MainTarget::Color), fbo, size);
         return true;
     case ViewSelection::Kind::Visibility:
+        if (!renderAccuracyTargets(error)) return false;
         renderer_->present(PresentMode::Visibility, renderer_->target(MainTarget::Visibility), fbo, size);
         return true;
     case ViewSelection::Kind::ErrorHeatmap:
@@ -243,6 +273,8 @@ bool App::measure(const std::string& technique, int warmupFrames, int frames, Me
     out = {};
     for (const auto& [pass, samples] : timer_->history()) out.gpuMs[pass] = summarize(samples);
     out.cpuMs = summarize(cpu);
+    out.cpuWaitMs = summarize(timer_->waitHistory());
+    for (double wait : timer_->waitHistory()) out.framesWaited += wait > 0.0 ? 1 : 0;
     LoadedTechnique* loaded = techniques_->get(technique, error);
     out.gpuBytes = loaded ? loaded->host().gpuBytes() : 0;
     out.frames = frames;
@@ -332,6 +364,7 @@ bool App::traceReference(const GBufferView& gbuffer, const ReferenceOptions& opt
 }
 
 bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error) {
+    if (!renderAccuracyTargets(error)) return false;
     const glm::ivec2 size = renderer_->size();
     const auto positions = renderer_->readTarget(MainTarget::Position);
     const auto normals = renderer_->readTarget(MainTarget::Normal);
@@ -420,7 +453,9 @@ int App::runInteractive(const std::string& initialTechnique, int smokeFrames, co
         std::string error;
         if (fb.x > 0 && fb.y > 0) {
             if (!renderer_->resize(fb, state.msaaSamples, error)) logError(error);
-            if (!renderFrame(state.technique, error)) {
+            const FrameOutputs outputs =
+                state.view.kind == ViewSelection::Kind::Visibility ? FrameOutputs::Accuracy : FrameOutputs::Colour;
+            if (!renderFrame(state.technique, error, outputs)) {
                 state.frameError = error;
             } else if (state.view.kind == ViewSelection::Kind::ErrorHeatmap) {
                 state.frameError.clear();
@@ -440,7 +475,7 @@ int App::runInteractive(const std::string& initialTechnique, int smokeFrames, co
                 glScissor(0, 0, fb.x / 2, fb.y);
                 if (!presentView(state.technique, state.view, 0, fb, error)) state.view = {};
                 glDisable(GL_SCISSOR_TEST);   // the second frame's clears must cover everything
-                if (renderFrame(state.compareTechnique, error)) {
+                if (renderFrame(state.compareTechnique, error, outputs)) {
                     glEnable(GL_SCISSOR_TEST);
                     glScissor(fb.x / 2, 0, fb.x - fb.x / 2, fb.y);
                     const ViewSelection view = state.view.kind == ViewSelection::Kind::Visibility ? state.view : ViewSelection{};

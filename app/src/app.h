@@ -32,6 +32,7 @@ struct AppOptions {
     int msaaSamples = 0;
     std::optional<glm::vec3> lightDirection;            // overrides the scene's (travel direction)
     std::optional<float> lightSize;                     // scene units (degrees for directional)
+    bool depthPrepass = false;                          // host depth pre-pass, then main pass EQUAL
 };
 
 // Which image a frame shows: the lit scene, the shadow term, or one of the technique's debug images.
@@ -42,7 +43,9 @@ struct ViewSelection {
 
 struct Measurement {
     std::map<std::string, TimingSummary> gpuMs;   // per pass, plus "frame"
-    TimingSummary cpuMs;                          // host CPU time per frame (submission)
+    TimingSummary cpuMs;                          // host CPU time per frame (submission, no wait)
+    TimingSummary cpuWaitMs;                      // CPU time per frame spent waiting for the GPU
+    int framesWaited = 0;                         // frames in which that wait was not zero
     size_t gpuBytes = 0;
     int frames = 0;
 };
@@ -74,8 +77,15 @@ public:
     // "--set key=value" for `technique` (keys may also name another technique: "pcf.kernel=5").
     bool applyAssignments(const std::vector<std::string>& assignments, const std::string& technique, std::string& error);
 
-    // One frame of `technique` into the main targets; timers advance.
-    bool renderFrame(const std::string& technique, std::string& error);
+    // One frame of `technique` into the main targets; timers advance. Timed frames write the
+    // colour target only; FrameOutputs::Accuracy adds visibility, position and normal.
+    bool renderFrame(const std::string& technique, std::string& error, FrameOutputs outputs = FrameOutputs::Colour);
+    // The last frame's main pass again, same frame context and shadow maps, writing the accuracy
+    // targets; not timed. evaluate() and the visibility view call it when the frame had none.
+    bool renderAccuracyTargets(std::string& error);
+    // Host depth pre-pass before every main pass (main pass with depth test EQUAL, no depth write).
+    void setDepthPrepass(bool on) { depthPrepass_ = on; }
+    bool depthPrepass() const { return depthPrepass_; }
     // Shows `view` of the last frame in the display texture (or the window when framebuffer = 0).
     bool presentView(const std::string& technique, const ViewSelection& view, GLuint framebuffer, glm::ivec2 viewport,
                      std::string& error);
@@ -93,7 +103,8 @@ public:
     // The floor a shadow pass is measured against: a bare depth-only pass of the same casters,
     // from the host's fitted light space, at resolution x resolution (no bias, no culling).
     bool measureDepthFloor(int resolution, int warmupFrames, int frames, Measurement& out, std::string& error);
-    // Compares the last frame's shadow term with the reference traced from its own G-buffer.
+    // Compares the last frame's shadow term with the reference traced from its own G-buffer
+    // (re-rendering that frame with the accuracy targets when it was a timed frame).
     bool evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error);
     // Traces the current scene and light for `gbuffer` (loads the Embree module on first use).
     bool traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
@@ -128,6 +139,8 @@ private:
     // What every technique call of a frame is told (shadowlab/technique.h FrameContext).
     FrameContext frame_{};
     uint64_t framesRendered_ = 0;
+    std::string lastTechnique_;            // of the last renderFrame() (renderAccuracyTargets)
+    bool depthPrepass_ = false;
     bool windowed_ = false;
     std::chrono::steady_clock::time_point startTime_ = std::chrono::steady_clock::now();
     double lastCpuFrameMs_ = 0.0;

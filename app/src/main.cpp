@@ -44,6 +44,7 @@ struct CommonOptions {
     std::string lightDirection;
     std::string lightSize;      // text: checked against the scene's light type once it is known
     int msaa = 0;
+    bool depthPrepass = false;
     std::string budget;
     bool quiet = false;
 };
@@ -74,6 +75,7 @@ std::optional<double> lightSizeOption(const CommonOptions& common) {
 bool buildOptions(const CommonOptions& common, AppOptions& options, std::string& error) {
     options.scene = common.scene;
     options.msaaSamples = common.msaa;
+    options.depthPrepass = common.depthPrepass;
     if (!parseSize(common.size, options.size, error)) return false;
     // The budget part of the render-target check needs no GL: before a context or buffer exists.
     if (error = renderTargetBudgetProblem(options.size, options.msaaSamples, 0); !error.empty()) return false;
@@ -120,6 +122,10 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--backend", o.backend, "glfw | egl | osmesa (default: glfw with a display, else egl)")->group("Output");
     cmd.add_option("--size", o.size, "render size WIDTHxHEIGHT (default 1280x720)")->group("Output");
     cmd.add_option("--msaa", o.msaa, "MSAA samples of the main pass (0 = off)")->check(CLI::IsMember({0, 2, 4, 8}))->group("Output");
+    cmd.add_flag("--depth-prepass", o.depthPrepass,
+                 "depth-only pre-pass of the opaque surfaces, then the main pass with depth test EQUAL: the shadow term "
+                 "runs once per visible pixel")
+        ->group("Output");
     cmd.add_option("--budget", o.budget,
                    "raise or lower the scene budget: objects=N,triangles=N,gpu-mib=N,file-mib=N (docs/scene-format.md, Limits)")
         ->group("Scene");

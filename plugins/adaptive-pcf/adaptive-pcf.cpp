@@ -42,6 +42,14 @@ constexpr ParamDesc kParams[] = {
      "Each tap is the texture unit's 2x2 bilinear comparison: smoother penumbrae at small radii for "
      "almost no cost, but fractional taps rarely agree exactly, so the early out is taken less often.",
      nullptr},
+    {"coherent", "early out per 2x2 quad", ParamType::Bool, 0, 1, 1, "",
+     "Take the early-out decision per 2x2 pixel quad: the quad stops only when all four rings agree. A GPU "
+     "shades quads (and warps) together, so a pixel that stops alone next to one that continues saves "
+     "nothing and adds divergence; off gives seed 000's per-pixel decision.", nullptr},
+    {"count_early_outs", "count early outs", ParamType::Bool, 0, 1, 0, "",
+     "Count the calls and early outs with two atomic counters and report the early-out rate (statistics). "
+     "Every fragment increments the same counters, which costs GPU time: leave it off when timing.",
+     nullptr},
     kit::coneBiasParam(),
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
@@ -52,6 +60,8 @@ enum : uint32_t {
     kSets = kit::paramIndex(kParams, "sets"),
     kRadius = kit::paramIndex(kParams, "radius"),
     kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
+    kCoherent = kit::paramIndex(kParams, "coherent"),
+    kCountEarlyOuts = kit::paramIndex(kParams, "count_early_outs"),
     kConeBias = kit::paramIndex(kParams, "cone_bias"),
     kConstantBias = kit::paramIndex(kParams, "constant_bias"),
     kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
@@ -64,7 +74,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .explanation = "PCF with n x n jittered samples spread over a disc, a different set in each pixel of an m x m tile, "
                    "so the penumbra becomes fine noise instead of bands. The outermost samples come first: when they "
                    "all agree the pixel is fully lit or fully shadowed and the rest is skipped, so only penumbra pixels "
-                   "pay for the whole kernel (see the early-out rate). The radius sets the penumbra width, the same "
+                   "pay for the whole kernel (count early outs to see the rate). The radius sets the penumbra width, the same "
                    "everywhere: filtering, not a physically soft shadow.",
      .shadowGlsl = "adaptive-pcf.glsl"},
     kParams);
@@ -158,7 +168,8 @@ class AdaptivePcf final : public kit::TechniqueBase {
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
         map_.bindMainPass(params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
         glBindTextureUnit(shared::adaptive_pcf::kDiscOffsetsUnit, offsets_.texture());
-        uniforms_.set({{}, offsets_.n(), params.asFloat(kRadius), params.asBool(kConeBias) ? 1.0f : 0.0f, 0.0f});
+        uniforms_.set({{}, offsets_.n(), params.asFloat(kRadius), params.asBool(kConeBias) ? 1.0f : 0.0f,
+                       params.asBool(kCoherent) ? 1 : 0, params.asBool(kCountEarlyOuts) ? 1 : 0, 0, 0, 0});
         counters_.bindMainPass();
     }
 

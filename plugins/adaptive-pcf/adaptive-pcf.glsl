@@ -1,7 +1,9 @@
 // Adaptive PCF, main-pass side (seed 000 sec. 3.2.4; GPU Gems 2 ch. 17): the pixel picks one of
 // m x m jittered disc sets (pixel mod m), tests the outer ring first and stops there when the
-// ring agrees; only penumbra pixels pay for all n^2 taps. Two atomic counters count the calls and
-// the early outs; the technique reads them back a few frames later ("early-out rate").
+// ring agrees (per pixel, or per 2x2 quad with `coherent`); only penumbra pixels pay for all n^2
+// taps. With `count_early_outs`, two atomic counters count the calls and the early outs; the
+// technique reads them back a few frames later ("early-out rate"). Off by default: every fragment
+// incrementing the same two counters costs more than the filter on a GPU.
 #include "light_space.glsl"
 #include "disc_sampling.glsl"
 
@@ -16,14 +18,16 @@ layout(binding = kCounterBinding, offset = 4) uniform atomic_uint uEarlyOutCount
 float discTap(vec2 uv, float ref) { return texture(uShadowMap, vec3(uv, ref)); }
 
 vec3 shadowTerm(ShadowInput s) {
-    atomicCounterIncrement(uShadedCount);
+    bool count = uCountEarlyOuts != 0;
+    if (count) atomicCounterIncrement(uShadedCount);
     vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
-    if (!insideShadowMap(coord)) return vec3(1.0);
+    // No early return outside the map: the quad vote below needs uniform control flow.
+    bool inside = insideShadowMap(coord);
     float rimBias = uConeBias * receiverDepthSlope(s.worldNormal, uLightAxis, coord.z, uLightDepth, uLightWorldSize) * uRadius;
     bool earlyOut;
     // The offsets are unit-disc positions: scaled by the radius they stay texel-independent.
     float lit = adaptiveDiscPcf(uDiscOffsets, ivec2(s.fragCoord), uGrid, coord, vec2(uRadius / uLightDepth.w),
-                                rimBias, earlyOut);
-    if (earlyOut) atomicCounterIncrement(uEarlyOutCount);
-    return vec3(lit);
+                                rimBias, uCoherent != 0, !inside, earlyOut);
+    if (count && inside && earlyOut) atomicCounterIncrement(uEarlyOutCount);
+    return vec3(inside ? lit : 1.0);
 }

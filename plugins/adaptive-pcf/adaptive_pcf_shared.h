@@ -9,7 +9,11 @@ SHADOWLAB_UNIFORM_BLOCK(AdaptivePcfUniforms, 2) {
     int uGrid;             // n: n x n samples per set
     float uRadius;         // filter radius in texels
     float uConeBias;       // 0 off, else multiplier of the receiver slope
-    float uAdaptivePad;
+    int uCoherent;         // 1: early-out decision per 2x2 quad
+    int uCountEarlyOuts;   // 1: count calls and early outs (atomic counters)
+    int uAdaptivePad0;
+    int uAdaptivePad1;
+    int uAdaptivePad2;
 };
 SHADOWLAB_SHARED_END
 #endif

@@ -2,6 +2,7 @@
 #include "bench/bench.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <functional>
@@ -28,6 +29,10 @@ std::string jsonValueText(const nlohmann::json& value) {
     return value.is_string() ? value.get<std::string>() : value.dump();
 }
 
+// The technique's own passes: every pass it marked (not the host's frame, main pass, depth
+// pre-pass or camera pre-pass... the camera pre-pass is the technique's cost: it asked for it).
+bool isTechniquePass(const std::string& pass) { return pass != "frame" && pass != "main" && pass != "depth pre-pass"; }
+
 void addTiming(nlohmann::json& row, const Measurement& m) {
     double techniqueMs = 0.0;
     for (const auto& [pass, summary] : m.gpuMs) {
@@ -35,13 +40,48 @@ void addTiming(nlohmann::json& row, const Measurement& m) {
         row[name] = summary.median;
         row[name + "_p5"] = summary.p5;
         row[name + "_p95"] = summary.p95;
-        if (pass != "frame" && pass != "main") techniqueMs += summary.median;
+        if (isTechniquePass(pass)) techniqueMs += summary.median;
     }
-    row["gpu_technique_ms"] = techniqueMs;   // every pass the technique marked, summed
+    // The defined columns (docs/benchmarks.md, "Columns"): medians over the timed frames, which
+    // write the colour target only.
+    auto median = [&](const char* pass) {
+        const auto it = m.gpuMs.find(pass);
+        return it == m.gpuMs.end() ? 0.0 : it->second.median;
+    };
+    row["frame_ms"] = median("frame");
+    row["main_ms"] = median("main");
+    row["technique_passes_ms"] = techniqueMs;
+    if (m.gpuMs.count("depth pre-pass")) row["depth_prepass_ms"] = median("depth pre-pass");
     row["cpu_frame_ms"] = m.cpuMs.median;
     row["cpu_frame_ms_p5"] = m.cpuMs.p5;
     row["cpu_frame_ms_p95"] = m.cpuMs.p95;
+    row["cpu_wait_ms"] = m.cpuWaitMs.median;
+    row["cpu_wait_ms_p95"] = m.cpuWaitMs.p95;
+    row["cpu_wait_frames"] = m.framesWaited;
     row["frames"] = m.frames;
+    row["gbuffer_every_frame"] = false;
+}
+
+// One row to measure, planned before the first frame so progress can say "row N of M".
+struct BenchJob {
+    std::string scene;
+    std::vector<BenchSetting> sceneSettings;
+    glm::ivec2 size{0};
+    const TechniqueInfo* technique = nullptr;   // nullptr: a depth-floor row
+    std::vector<BenchSetting> settings;         // technique, light and host settings
+    int depthFloorResolution = 0;
+};
+
+bool sameGroup(const BenchJob& a, const BenchJob& b) {
+    return a.scene == b.scene && a.sceneSettings == b.sceneSettings && a.size == b.size;
+}
+
+std::string durationText(double seconds) {
+    char text[32];
+    if (seconds < 90.0) std::snprintf(text, sizeof(text), "%.0f s", seconds);
+    else if (seconds < 5400.0) std::snprintf(text, sizeof(text), "%.0f min %02.0f s", std::floor(seconds / 60.0), std::fmod(seconds, 60.0));
+    else std::snprintf(text, sizeof(text), "%.1f h", seconds / 3600.0);
+    return text;
 }
 
 } // namespace
@@ -57,8 +97,8 @@ std::string rowSettings(const nlohmann::json& row) {
 }
 
 void printBenchHeader() {
-    std::printf("%-10s %-16s %-11s %12s %14s %10s %10s %10s  %s\n", "scene", "technique", "size", "GPU frame ms",
-                "technique ms", "GPU MiB", "MAE hard", "MAE soft", "parameters");
+    std::printf("%-10s %-16s %-11s %9s %9s %11s %9s %9s %9s  %s\n", "scene", "technique", "size", "frame ms",
+                "passes ms", "shadow term", "GPU MiB", "MAE hard", "MAE soft", "parameters");
 }
 
 void printBenchRow(const nlohmann::json& row) {
@@ -68,9 +108,11 @@ void printBenchRow(const nlohmann::json& row) {
         return std::string(text);
     };
     const std::string size = std::to_string(row.value("width", 0)) + "x" + std::to_string(row.value("height", 0));
-    std::printf("%-10s %-16s %-11s %12.3f %14.3f %10.2f %10s %10s  %s\n", row.value("scene", "").c_str(),
-                row.value("technique", "").c_str(), size.c_str(), row.value("gpu_frame_ms", 0.0),
-                row.value("gpu_technique_ms", 0.0), double(row.value("gpu_bytes", size_t(0))) / 1048576.0,
+    char shadowTerm[32] = "-";
+    if (row.contains("shadow_term_ms")) std::snprintf(shadowTerm, sizeof(shadowTerm), "%.3f", row["shadow_term_ms"].get<double>());
+    std::printf("%-10s %-16s %-11s %9.3f %9.3f %11s %9.2f %9s %9s  %s\n", row.value("scene", "").c_str(),
+                row.value("technique", "").c_str(), size.c_str(), row.value("frame_ms", 0.0),
+                row.value("technique_passes_ms", 0.0), shadowTerm, double(row.value("gpu_bytes", size_t(0))) / 1048576.0,
                 mae("hard_mae").c_str(), mae("soft_mae").c_str(), rowSettings(row).c_str());
     std::fflush(stdout);
 }
@@ -93,120 +135,195 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
     }
     const auto measured = benchTechniques(spec, app.techniques().techniques(), error);
     if (!measured) return false;
-    const std::vector<const TechniqueInfo*>& techniques = *measured;
     auto number = [](const std::string& text) { return parseNumberText(text).value_or(0.0); };
+    const TechniqueInfo* none = app.techniques().find("none");
 
+    // The plan: every row in order. Per scene, scene settings and size: the depth-floor rows,
+    // then `none` (the main-pass floor of every row after it), then the other techniques.
     BenchSettingLists sceneLists;
     for (const auto& [key, values] : spec.sweeps)
         if (isSceneKey(key)) sceneLists.push_back({key, values});
-    const nlohmann::json environment = benchEnvironment(app);
-    ReferenceOptions::Mode modes[2] = {ReferenceOptions::Mode::Hard, ReferenceOptions::Mode::Soft};
-
+    std::vector<const TechniqueInfo*> ordered;
+    for (const TechniqueInfo* info : *measured)
+        if (info == none) ordered.push_back(info);
+    for (const TechniqueInfo* info : *measured)
+        if (info != none) ordered.push_back(info);
+    std::vector<BenchJob> jobs;
     for (const auto& sceneName : spec.scenes) {
         for (const auto& sceneSettings : benchCombinations(sceneLists)) {
-            std::map<std::string, double> overrides;
-            for (const auto& [key, value] : sceneSettings) overrides[key.substr(6)] = number(value);
-            if (!app.loadScene(sceneName, overrides, error)) return false;
-            const LightInfo sceneLight = app.light();
             for (const glm::ivec2 size : spec.sizes) {
-                if (!app.setRenderSize(size, error)) return false;
-                nlohmann::json common = environment;
-                if (!spec.tag.empty()) common["spec"] = spec.tag;
-                common["scene"] = app.scene().name;
-                common["triangles"] = app.scene().triangleCount();
-                for (const auto& [key, value] : sceneSettings) common[key] = number(value);
-                common["width"] = size.x;
-                common["height"] = size.y;
-                common["pixels"] = size.x * size.y;
-
+                BenchJob group;
+                group.scene = sceneName;
+                group.sceneSettings = sceneSettings;
+                group.size = size;
                 if (spec.depthFloor) {
                     std::vector<std::string> resolutions{"2048"};
                     if (auto it = spec.sweeps.find("resolution"); it != spec.sweeps.end()) resolutions = it->second;
                     for (const auto& resolution : resolutions) {
-                        Measurement m;
-                        app.light() = sceneLight;
-                        const int pixels = static_cast<int>(number(resolution));
-                        if (!app.measureDepthFloor(pixels, spec.warmupFrames, spec.frames, m, error)) return false;
-                        nlohmann::json row = common;
-                        row["technique"] = "depth-floor";
-                        row["category"] = "floor";
-                        row["param.resolution"] = pixels;
-                        addTiming(row, m);
-                        row["gpu_technique_ms"] = m.gpuMs["depth floor"].median;
-                        rows.push_back(row);
-                        if (onRow) onRow(row);
+                        BenchJob job = group;
+                        job.depthFloorResolution = static_cast<int>(number(resolution));
+                        jobs.push_back(job);
                     }
                 }
-
-                for (const TechniqueInfo* info : techniques) {
+                for (const TechniqueInfo* info : ordered) {
                     BenchSettingLists lists;
                     for (const auto& [key, values] : spec.sweeps)
-                        if (isLightKey(key) || (!isSceneKey(key) && !benchParamFor(*info, key).empty())) lists.push_back({key, values});
+                        if (isLightKey(key) || isHostKey(key) || (!isSceneKey(key) && !benchParamFor(*info, key).empty()))
+                            lists.push_back({key, values});
                     for (const auto& settings : benchCombinations(lists)) {
-                        app.params().resetToDefaults(*info);
-                        app.light() = sceneLight;
-                        std::vector<std::string> assignments;
-                        for (const auto& text : spec.base) {
-                            const std::string param = benchParamFor(*info, text.substr(0, text.find('=')));
-                            if (!param.empty()) assignments.push_back(param + text.substr(text.find('=')));
-                        }
-                        for (const auto& [key, value] : settings) {
-                            if (isLightKey(key)) {
-                                const float v = static_cast<float>(number(value));
-                                app.light().size = app.light().type == LightType::Directional ? glm::radians(v) : v;
-                            } else {
-                                assignments.push_back(benchParamFor(*info, key) + "=" + value);
-                            }
-                        }
-                        if (!app.applyAssignments(assignments, info->id, error)) return false;
-                        Measurement m;
-                        if (!app.measure(info->id, spec.warmupFrames, spec.frames, m, error)) return false;
-                        nlohmann::json row = common;
-                        row["technique"] = info->id;
-                        row["category"] = info->category;
-                        const auto& values = app.params().values(*info);
-                        for (size_t i = 0; i < info->params.size(); ++i)
-                            row["param." + info->params[i].id] = formatParamValue(info->params[i], values[i]);
-                        row["light_size"] = app.light().type == LightType::Directional ? glm::degrees(app.light().size)
-                                                                                        : app.light().size;
-                        addTiming(row, m);
-                        row["gpu_bytes"] = m.gpuBytes;
-                        LoadedTechnique* loaded = app.techniques().get(info->id, error);
-                        if (loaded)
-                            for (const auto& [name, value] : loaded->host().statistics()) row["stat." + columnName(name)] = value;
-                        if (spec.accuracy) {
-                            const bool hardOnly = spec.reference == "hard" ||
-                                                  (spec.reference == "auto" && (info->category == "hard" || info->category == "baseline"));
-                            const bool softOnly = spec.reference == "soft";
-                            for (const auto mode : modes) {
-                                if ((mode == ReferenceOptions::Mode::Soft && hardOnly) ||
-                                    (mode == ReferenceOptions::Mode::Hard && softOnly))
-                                    continue;
-                                ReferenceOptions options;
-                                options.mode = mode;
-                                options.samplesPerPixel = spec.referenceSamples;
-                                Evaluation evaluation;
-                                if (!app.evaluate(options, evaluation, error)) return false;
-                                const std::string prefix = mode == ReferenceOptions::Mode::Hard ? "hard_" : "soft_";
-                                const AccuracyMetrics& a = evaluation.metrics;
-                                row[prefix + "mae"] = a.mae;
-                                row[prefix + "rmse"] = a.rmse;
-                                row[prefix + "false_shadow"] = a.falseShadowRate;
-                                row[prefix + "false_light"] = a.falseLightRate;
-                                row[prefix + "mae_penumbra"] = a.maePenumbra;
-                                row[prefix + "mae_outside_penumbra"] = a.maeOutsidePenumbra;
-                                row[prefix + "compared_fraction"] = a.comparedFraction;
-                                row[prefix + "noise"] = a.noiseEnergy;
-                                row["technique_penumbra_fraction"] = a.techniquePenumbraFraction;
-                            }
-                        }
-                        rows.push_back(row);
-                        if (onRow) onRow(row);
+                        BenchJob job = group;
+                        job.technique = info;
+                        job.settings = settings;
+                        jobs.push_back(job);
                     }
                 }
             }
         }
     }
+
+    const nlohmann::json environment = benchEnvironment(app);
+    ReferenceOptions::Mode modes[2] = {ReferenceOptions::Mode::Hard, ReferenceOptions::Mode::Soft};
+    const auto started = std::chrono::steady_clock::now();
+    LightInfo sceneLight;
+    nlohmann::json common;
+    std::map<std::pair<int, bool>, double> mainFloor;   // none's main pass by (light size x 1e6, depth pre-pass)
+    std::map<int, double> depthFloor;                   // bare depth pass ms by resolution
+    const bool savedPrepass = app.depthPrepass();
+
+    // Floors are measured once per group, when first needed, with the row's warm-up and frames.
+    auto measureDepthFloor = [&](int resolution, double& ms) {
+        if (auto it = depthFloor.find(resolution); it != depthFloor.end()) {
+            ms = it->second;
+            return true;
+        }
+        Measurement m;
+        app.light() = sceneLight;
+        if (!app.measureDepthFloor(resolution, spec.warmupFrames, spec.frames, m, error)) return false;
+        ms = depthFloor[resolution] = m.gpuMs["depth floor"].median;
+        return true;
+    };
+
+    for (size_t index = 0; index < jobs.size(); ++index) {
+        const BenchJob& job = jobs[index];
+        if (index == 0 || !sameGroup(job, jobs[index - 1])) {
+            std::map<std::string, double> overrides;
+            for (const auto& [key, value] : job.sceneSettings) overrides[key.substr(6)] = number(value);
+            if (!app.loadScene(job.scene, overrides, error)) return false;
+            sceneLight = app.light();
+            if (!app.setRenderSize(job.size, error)) return false;
+            common = environment;
+            if (!spec.tag.empty()) common["spec"] = spec.tag;
+            common["scene"] = app.scene().name;
+            common["triangles"] = app.scene().triangleCount();
+            for (const auto& [key, value] : job.sceneSettings) common[key] = number(value);
+            common["width"] = job.size.x;
+            common["height"] = job.size.y;
+            common["pixels"] = job.size.x * job.size.y;
+            mainFloor.clear();
+            depthFloor.clear();
+        }
+        nlohmann::json row = common;
+        if (!job.technique) {
+            Measurement m;
+            app.light() = sceneLight;
+            if (!app.measureDepthFloor(job.depthFloorResolution, spec.warmupFrames, spec.frames, m, error)) return false;
+            row["technique"] = "depth-floor";
+            row["category"] = "floor";
+            row["param.resolution"] = job.depthFloorResolution;
+            addTiming(row, m);
+            row["technique_passes_ms"] = depthFloor[job.depthFloorResolution] = m.gpuMs["depth floor"].median;
+        } else {
+            const TechniqueInfo* info = job.technique;
+            app.params().resetToDefaults(*info);
+            app.light() = sceneLight;
+            app.setDepthPrepass(savedPrepass);
+            std::vector<std::string> assignments;
+            for (const auto& text : spec.base) {
+                const std::string param = benchParamFor(*info, text.substr(0, text.find('=')));
+                if (!param.empty()) assignments.push_back(param + text.substr(text.find('=')));
+            }
+            for (const auto& [key, value] : job.settings) {
+                if (isLightKey(key)) {
+                    const float v = static_cast<float>(number(value));
+                    app.light().size = app.light().type == LightType::Directional ? glm::radians(v) : v;
+                } else if (isHostKey(key)) {
+                    app.setDepthPrepass(value == "1");
+                } else {
+                    assignments.push_back(benchParamFor(*info, key) + "=" + value);
+                }
+            }
+            if (!app.applyAssignments(assignments, info->id, error)) return false;
+            const LightInfo rowLight = app.light();
+
+            // The main-pass floor: `none` in the same view, light and pre-pass setting, this run.
+            const std::pair<int, bool> floorKey{int(std::lround(rowLight.size * 1e6f)), app.depthPrepass()};
+            if (!mainFloor.count(floorKey) && none && info != none) {
+                Measurement floor;
+                app.params().resetToDefaults(*none);
+                if (!app.measure(none->id, spec.warmupFrames, spec.frames, floor, error)) return false;
+                mainFloor[floorKey] = floor.gpuMs["main"].median;
+            }
+            Measurement m;
+            if (!app.measure(info->id, spec.warmupFrames, spec.frames, m, error)) return false;
+            if (info == none && !mainFloor.count(floorKey)) mainFloor[floorKey] = m.gpuMs["main"].median;
+            row["technique"] = info->id;
+            row["category"] = info->category;
+            const auto& values = app.params().values(*info);
+            for (size_t i = 0; i < info->params.size(); ++i)
+                row["param." + info->params[i].id] = formatParamValue(info->params[i], values[i]);
+            row["light_size"] = rowLight.type == LightType::Directional ? glm::degrees(rowLight.size) : rowLight.size;
+            row["depth_prepass"] = app.depthPrepass() ? 1 : 0;
+            addTiming(row, m);
+            if (mainFloor.count(floorKey)) {
+                row["floor_main_ms"] = mainFloor[floorKey];
+                row["shadow_term_ms"] = row["main_ms"].get<double>() - mainFloor[floorKey];
+            }
+            if (const int p = info->paramIndex("resolution"); p >= 0) {
+                double floorMs = 0.0;
+                if (!measureDepthFloor(static_cast<int>(values[size_t(p)]), floorMs)) return false;
+                row["floor_depth_ms"] = floorMs;
+            }
+            row["gpu_bytes"] = m.gpuBytes;
+            LoadedTechnique* loaded = app.techniques().get(info->id, error);
+            if (loaded)
+                for (const auto& [name, value] : loaded->host().statistics()) row["stat." + columnName(name)] = value;
+            if (spec.accuracy) {
+                // Measured on the last timed frame, re-rendered untimed with the accuracy targets
+                // (App::evaluate); the measure() above had the lit colour only.
+                app.light() = rowLight;
+                const bool hardOnly = spec.reference == "hard" ||
+                                      (spec.reference == "auto" && (info->category == "hard" || info->category == "baseline"));
+                const bool softOnly = spec.reference == "soft";
+                for (const auto mode : modes) {
+                    if ((mode == ReferenceOptions::Mode::Soft && hardOnly) || (mode == ReferenceOptions::Mode::Hard && softOnly))
+                        continue;
+                    ReferenceOptions options;
+                    options.mode = mode;
+                    options.samplesPerPixel = spec.referenceSamples;
+                    Evaluation evaluation;
+                    if (!app.evaluate(options, evaluation, error)) return false;
+                    const std::string prefix = mode == ReferenceOptions::Mode::Hard ? "hard_" : "soft_";
+                    const AccuracyMetrics& a = evaluation.metrics;
+                    row[prefix + "mae"] = a.mae;
+                    row[prefix + "rmse"] = a.rmse;
+                    row[prefix + "false_shadow"] = a.falseShadowRate;
+                    row[prefix + "false_light"] = a.falseLightRate;
+                    row[prefix + "mae_penumbra"] = a.maePenumbra;
+                    row[prefix + "mae_outside_penumbra"] = a.maeOutsidePenumbra;
+                    row[prefix + "compared_fraction"] = a.comparedFraction;
+                    row[prefix + "noise"] = a.noiseEnergy;
+                    row["technique_penumbra_fraction"] = a.techniquePenumbraFraction;
+                }
+            }
+        }
+        rows.push_back(row);
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        const double left = elapsed / double(index + 1) * double(jobs.size() - index - 1);
+        std::fprintf(stderr, "bench: row %zu of %zu, %s elapsed, about %s left\n", index + 1, jobs.size(),
+                     durationText(elapsed).c_str(), durationText(left).c_str());
+        if (onRow) onRow(row);
+    }
+    app.setDepthPrepass(savedPrepass);
     return true;
 }
 

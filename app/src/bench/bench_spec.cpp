@@ -337,6 +337,15 @@ bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& tec
             }
             continue;   // the range depends on each scene's light: below
         }
+        if (isHostKey(key)) {
+            for (const auto& value : values) {
+                if (value != "0" && value != "1") {
+                    error = sweepName(spec, key) + ": '" + value + "' is not 0 (off) or 1 (on)";
+                    return false;
+                }
+            }
+            continue;
+        }
         bool used = false;
         for (const TechniqueInfo* t : *measured) {
             const std::string param = benchParamFor(*t, key);
@@ -351,7 +360,8 @@ bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& tec
             }
         }
         if (!used) {
-            error = sweepName(spec, key) + ": '" + key + "' is no parameter of the techniques measured (nor scene.*, light.size)";
+            error = sweepName(spec, key) + ": '" + key +
+                    "' is no parameter of the techniques measured (nor scene.*, light.size, host.depth_prepass)";
             return false;
         }
     }
@@ -362,7 +372,7 @@ bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& tec
             return false;
         }
         const std::string key = text.substr(0, equals), value = text.substr(equals + 1);
-        if (isSceneKey(key) || isLightKey(key)) {
+        if (isSceneKey(key) || isLightKey(key) || isHostKey(key)) {
             error = baseName(spec, text) + ": '" + key + "' is not a technique parameter (scene parameters and the light size are swept: " +
                     sweepName(spec, key) + ")";
             return false;

@@ -216,17 +216,21 @@ int PluginHost::releaseAll() {
 bool LoadedTechnique::start(HostContext context, const std::filesystem::path& shadowGlsl, std::string& error) {
     shaders_ = &context.shaders;
     host_ = std::make_unique<PluginHost>(context, info_);
-    ShaderRequest main;
-    main.vertexFile = "main.vert";
-    main.fragmentFile = "main.frag";
-    main.searchPaths = hostShaderPaths();
-    main.aliases["technique_shadow.glsl"] = shadowGlsl;
-    main.label = info_.id + ": main pass";
-    std::string shaderError;
-    mainProgram_ = context.shaders.build(main, shaderError);
-    if (!mainProgram_) {
-        error = "main pass with " + info_.shadowGlsl + " failed to build: " + shaderError;
-        return false;
+    for (const FrameOutputs outputs : {FrameOutputs::Colour, FrameOutputs::Accuracy}) {
+        const bool accuracy = outputs == FrameOutputs::Accuracy;
+        ShaderRequest main;
+        main.vertexFile = "main.vert";
+        main.fragmentFile = "main.frag";
+        main.defines = accuracy ? "SHADOWLAB_ACCURACY_TARGETS 1" : "";
+        main.searchPaths = hostShaderPaths();
+        main.aliases["technique_shadow.glsl"] = shadowGlsl;
+        main.label = info_.id + (accuracy ? ": main pass (accuracy targets)" : ": main pass");
+        std::string shaderError;
+        mainPrograms_[accuracy ? 1 : 0] = context.shaders.build(main, shaderError);
+        if (!mainPrograms_[accuracy ? 1 : 0]) {
+            error = "main pass with " + info_.shadowGlsl + " failed to build: " + shaderError;
+            return false;
+        }
     }
     std::string initError;
     if (!technique_->init(*host_, initError)) {
@@ -277,11 +281,14 @@ LoadedTechnique::~LoadedTechnique() {
     builtin_.reset();
     if (host_) host_->releaseAll();
     host_.reset();
-    if (mainProgram_ && shaders_) shaders_->release(mainProgram_);
+    for (ProgramId program : mainPrograms_)
+        if (program && shaders_) shaders_->release(program);
     library_.reset();
 }
 
-GLuint LoadedTechnique::mainProgram() const { return shaders_->program(mainProgram_); }
+GLuint LoadedTechnique::mainProgram(FrameOutputs outputs) const {
+    return shaders_->program(mainPrograms_[outputs == FrameOutputs::Accuracy ? 1 : 0]);
+}
 
 TechniqueManager::TechniqueManager(HostContext context, std::filesystem::path pluginDir)
     : context_(context), pluginDir_(std::move(pluginDir)) {}

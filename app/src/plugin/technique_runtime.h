@@ -110,7 +110,8 @@ public:
     const TechniqueInfo& info() const { return info_; }
     IShadowTechnique& technique() { return *technique_; }
     PluginHost& host() { return *host_; }
-    GLuint mainProgram() const;
+    // The host's main pass with this technique's shadowTerm(), built for each FrameOutputs.
+    GLuint mainProgram(FrameOutputs outputs) const;
     const PluginLibrary* library() const { return library_.get(); }
 
 private:
@@ -121,7 +122,7 @@ private:
     std::unique_ptr<IShadowTechnique> builtin_;
     std::unique_ptr<PluginHost> host_;
     IShadowTechnique* technique_ = nullptr;
-    ProgramId mainProgram_ = 0;
+    ProgramId mainPrograms_[2] = {0, 0};   // FrameOutputs::Colour, ::Accuracy
     ShaderLibrary* shaders_ = nullptr;
 };
 

@@ -1,6 +1,8 @@
 // GPU timer ring (see gpu_timer.h).
 #include "render/gpu_timer.h"
 
+#include <chrono>
+
 #include "util/log.h"
 
 namespace shadowlab {
@@ -24,7 +26,15 @@ void GpuTimer::beginFrame() {
     FrameSlot& slot = slots_[size_t(current_)];
     // Results of the frame kFramesInFlight back. Normally ready; if the GPU is that far behind,
     // waiting here is what the driver's frame throttling would do anyway, and no frame is lost.
-    if (slot.pending) collect(slot);
+    // The wait is timed here, explicitly, so that no pass and no host CPU figure contains it.
+    lastWaitMs_ = 0.0;
+    if (slot.pending) {
+        const bool wait = !ready(slot);
+        const auto start = std::chrono::steady_clock::now();
+        collect(slot);   // blocks in GL_QUERY_RESULT only when not ready
+        if (wait) lastWaitMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+    if (waitHistory_.size() < kMaxHistory) waitHistory_.push_back(lastWaitMs_);
     slot.scopes.clear();
     slot.used = 0;
     slot.pending = false;
@@ -61,6 +71,13 @@ void GpuTimer::end() {
     slot.scopes[size_t(scope)].endQuery = query;
 }
 
+bool GpuTimer::ready(const FrameSlot& slot) const {
+    if (slot.used == 0) return true;
+    GLuint available = GL_FALSE;
+    glGetQueryObjectuiv(slot.queries[size_t(slot.used - 1)], GL_QUERY_RESULT_AVAILABLE, &available);
+    return available == GL_TRUE;
+}
+
 void GpuTimer::collect(FrameSlot& slot) {
     if (slot.scopes.empty()) return;
     std::map<std::string, double> frame;
@@ -71,7 +88,11 @@ void GpuTimer::collect(FrameSlot& slot) {
         glGetQueryObjectui64v(slot.queries[size_t(scope.endQuery)], GL_QUERY_RESULT, &end);
         frame[scope.name] += double(end - begin) * 1e-6;   // same name twice in a frame adds up
     }
-    for (const auto& [name, ms] : frame) history_[name].push_back(ms);
+    for (const auto& [name, ms] : frame) {
+        std::vector<double>& samples = history_[name];
+        if (samples.size() >= kMaxHistory) samples.erase(samples.begin(), samples.begin() + kMaxHistory / 2);
+        samples.push_back(ms);
+    }
     latest_ = std::move(frame);
     slot.pending = false;
 }

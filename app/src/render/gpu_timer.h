@@ -1,5 +1,7 @@
 // GPU time per pass with GL_TIMESTAMP queries, ring-buffered over frames so results are read a
-// few frames late and the frame loop never waits for the GPU. Scopes may nest.
+// few frames late. The frame loop waits for the GPU only when it is kFramesInFlight frames
+// behind; that wait is explicit and measured (lastWaitMs, waitHistory), never hidden in a pass.
+// Scopes may nest.
 #pragma once
 
 #include <array>
@@ -21,7 +23,10 @@ public:
     GpuTimer(const GpuTimer&) = delete;
     GpuTimer& operator=(const GpuTimer&) = delete;
 
-    void beginFrame();     // also collects the oldest frame's results when they are ready
+    // Also collects the results of the frame kFramesInFlight back: at once when the GPU has
+    // finished it, otherwise after waiting for it (the CPU is that far ahead: the wait a driver's
+    // frame throttling would impose). The wait is timed into lastWaitMs() and waitHistory().
+    void beginFrame();
     void endFrame();
     void begin(const std::string& name);
     void end();
@@ -31,8 +36,17 @@ public:
     // Milliseconds of the most recent completed frame, per pass ("frame" is the whole frame).
     const std::map<std::string, double>& latest() const { return latest_; }
     // Every completed frame's milliseconds per pass since clearHistory().
+    // At most kMaxHistory samples per pass are kept (the window runs for hours): the newest.
     const std::map<std::string, std::vector<double>>& history() const { return history_; }
-    void clearHistory() { history_.clear(); }
+    // CPU milliseconds beginFrame() spent waiting for the GPU, per frame since clearHistory()
+    // (0 where the results were ready).
+    const std::vector<double>& waitHistory() const { return waitHistory_; }
+    double lastWaitMs() const { return lastWaitMs_; }
+    void clearHistory() {
+        history_.clear();
+        waitHistory_.clear();
+    }
+    static constexpr size_t kMaxHistory = 100000;
 
 private:
     struct Scope {
@@ -47,6 +61,7 @@ private:
         bool pending = false;
     };
     void collect(FrameSlot& slot);   // reads the slot's results (waits if the GPU has not finished them)
+    bool ready(const FrameSlot& slot) const;   // its last query has a result (no wait)
     int nextQuery();
 
     std::array<FrameSlot, kFramesInFlight> slots_;
@@ -54,6 +69,8 @@ private:
     std::vector<int> open_;
     std::map<std::string, double> latest_;
     std::map<std::string, std::vector<double>> history_;
+    std::vector<double> waitHistory_;
+    double lastWaitMs_ = 0.0;
 };
 
 } // namespace shadowlab

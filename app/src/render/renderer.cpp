@@ -43,15 +43,20 @@ GlTexture makeTexture(GLenum format, glm::ivec2 size, int samples, const char* l
     return GlTexture(name);
 }
 
-bool attachMainTargets(GLuint fbo, GLuint color, GLuint visibility, GLuint position, GLuint normal, GLuint depth,
-                       const char* what, std::string& error) {
+bool attachMainTargets(GLuint fbo, FrameOutputs outputs, GLuint color, GLuint visibility, GLuint position, GLuint normal,
+                       GLuint depth, const char* what, std::string& error) {
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, visibility, 0);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT2, position, 0);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT3, normal, 0);
     glNamedFramebufferTexture(fbo, GL_DEPTH_STENCIL_ATTACHMENT, depth, 0);
     const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
-    glNamedFramebufferDrawBuffers(fbo, 4, buffers);
+    if (outputs == FrameOutputs::Accuracy) {
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, visibility, 0);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT2, position, 0);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT3, normal, 0);
+        glNamedFramebufferDrawBuffers(fbo, 4, buffers);
+    } else {
+        glNamedFramebufferDrawBuffers(fbo, 1, buffers);
+    }
+    glObjectLabel(GL_FRAMEBUFFER, fbo, -1, what);
     const GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         error = std::string(what) + " framebuffer is " + framebufferStatusName(status);
@@ -59,6 +64,8 @@ bool attachMainTargets(GLuint fbo, GLuint color, GLuint visibility, GLuint posit
     }
     return true;
 }
+
+int outputIndex(FrameOutputs outputs) { return outputs == FrameOutputs::Accuracy ? 1 : 0; }
 
 } // namespace
 
@@ -116,7 +123,13 @@ bool Renderer::init(std::string& error) {
     prepass.searchPaths = hostShaderPaths();
     prepass.label = "host camera pre-pass";
     prepassProgram_ = shaders_.build(prepass, error);
-    return prepassProgram_ != 0;
+    if (!prepassProgram_) return false;
+    ShaderRequest depthOnly;
+    depthOnly.vertexFile = "main.vert";   // the main pass's own vertex stage: bit-identical depth
+    depthOnly.searchPaths = hostShaderPaths();
+    depthOnly.label = "host depth pre-pass";
+    depthOnlyProgram_ = shaders_.build(depthOnly, error);
+    return depthOnlyProgram_ != 0;
 }
 
 GLuint Renderer::sampler(SamplerKind kind) const {
@@ -196,21 +209,26 @@ void Renderer::setScene(const Scene& scene) {
 
 bool Renderer::resize(glm::ivec2 size, int msaaSamples, std::string& error) {
     size = glm::max(size, glm::ivec2(1));
-    if (size == size_ && msaaSamples == msaaSamples_ && mainFbo_) return true;
+    if (size == size_ && msaaSamples == msaaSamples_ && mainFbo_[0]) return true;
     size_ = size;
     msaaSamples_ = msaaSamples;
+    accuracyCurrent_ = false;
     color_ = makeTexture(GL_RGBA16F, size, 0, "main colour (linear)");
     visibility_ = makeTexture(GL_RGBA16F, size, 0, "main visibility");
     position_ = makeTexture(GL_RGBA32F, size, 0, "main world position");
     normal_ = makeTexture(GL_RGBA16F, size, 0, "main world normal");
     depth_ = makeTexture(GL_DEPTH24_STENCIL8, size, 0, "main depth");
     GLuint name = 0;
-    glCreateFramebuffers(1, &name);
-    mainFbo_.reset(name);
-    if (!attachMainTargets(name, color_.get(), visibility_.get(), position_.get(), normal_.get(), depth_.get(),
-                           "main", error))
-        return false;
-    msFbo_.reset();
+    const char* labels[2][2] = {{"main (colour)", "main (accuracy)"}, {"main MSAA (colour)", "main MSAA (accuracy)"}};
+    for (FrameOutputs outputs : {FrameOutputs::Colour, FrameOutputs::Accuracy}) {
+        const int o = outputIndex(outputs);
+        glCreateFramebuffers(1, &name);
+        mainFbo_[o].reset(name);
+        if (!attachMainTargets(name, outputs, color_.get(), visibility_.get(), position_.get(), normal_.get(),
+                               depth_.get(), labels[0][o], error))
+            return false;
+        msFbo_[o].reset();
+    }
     msColor_.reset();
     msVisibility_.reset();
     msPosition_.reset();
@@ -222,11 +240,14 @@ bool Renderer::resize(glm::ivec2 size, int msaaSamples, std::string& error) {
         msPosition_ = makeTexture(GL_RGBA32F, size, msaaSamples, "main position MSAA");
         msNormal_ = makeTexture(GL_RGBA16F, size, msaaSamples, "main normal MSAA");
         msDepth_ = makeTexture(GL_DEPTH24_STENCIL8, size, msaaSamples, "main depth MSAA");
-        glCreateFramebuffers(1, &name);
-        msFbo_.reset(name);
-        if (!attachMainTargets(name, msColor_.get(), msVisibility_.get(), msPosition_.get(), msNormal_.get(),
-                               msDepth_.get(), "main MSAA", error))
-            return false;
+        for (FrameOutputs outputs : {FrameOutputs::Colour, FrameOutputs::Accuracy}) {
+            const int o = outputIndex(outputs);
+            glCreateFramebuffers(1, &name);
+            msFbo_[o].reset(name);
+            if (!attachMainTargets(name, outputs, msColor_.get(), msVisibility_.get(), msPosition_.get(),
+                                   msNormal_.get(), msDepth_.get(), labels[1][o], error))
+                return false;
+        }
     }
     if (prepassFbo_) allocatePrepassTargets();
     displayColor_ = makeTexture(GL_RGBA8, size, 0, "display");
@@ -342,31 +363,57 @@ void Renderer::drawFullscreenTriangle() {
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-void Renderer::beginMainPass(GLuint program) {
-    const GLuint fbo = msaaSamples_ > 0 ? msFbo_.get() : mainFbo_.get();
+GLuint Renderer::mainFramebuffer(FrameOutputs outputs) const {
+    const int o = outputIndex(outputs);
+    return msaaSamples_ > 0 ? msFbo_[o].get() : mainFbo_[o].get();
+}
+
+void Renderer::clearMainTargets(GLuint fbo, FrameOutputs outputs, bool depth) {
+    const glm::vec3 bg = scene_ ? scene_->background : glm::vec3(0.0f);
+    const float background[4] = {bg.r, bg.g, bg.b, 1.0f};
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, background);
+    if (outputs == FrameOutputs::Accuracy)
+        for (GLint buffer = 1; buffer < 4; ++buffer) glClearNamedFramebufferfv(fbo, GL_COLOR, buffer, zero);
+    if (depth) glClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+}
+
+void Renderer::mainDepthPrepass(FrameOutputs outputs) {
+    applyDefaultState();
+    const GLuint fbo = mainFramebuffer(outputs);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    const GLuint program = shaders_.program(depthOnlyProgram_);
+    glUseProgram(program);
+    bindSceneGeometry(program);
+    for (uint32_t index : opaqueBatches_) {
+        const Batch& batch = batches_[index];
+        drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    depthPrepassed_ = true;
+}
+
+void Renderer::beginMainPass(GLuint program, FrameOutputs outputs) {
+    const GLuint fbo = mainFramebuffer(outputs);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, size_.x, size_.y);
     glDisable(GL_FRAMEBUFFER_SRGB);   // colour stays linear; the present pass encodes
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
+    // After a depth pre-pass only the nearest surface passes, and depth is final already.
+    glDepthFunc(depthPrepassed_ ? GL_EQUAL : GL_LESS);
+    glDepthMask(depthPrepassed_ ? GL_FALSE : GL_TRUE);
     glDisable(GL_BLEND);
     glDisable(GL_STENCIL_TEST);
     glDisable(GL_POLYGON_OFFSET_FILL);
     glDisable(GL_CULL_FACE);          // planes are single-sided quads seen from both sides
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    const glm::vec3 bg = scene_ ? scene_->background : glm::vec3(0.0f);
-    const float background[4] = {bg.r, bg.g, bg.b, 1.0f};
-    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, background);
-    glClearNamedFramebufferfv(fbo, GL_COLOR, 1, zero);
-    glClearNamedFramebufferfv(fbo, GL_COLOR, 2, zero);
-    glClearNamedFramebufferfv(fbo, GL_COLOR, 3, zero);
-    glClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    clearMainTargets(fbo, outputs, !depthPrepassed_);
     bindSceneGeometry(program);
 }
 
-void Renderer::drawMainPassObjects(GLuint program) {
+void Renderer::drawMainPassObjects(GLuint program, FrameOutputs outputs) {
     if (!scene_) return;
     bindSceneGeometry(program);
     for (uint32_t index : opaqueBatches_) {
@@ -377,16 +424,20 @@ void Renderer::drawMainPassObjects(GLuint program) {
     // Translucent surfaces: blended colour, back to front from the camera by their bounds'
     // centres, without touching the G-buffer or depth, so accuracy is measured on the opaque
     // surface behind them.
+    glDepthFunc(GL_LESS);
     glDepthMask(GL_FALSE);
     glEnablei(GL_BLEND, 0);
     glBlendFunci(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    for (GLuint attachment = 1; attachment < 4; ++attachment) glColorMaski(attachment, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    const GLuint gbufferTargets = outputs == FrameOutputs::Accuracy ? 4 : 1;
+    for (GLuint attachment = 1; attachment < gbufferTargets; ++attachment)
+        glColorMaski(attachment, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     DrawRequest translucent;
     translucent.set = DrawSet::Translucent;
     translucent.order = DrawOrder::BackToFront;
     translucent.orderReference = glm::vec4(camera_.position, 1.0f);
     drawScene(translucent, program);
-    for (GLuint attachment = 1; attachment < 4; ++attachment) glColorMaski(attachment, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    for (GLuint attachment = 1; attachment < gbufferTargets; ++attachment)
+        glColorMaski(attachment, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDisablei(GL_BLEND, 0);
     glDepthMask(GL_TRUE);
 }
@@ -469,19 +520,23 @@ void Renderer::cameraPrepass() {
     }
 }
 
-void Renderer::endMainPass() {
+void Renderer::endMainPass(FrameOutputs outputs) {
+    depthPrepassed_ = false;
+    accuracyCurrent_ = outputs == FrameOutputs::Accuracy;
     if (msaaSamples_ <= 0) return;
-    // Resolve each attachment; float targets average their samples (edges of the G-buffer are
-    // therefore approximate with MSAA: accuracy runs use MSAA off).
-    for (int attachment = 0; attachment < 4; ++attachment) {
-        glNamedFramebufferReadBuffer(msFbo_.get(), GL_COLOR_ATTACHMENT0 + GLenum(attachment));
+    // Resolve each attachment written; float targets average their samples (edges of the
+    // G-buffer are therefore approximate with MSAA: accuracy runs use MSAA off).
+    const int o = outputIndex(outputs);
+    const int attachments = outputs == FrameOutputs::Accuracy ? 4 : 1;
+    for (int attachment = 0; attachment < attachments; ++attachment) {
+        glNamedFramebufferReadBuffer(msFbo_[o].get(), GL_COLOR_ATTACHMENT0 + GLenum(attachment));
         const GLenum draw = GL_COLOR_ATTACHMENT0 + GLenum(attachment);
-        glNamedFramebufferDrawBuffers(mainFbo_.get(), 1, &draw);
-        glBlitNamedFramebuffer(msFbo_.get(), mainFbo_.get(), 0, 0, size_.x, size_.y, 0, 0, size_.x, size_.y,
+        glNamedFramebufferDrawBuffers(mainFbo_[o].get(), 1, &draw);
+        glBlitNamedFramebuffer(msFbo_[o].get(), mainFbo_[o].get(), 0, 0, size_.x, size_.y, 0, 0, size_.x, size_.y,
                                GL_COLOR_BUFFER_BIT, GL_NEAREST);
     }
     const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
-    glNamedFramebufferDrawBuffers(mainFbo_.get(), 4, buffers);
+    glNamedFramebufferDrawBuffers(mainFbo_[o].get(), attachments, buffers);
 }
 
 GLuint Renderer::target(MainTarget which) const {
@@ -524,6 +579,8 @@ Image Renderer::readDisplay() const {
 }
 
 std::vector<glm::vec4> Renderer::readTarget(MainTarget which) const {
+    if (which != MainTarget::Color && !accuracyCurrent_)
+        logError("reading a main target the last frame did not write (render it with FrameOutputs::Accuracy)");
     std::vector<glm::vec4> pixels(size_t(size_.x) * size_t(size_.y));
     glGetTextureImage(target(which), 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(glm::vec4)), pixels.data());
     return pixels;

@@ -1,7 +1,8 @@
 // The host's GL side: scene geometry on the GPU, the per-frame uniform block, the GL state
-// contract, the camera pre-pass, the main pass (forward Blinn-Phong into colour + visibility +
-// G-buffer targets) and the present pass. Everything here is created once (or when the size
-// changes), never per frame.
+// contract, the camera pre-pass, the main pass (forward Blinn-Phong into the colour target; on
+// frames measured for accuracy also into visibility and G-buffer targets), the optional depth
+// pre-pass, and the present pass. Everything here is created once (or when the size changes),
+// never per frame.
 #pragma once
 
 #include <optional>
@@ -18,6 +19,9 @@ namespace shadowlab {
 
 enum class PresentMode : int { Lit = 0, Visibility = 1, Depth = 2, Color = 3, Moments = 4 };
 enum class MainTarget { Color, Visibility, Position, Normal };
+// What a main pass writes. Timed frames write what a real renderer writes, the lit colour; only
+// frames measured for accuracy (never timed) add the shadow term, world position and normal.
+enum class FrameOutputs { Colour, Accuracy };
 
 class Renderer {
 public:
@@ -63,16 +67,25 @@ public:
 
     // The main pass with a technique's main program: default state and the program bound,
     // bindTechnique() sets its uniforms and textures, then the host's main-pass state and draws.
+    // `program` must be the variant built for `outputs` (LoadedTechnique::mainProgram).
     template <typename BindTechnique>
-    void mainPass(GLuint program, BindTechnique&& bindTechnique) {
+    void mainPass(GLuint program, FrameOutputs outputs, BindTechnique&& bindTechnique) {
         applyDefaultState();
         glUseProgram(program);
         bindTechnique();
         resetPipelineState();   // whatever bindTechnique() changed besides its bindings
-        beginMainPass(program);
-        drawMainPassObjects(program);
-        endMainPass();
+        beginMainPass(program, outputs);
+        drawMainPassObjects(program, outputs);
+        endMainPass(outputs);
     }
+    // Optional depth pre-pass (before mainPass, same frame): the opaque surfaces' depth into the
+    // main targets, so the main pass then runs the shadow term once per visible pixel (depth test
+    // EQUAL, no depth write). main.vert's invariant gl_Position makes both depths identical.
+    void mainDepthPrepass(FrameOutputs outputs);
+    // The framebuffer a main pass of `outputs` draws into (tests check its attachments).
+    GLuint mainFramebuffer(FrameOutputs outputs) const;
+    // Whether the last main pass wrote the visibility, position and normal targets.
+    bool accuracyTargetsCurrent() const { return accuracyCurrent_; }
 
     // Present pass into `framebuffer` (0 = window) or, with framebuffer = ~0u, the display texture.
     void present(PresentMode mode, GLuint texture, GLuint framebuffer, glm::ivec2 viewport, glm::vec2 range = {0, 1});
@@ -99,9 +112,10 @@ private:
         uint32_t mesh;
         uint32_t material;
     };
-    void beginMainPass(GLuint program);
-    void drawMainPassObjects(GLuint program);
-    void endMainPass();
+    void beginMainPass(GLuint program, FrameOutputs outputs);
+    void drawMainPassObjects(GLuint program, FrameOutputs outputs);
+    void endMainPass(FrameOutputs outputs);
+    void clearMainTargets(GLuint fbo, FrameOutputs outputs, bool depth);
     void drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, uint32_t material);
     void bindSceneGeometry(GLuint program);
     void allocatePrepassTargets();
@@ -120,13 +134,17 @@ private:
     int msaaSamples_ = 0;
     GlTexture color_, visibility_, position_, normal_, depth_;          // resolved, single-sample
     GlTexture msColor_, msVisibility_, msPosition_, msNormal_, msDepth_; // when MSAA is on
-    GlFramebuffer mainFbo_, msFbo_;
+    // Per FrameOutputs: colour and depth only, or all four targets. MSAA ones resolve into these.
+    GlFramebuffer mainFbo_[2], msFbo_[2];
+    bool accuracyCurrent_ = false;
+    bool depthPrepassed_ = false;                // this frame's main pass follows a depth pre-pass
     GlTexture displayColor_;
     GlFramebuffer displayFbo_;
     GlSampler presentSampler_;
     GlSampler samplers_[6];                      // by SamplerKind
     ProgramId presentProgram_ = 0;
     ProgramId prepassProgram_ = 0;
+    ProgramId depthOnlyProgram_ = 0;
     GlTexture prepassDepth_, prepassPosition_, prepassNormal_, prepassObjectId_;
     GlFramebuffer prepassFbo_;
     CameraPrepass prepass_{};
