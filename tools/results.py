@@ -315,6 +315,15 @@ def varying(rows, prefix="param."):
     return sorted(k for k, v in values.items() if len(v) > 1)
 
 
+def label_keys(rows):
+    """The keys that tell the rows of one technique apart on a chart: the varying `param.*` keys,
+    and light_size when it varies too."""
+    keys = varying(rows, "param.")
+    if len({canonical(r.get("light_size")) for r in rows if "light_size" in r}) > 1:
+        keys.append("light_size")
+    return keys
+
+
 def param_string(row, keys):
     """'kernel=5 resolution=2048': the row's values of keys (usually varying(rows of a chart))."""
     return " ".join(f"{k.split('.', 1)[1] if '.' in k else k}={canonical(row[k])}" for k in keys if k in row)
