@@ -69,7 +69,8 @@ def layout(fig):
 
 
 def title(ax, text, rows, extra=""):
-    notes = [n for n in (extra, results.gbuffer_note(rows)) if n]
+    files = len({r.get("_source", "") for r in rows})
+    notes = [n for n in (extra, results.gbuffer_note(rows), f"rows of {files} files" if files > 1 else "") if n]
     ax.set_title(text + ("\n" + "; ".join(notes) if notes else ""), fontsize=9)
 
 
@@ -166,8 +167,10 @@ def against_figure(rows, key, scene, xlabel, base=10, per_size=True):
     """GPU ms per frame against `key`, one line per (technique, other parameters[, size]).
     Returns (figure, info) or None; info holds series (label -> (technique, points)), scales."""
     by_technique = results.group_by(results.techniques(rows), lambda r: r["technique"])
-    linked = {t: {k for r in items for k in r if k != key and k.startswith(("param.", "scene."))
-                  and follows(items, key, k)} for t, items in by_technique.items()}
+    linked = {}
+    for technique, items in by_technique.items():
+        keys = {k for r in items for k in r if k != key and k.startswith(("param.", "scene."))}
+        linked[technique] = {k for k in keys if follows(items, key, k)}
     series = {}
     for row in results.techniques(rows):
         x, t = results.number(row.get(key)), results.number(row.get(X))
@@ -243,6 +246,21 @@ def triangles_figure(sweep):
     return fig, {"series": series, "scenes": sorted({r["scene"] for r in rows}), "scales": scales}
 
 
+def triangle_chart_names(sweeps):
+    """(sweep, file name without .png): triangles-<scene>, then -<WxH> when the scene was swept at
+    several sizes and -<file> when in several files (each file is a run of its own)."""
+    named = []
+    for sweep in sweeps:
+        same = [s for s in sweeps if s["scene"] == sweep["scene"]]
+        name = f"triangles-{sweep['scene']}"
+        if len({s["size"] for s in same}) > 1:
+            name += f"-{results.size_name(sweep['size'])}"
+        if len({s["source"] for s in same}) > 1:
+            name += "-" + os.path.splitext(os.path.basename(sweep["source"]))[0]
+        named.append((sweep, name))
+    return named
+
+
 def save(made, path, dpi):
     if made is None:
         return None
@@ -274,14 +292,7 @@ def write_charts(rows, out_dir, dpi=120):
                                 os.path.join(out_dir, f"{name}-{scene}.png"), dpi))
         written.append(save(against_figure(scene_rows, "pixels", scene, "output pixels", per_size=False),
                             os.path.join(out_dir, f"resolution-{scene}.png"), dpi))
-    sweeps = results.scene_sweeps(rows)
-    for sweep in sweeps:
-        same = [s for s in sweeps if s["scene"] == sweep["scene"]]
-        name = f"triangles-{sweep['scene']}"
-        if len(same) > 1:
-            name += f"-{results.size_name(sweep['size'])}"
-            if len([s for s in same if s["size"] == sweep["size"]]) > 1:
-                name += f"-{same.index(sweep) + 1}"
+    for sweep, name in triangle_chart_names(results.scene_sweeps(rows)):
         written.append(save(triangles_figure(sweep), os.path.join(out_dir, name + ".png"), dpi))
     return [p for p in written if p]
 

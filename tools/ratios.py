@@ -167,7 +167,7 @@ def section_triangles(runs):
                 if depth is None and floor:
                     depth = results.number(floor.get("floor_depth_ms"))
                 t.add(source, [f"{int(results.number(none['triangles'])):,}", f"{none['frame_ms']:.3f}",
-                               f"{sm['frame_ms']:.3f}", f"{results.number(sm.get('gpu_shadow_map_ms')) or 0:.3f}",
+                               f"{sm['frame_ms']:.3f}", ms(sm, "gpu_shadow_map_ms"),
                                f"{depth if depth is not None else NAN:.3f}", ms(sm, "shadow_term_ms"),
                                f"{sm['technique_passes_ms'] / depth:.2f}x" if depth else "n/a"])
             if len(t.rows) > 1:
@@ -287,7 +287,10 @@ def report(rows):
             tables += made
     if any(t.daggers for t in tables):
         lines.append(DAGGER_NOTE)
-    return "\n".join(lines + body) + "\n"
+    text = "\n".join(lines + body) + "\n"
+    while "\n\n\n" in text:          # a section left out leaves no gap of two lines
+        text = text.replace("\n\n\n", "\n\n")
+    return text
 
 
 def main(argv=None):
