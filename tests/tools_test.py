@@ -38,7 +38,6 @@ import charts  # noqa: E402
 import ratios  # noqa: E402
 import table41  # noqa: E402
 from matplotlib.collections import PathCollection  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.markers import MarkerStyle  # noqa: E402
 
 ENV = {"gpu": "Test GPU", "driver": "test 1.0", "date": "2026-12-01T00:00:00Z", "commit": "abc123", "backend": "egl"}

@@ -82,6 +82,11 @@ def ratio(row, numerator, denominator, digits=2, suffix="x"):
     return f"{a / b:.{digits}f}{suffix}" + (DAGGER if gbuffer else "")
 
 
+def quotient(a, b, pattern):
+    """pattern.format(a / b), or n/a when b is 0 (a no-op driver's timings)."""
+    return pattern.format(a / b) if b else "n/a"
+
+
 def passes_and_term(row):
     return f"{ms(row, 'technique_passes_ms')} / {ms(row, 'shadow_term_ms')}"
 
@@ -105,7 +110,7 @@ def section_depth_floor(runs):
                       and results.number(r.get("floor_depth_ms")) is not None]
                 if sm:
                     a, b = sm[0]["floor_depth_ms"], sm[0]["gpu_shadow_map_ms"]
-                    t.add(source, [scene, int(res), f"{a:.3f}", f"{b:.3f}", f"{b / a:.2f}x"])
+                    t.add(source, [scene, int(res), f"{a:.3f}", f"{b:.3f}", quotient(b, a, "{:.2f}x")])
     return out + t.lines(), [t]
 
 
@@ -120,7 +125,7 @@ def section_overhead(runs):
             sm = results.where(rows, scene=scene, technique="shadowmap", width=1920, **{"param.resolution": 2048})
             if none and sm:
                 a, b = none[0]["frame_ms"], sm[0]["frame_ms"]
-                t.add(source, [scene, f"{a:.3f}", f"{b:.3f}", f"+{b - a:.3f} ms ({100 * (b / a - 1):.0f}%)",
+                t.add(source, [scene, f"{a:.3f}", f"{b:.3f}", f"+{b - a:.3f} ms ({quotient(100 * (b - a), a, '{:.0f}%')})",
                                ms(sm[0], "shadow_term_ms"), ms(sm[0], "technique_passes_ms"),
                                ratio(sm[0], "technique_passes_ms", "floor_depth_ms"),
                                ratio(sm[0], "main_ms", "floor_main_ms", 3)])
@@ -194,9 +199,9 @@ def section_kernels(runs):
                     p = results.first(s, spec="pcf-kernel", scene=scene, width=w, **{"param.kernel": n})
                     a = results.first(s, spec="adaptive-kernel", scene=scene, width=w, **{"param.grid": n})
                     if p and a:
-                        gain = 100 * (p["frame_ms"] / a["frame_ms"] - 1)
+                        gain = quotient(100 * (p["frame_ms"] - a["frame_ms"]), a["frame_ms"], "{:+.0f}%")
                         a_table.add(source, [scene, f"{w}x{h}", n, f"{p['frame_ms']:.3f}", f"{a['frame_ms']:.3f}",
-                                             f"{gain:+.0f}%", f"{p['soft_mae']:.4f}", f"{a['soft_mae']:.4f}",
+                                             gain, f"{p.get('soft_mae', NAN):.4f}", f"{a.get('soft_mae', NAN):.4f}",
                                              f"{a.get('stat.early_out_rate', NAN):.2f}", passes_and_term(p),
                                              passes_and_term(a)])
         for scene in SEED_SCENES:
@@ -206,8 +211,8 @@ def section_kernels(runs):
                     v = results.first(s, spec="vsm-kernel", scene=scene, width=w, **{"param.kernel": 2 * n + 1})
                     if p and v:
                         v_table.add(source, [scene, f"{w}x{h}", n, f"{p['frame_ms']:.3f}", f"{v['frame_ms']:.3f}",
-                                             f"{v['frame_ms'] / p['frame_ms']:.2f}", f"{p['soft_mae']:.4f}",
-                                             f"{v['soft_mae']:.4f}", passes_and_term(p), passes_and_term(v)])
+                                             quotient(v["frame_ms"], p["frame_ms"], "{:.2f}"), f"{p.get('soft_mae', NAN):.4f}",
+                                             f"{v.get('soft_mae', NAN):.4f}", passes_and_term(p), passes_and_term(v)])
     out += a_table.lines()
     out += ["\n## VSM with twice the kernel (2n+1 blur) against PCF n x n, 1024 map\n"] + v_table.lines()
     return out, [a_table, v_table]
@@ -231,7 +236,7 @@ def section_fig415(runs):
             p = results.first(s, spec="fig415", scene=scene, technique="pcss")
             a = results.first(s, spec="fig415", scene=scene, technique="adaptive-pcf")
             if p and a:
-                line = (f"{scene}: frame {p['frame_ms'] / a['frame_ms']:.2f}x, technique passes "
+                line = (f"{scene}: frame {quotient(p['frame_ms'], a['frame_ms'], '{:.2f}x')}, technique passes "
                         f"{p['technique_passes_ms'] / max(a['technique_passes_ms'], 1e-9):.2f}x")
                 pt, at = results.number(p.get("shadow_term_ms")), results.number(a.get("shadow_term_ms"))
                 if pt is not None and at is not None and at > 1e-3:
@@ -257,7 +262,7 @@ def section_light_size(runs):
     for source, s in runs.items():
         for r in results.where(s, spec="pcss-light"):
             t.add(source, [r["scene"], f"{r['width']}x{r['height']}", f"{r['light_size']:.2f}", f"{r['frame_ms']:.3f}",
-                           f"{r['soft_mae']:.4f}", f"{r.get('technique_penumbra_fraction', 0):.4f}",
+                           f"{r.get('soft_mae', NAN):.4f}", f"{r.get('technique_penumbra_fraction', 0):.4f}",
                            ms(r, "technique_passes_ms"), ms(r, "shadow_term_ms")])
     return out + t.lines(), [t]
 

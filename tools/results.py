@@ -124,7 +124,10 @@ def read_file(path):
                 rows.append({k: _cell(v) for k, v in raw.items() if k is not None and v not in ("", None)})
             return rows
     with open(path) as f:
-        data = json.load(f)
+        try:
+            data = json.load(f)
+        except json.JSONDecodeError as e:
+            raise ValueError(f"{path}: not JSON ({e})") from None
     if isinstance(data, dict):        # a single row
         data = [data]
     if not isinstance(data, list) or not all(isinstance(r, dict) for r in data):
