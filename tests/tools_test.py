@@ -19,6 +19,7 @@ import subprocess
 import sys
 import tempfile
 import unittest
+from concurrent.futures import ThreadPoolExecutor
 
 try:
     import matplotlib  # noqa: F401
@@ -170,7 +171,7 @@ def run_tool(name, *args):
 def call(module, *args):
     """The tool's main(argv) in this process (matplotlib imported once): (exit code, stdout)."""
     out = io.StringIO()
-    with contextlib.redirect_stdout(out):
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(io.StringIO()):
         try:
             rc = module.main(list(args))
         except SystemExit as e:          # argparse: --help, usage errors
@@ -196,9 +197,17 @@ class Fixture(unittest.TestCase):
         with open(cls.new_path, "w") as f:
             json.dump(new_rows(), f)
         write_csv(new_rows(), cls.csv_path)
+        # The longest job, charts of every committed result, runs in a process of its own from the
+        # start, on the second core, while the other tests run here.
+        cls.committed = os.path.join(cls.dir, "committed")
+        cls.committed_files = sorted(glob.glob(os.path.join(RESULTS, "*.json")))
+        cls.pool = ThreadPoolExecutor(max_workers=1)
+        cls.committed_charts = cls.pool.submit(run_tool, "charts.py", *cls.committed_files, "--out",
+                                               os.path.join(cls.committed, "charts"), "--dpi", "40")
 
     @classmethod
     def tearDownClass(cls):
+        cls.pool.shutdown(wait=True)
         cls.tmp.cleanup()
 
     # --- loader -------------------------------------------------------------------------------
@@ -363,9 +372,11 @@ class Fixture(unittest.TestCase):
 
     def test_triangles_chart_one_scene(self):
         rows = results.load([self.old_path, self.new_path])
+        checked = []
         for sweep in results.scene_sweeps(rows):
             if sweep["scene"] not in ("dense", "forest"):
                 continue
+            checked.append(sweep["scene"])
             made = charts.triangles_figure(sweep)
             self.assertIsNotNone(made, sweep["scene"])
             fig, info = made
@@ -378,6 +389,7 @@ class Fixture(unittest.TestCase):
             self.assertEqual(len(techniques), len(set(techniques)), "one line per technique")
             self.assertEqual(info["scales"][0], "log")
             matplotlib.pyplot.close(fig)
+        self.assertEqual(checked, ["dense", "forest"])
 
     # --- end to end ---------------------------------------------------------------------------
     def test_tools_end_to_end_on_fixture(self):
@@ -429,19 +441,20 @@ class Fixture(unittest.TestCase):
         rc, _ = call(table41, self.new_path)                   # no table41-* rows: an error, not n/a
         self.assertEqual(rc, 1)
 
-    def test_tools_end_to_end_on_committed_results(self):
-        files = sorted(glob.glob(os.path.join(RESULTS, "*.json")))
+    def test_tools_on_committed_results(self):
+        # Sorted after the fixture tests (unittest runs them by name): its charts run meanwhile.
+        files = self.committed_files
         self.assertTrue(files)
-        out = os.path.join(self.dir, "committed")
-        rc, printed = call(charts, *files, "--out", os.path.join(out, "charts"), "--dpi", "40")
-        self.assertEqual(rc, 0)
+        out = self.committed
         for module, args in ((ratios, [os.path.join(RESULTS, "default.json"), os.path.join(RESULTS, "seed000.json"),
                                        "--out", out]),
                              (table41, [os.path.join(RESULTS, "seed000.json"), "--out", out]),
                              (table41, files + ["--out", os.path.join(out, "all")]),
                              (ratios, files + ["--out", os.path.join(out, "all")])):
             self.assertEqual(call(module, *args)[0], 0, (module.__name__, args))
-        charts_made = printed.split()
+        done = self.committed_charts.result()
+        self.assertEqual(done.returncode, 0, done.stderr)
+        charts_made = done.stdout.split()
         self.assertGreater(len(charts_made), 40)
         for p in charts_made:
             self.assertGreater(os.path.getsize(p), 1000, p)
