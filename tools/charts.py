@@ -17,14 +17,17 @@ Writes PNG files into OUT_DIR and prints their paths, one a line:
   resolution-<scene>.png          GPU ms per frame against output resolution (pixels)
   triangles-<scene>.png           GPU ms per frame against triangle count, one line per technique,
                                   for a sweep of one scene's `scene.*` parameter (scene.count,
-                                  scene.segments): only that sweep's rows, never a mix of scenes
+                                  scene.segments): only that sweep's rows, never a mix of scenes;
+                                  -<WxH> and -<file> are added when a scene was swept at several
+                                  sizes or in several files (each file is one run)
 
 On every chart a technique has the colour and marker of results.STYLE. An axis is logarithmic
 when its values span more than a factor of 10. On the Pareto charts `none` is a pair of reference
 lines (its time and its error), not a point; the Pareto front is a dashed line and each of its
 points is labelled with its technique and the parameters that vary on the chart. Charts of rows
 measured with the accuracy G-buffer written on every frame (files from before `frame_ms`) say so
-in their title. Needs python3-matplotlib.
+in their title, and so do charts whose rows come from more than one file. The `depth-floor` rows
+appear only on the triangles charts (dashed, the depth-only pass). Needs python3-matplotlib.
 """
 import argparse
 import os
