@@ -1,112 +1,158 @@
 #!/usr/bin/python3
 """Charts of shadowlab benchmark results (the JSON or CSV written by `shadowlab bench`).
 
-    python3 tools/charts.py results.json OUT_DIR
+    python3 tools/charts.py results.json [more.json ...] --out OUT_DIR [--dpi 120]
+    python3 tools/charts.py results.json OUT_DIR          (the older form; shadowlab report uses it)
 
-Writes PNG files into OUT_DIR:
-  pareto-<scene>-<WxH>-<hard|soft>.png         error against GPU milliseconds, one point per (technique, parameters),
-                              the Pareto front drawn (lower left is better)
-  sweep-<key>-<scene>.png     milliseconds against each swept parameter (shadow-map resolution,
-                              kernel sizes, light size, ...): the sweeps of seed 000 Fig. 4.1-4.11
-  resolution-<scene>.png      milliseconds against output resolution (pixels)
-  triangles.png               milliseconds against triangle count
-and prints the file names. Needs python3-matplotlib only.
+Writes PNG files into OUT_DIR and prints their paths, one a line:
+
+  pareto-<scene>-<WxH>-hard.png   error against the hard reference (whole image) against GPU ms per
+                                  frame, one point per (technique, parameters)
+  pareto-<scene>-<WxH>-soft.png   the same against the soft reference, inside its penumbra
+                                  (soft_mae_penumbra: the whole-image soft MAE is diluted by the lit
+                                  and fully shadowed pixels); the soft reference's own sampling error
+                                  (soft_reference_floor), when the rows carry it, is a grey band
+  sweep-<key>-<scene>.png         GPU ms per frame against each swept technique parameter (shadow-map
+                                  resolution, kernel sizes, ...) and the light size
+  resolution-<scene>.png          GPU ms per frame against output resolution (pixels)
+  triangles-<scene>.png           GPU ms per frame against triangle count, one line per technique,
+                                  for a sweep of one scene's `scene.*` parameter (scene.count,
+                                  scene.segments): only that sweep's rows, never a mix of scenes;
+                                  -<WxH> and -<file> are added when a scene was swept at several
+                                  sizes or in several files (each file is one run)
+
+On every chart a technique has the colour and marker of results.STYLE. An axis is logarithmic
+when its values span more than a factor of 10. On the Pareto charts `none` is a pair of reference
+lines (its time and its error), not a point; the Pareto front is a dashed line and each of its
+points is labelled with its technique and the parameters that vary on the chart. Charts of rows
+measured with the accuracy G-buffer written on every frame (files from before `frame_ms`) say so
+in their title, and so do charts whose rows come from more than one file. The `depth-floor` rows
+appear only on the triangles charts (dashed, the depth-only pass). Needs python3-matplotlib.
 """
-import csv
-import json
+import argparse
 import os
 import sys
-from collections import defaultdict
 
-import matplotlib
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import results  # noqa: E402
+
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib import ticker  # noqa: E402
 
-FRAME = "gpu_frame_ms"
-TECHNIQUE_MS = "gpu_technique_ms"
-
-
-def load(path):
-    if path.endswith(".csv"):
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
-        for row in rows:
-            for key, value in list(row.items()):
-                if value == "":
-                    del row[key]
-                    continue
-                try:
-                    row[key] = float(value)
-                except ValueError:
-                    pass
-        return rows
-    with open(path) as f:
-        return json.load(f)
+X = "frame_ms"
+LINESTYLES = ("-", "--", ":", "-.")
+NOT_CHARTED = ("depth-floor",)   # a floor, not a technique: drawn only where it is the floor
 
 
-def number(value):
-    try:
-        return float(value)
-    except (TypeError, ValueError):
+def set_scale(ax, axis, values, base=10):
+    """Log scale (results.use_log) on 'x' or 'y'; symlog when some values are 0. Returns the scale."""
+    if not results.use_log(values):
+        return "linear"
+    positive = [v for v in values if v is not None and v > 0]
+    setter = ax.set_xscale if axis == "x" else ax.set_yscale
+    if len(positive) < len([v for v in values if v is not None]):
+        setter("symlog", linthresh=min(positive), base=base)
+        return "symlog"
+    setter("log", base=base)
+    # Plain numbers at 1, 2, 5 times each power (or each power of 2), not 10^k alone.
+    axis_object = ax.xaxis if axis == "x" else ax.yaxis
+    subs = (1.0,) if base == 2 else (1.0, 2.0, 5.0)
+    axis_object.set_major_locator(ticker.LogLocator(base=base, subs=subs))
+    axis_object.set_major_formatter(ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+    axis_object.set_minor_locator(ticker.NullLocator())   # 1-2-5 majors suffice (and minors are slow)
+    return "log"
+
+
+def layout(fig):
+    """Fixed margins: tight_layout() measured every tick label and took half the run."""
+    fig.subplots_adjust(left=0.085, right=0.985, bottom=0.085, top=0.91)
+
+
+def title(ax, text, rows, extra=""):
+    files = len({r.get("_source", "") for r in rows})
+    notes = [n for n in (extra, results.gbuffer_note(rows), f"rows of {files} files" if files > 1 else "") if n]
+    ax.set_title(text + ("\n" + "; ".join(notes) if notes else ""), fontsize=9)
+
+
+def pareto_figure(rows, scene, size, kind):
+    """The Pareto chart of one (scene, size): kind 'hard' (hard_mae) or 'soft' (soft_mae_penumbra,
+    soft_mae when no row has it). Returns (figure, info) or None when nothing to draw; info holds
+    y (the error column), front (rows), none (the row or None), scales."""
+    if kind == "hard":
+        y = "hard_mae"
+        ylabel = "mean absolute visibility error vs hard reference"
+    else:
+        y = "soft_mae_penumbra" if any("soft_mae_penumbra" in r for r in rows) else "soft_mae"
+        ylabel = ("mean absolute visibility error vs soft reference, in its penumbra"
+                  if y == "soft_mae_penumbra" else "mean absolute visibility error vs soft reference")
+    rows = [r for r in results.techniques(rows, NOT_CHARTED)
+            if results.number(r.get(X)) is not None and results.number(r.get(y)) is not None]
+    nones = [r for r in rows if r["technique"] == "none"]
+    points = [r for r in rows if r["technique"] != "none"]
+    if not points:
         return None
-
-
-def label(row, varying):
-    parts = [row["technique"]]
-    parts += [f"{k.split('.', 1)[1]}={row[k]}" for k in varying if k in row]
-    return " ".join(parts)
-
-
-def pareto_front(points):
-    """Points (ms, error) not dominated by any other: sorted by ms, strictly falling error."""
-    front, best = [], float("inf")
-    for ms, err in sorted(points):
-        if err < best:
-            front.append((ms, err))
-            best = err
-    return front
-
-
-def varying_keys(rows, prefix):
-    values = defaultdict(set)
-    for row in rows:
-        for key, value in row.items():
-            if key.startswith(prefix):
-                values[key].add(str(value))
-    return sorted(k for k, v in values.items() if len(v) > 1)
-
-
-def chart_pareto(rows, scene, out_dir, size_name, error_key):
-    rows = [r for r in rows if error_key in r and FRAME in r]
-    if not rows:
-        return None
-    varying = varying_keys(rows, "param.")
     fig, ax = plt.subplots(figsize=(9, 6))
-    by_technique = defaultdict(list)
-    for row in rows:
-        by_technique[row["technique"]].append(row)
-    colours = plt.get_cmap("tab20").colors
-    for index, (technique, items) in enumerate(sorted(by_technique.items())):
-        ax.scatter([r[FRAME] for r in items], [r[error_key] for r in items], label=technique, s=28,
-                   color=colours[(2 * index) % 20 + (index // 10)], marker="osD^vPX*h<>"[index % 11])
-    front = pareto_front([(r[FRAME], r[error_key]) for r in rows])
-    ax.plot([p[0] for p in front], [p[1] for p in front], "k--", lw=1, label="Pareto front")
-    for row in rows:
-        if (row[FRAME], row[error_key]) in front:
-            ax.annotate(label(row, varying), (row[FRAME], row[error_key]), fontsize=6, xytext=(3, 3),
-                        textcoords="offset points")
-    reference = "soft" if error_key.startswith("soft") else "hard"
+    by_technique = results.group_by(points, lambda r: r["technique"])
+    for technique, items in sorted(by_technique.items()):
+        colour, marker = results.style(technique)
+        ax.scatter([r[X] for r in items], [r[y] for r in items], label=technique, s=30, color=colour,
+                   marker=marker, zorder=3)
+    front = results.pareto_front(points, X, y)
+    ax.plot([r[X] for r in front], [r[y] for r in front], "k--", lw=1, label="Pareto front", zorder=2)
+    keys = {t: results.label_keys(items) for t, items in by_technique.items()}
+    for i, row in enumerate(front):
+        ax.annotate(results.label(row, keys[row["technique"]]), (row[X], row[y]), fontsize=6,
+                    xytext=(4, 4 if i % 2 == 0 else -9), textcoords="offset points", zorder=4)
+
+    xs, ys = [r[X] for r in points], [r[y] for r in points]
+    floors = [results.number(r.get("soft_reference_floor")) for r in points] if kind == "soft" else []
+    floors = sorted(f for f in floors if f is not None)
+    floor = floors[len(floors) // 2] if floors else None
+    if floor is not None and floor > 0:
+        ys_limits = ys + [floor]
+    else:
+        ys_limits = ys
+    scales = (set_scale(ax, "x", xs + [r[X] for r in nones]), set_scale(ax, "y", ys_limits))
+
+    def limits(values, scale):
+        lo, hi = min(values), max(values)
+        if scale == "log":
+            return lo / 1.3, hi * 1.3
+        pad = (hi - lo) * 0.08 or abs(hi) * 0.1 or 1.0
+        return (max(lo - pad, 0.0) if lo >= 0 else lo - pad), hi + pad
+
+    ylo, yhi = limits(ys_limits, scales[1])
+    none = nones[0] if nones else None
+    if none is not None:
+        colour, _ = results.style("none")
+        ax.axvline(none[X], color=colour, ls=":", lw=1, label=f"none: {none[X]:.3f} ms (no shadows)", zorder=1)
+        off = "" if ylo <= none[y] <= yhi else ", off the chart"
+        ax.axhline(none[y], color=colour, ls="-.", lw=1, label=f"none: error {none[y]:.4g}{off}", zorder=1)
+    if floor is not None:
+        rays = [results.number(r.get("soft_reference_rays")) for r in points]
+        rays = sorted(r for r in rays if r is not None)
+        text = "soft reference's own sampling error"
+        if rays:
+            text += f" ({int(rays[len(rays) // 2])} rays)"
+        ax.axhspan(ylo, floor, color="#888888", alpha=0.15, lw=0, zorder=0)
+        ax.axhline(floor, color="#888888", ls="--", lw=1, label=text, zorder=1)
+    ax.set_ylim(ylo, yhi)
+    xlo, xhi = limits(xs + [r[X] for r in nones], scales[0])
+    ax.set_xlim(xlo, xhi)
+
     ax.set_xlabel("GPU milliseconds per frame (median)")
-    ax.set_ylabel(f"mean absolute visibility error vs {reference} reference")
-    ax.set_title(f"Speed against accuracy: {scene} at {size_name} ({rows[0].get('gpu', '')})", fontsize=9)
+    ax.set_ylabel(ylabel)
+    gpu = points[0].get("gpu", "")
+    extra = "soft error inside the soft reference's penumbra" if y == "soft_mae_penumbra" else ""
+    title(ax, f"Speed against accuracy: {scene} at {results.size_name(size)}" + (f" ({gpu})" if gpu else ""),
+          points + nones, extra)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, ncol=2)
-    path = os.path.join(out_dir, f"pareto-{scene}-{size_name}-{reference}.png")
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    layout(fig)
+    return fig, {"y": y, "front": front, "none": none, "scales": scales, "floor": floor}
 
 
 def follows(rows, key, other):
@@ -114,78 +160,174 @@ def follows(rows, key, other):
     seen = {}
     for row in rows:
         if key in row:
-            value = str(row.get(other))
-            if seen.setdefault(str(row[key]), value) != value:
+            value = results.canonical(row.get(other))
+            if seen.setdefault(results.canonical(row[key]), value) != value:
                 return False
     return len(seen) > 1
 
 
-def chart_against(rows, key, scene, out_dir, xlabel, name, logx=False):
-    series = defaultdict(list)
-    by_technique = defaultdict(list)
-    for row in rows:
-        by_technique[row["technique"]].append(row)
-    linked = {t: {k for r in items for k in r if k != key and (k.startswith("param.") or k.startswith("scene."))
-                  and follows(items, key, k)} for t, items in by_technique.items()}
-    for row in rows:
-        x = number(row.get(key))
-        if x is None or FRAME not in row:
+def against_figure(rows, key, scene, xlabel, base=10, per_size=True):
+    """GPU ms per frame against `key`, one line per (technique, other parameters[, size]).
+    Returns (figure, info) or None; info holds series (label -> (technique, points)), scales."""
+    by_technique = results.group_by(results.techniques(rows), lambda r: r["technique"])
+    linked = {}
+    for technique, items in by_technique.items():
+        keys = {k for r in items for k in r if k != key and k.startswith(("param.", "scene."))}
+        linked[technique] = {k for k in keys if follows(items, key, k)}
+    series = {}
+    for row in results.techniques(rows):
+        x, t = results.number(row.get(key)), results.number(row.get(X))
+        if x is None or t is None:
             continue
-        others = tuple(sorted((k, str(v)) for k, v in row.items()
-                              if (k.startswith("param.") or k.startswith("scene.")) and k != key
+        others = tuple(sorted((k, results.canonical(v)) for k, v in row.items()
+                              if k.startswith(("param.", "scene.")) and k != key
                               and k not in linked[row["technique"]]))
-        size = (None, None) if key == "pixels" else (row.get("width"), row.get("height"))
-        series[(row["technique"], *size, others)].append(
-            (x, row[FRAME], row.get(TECHNIQUE_MS, 0.0)))
+        size = results.size_of(row) if per_size else None
+        series.setdefault((row["technique"], size, others, row.get("_source", "")), []).append((x, t))
     series = {k: sorted(v) for k, v in series.items() if len({p[0] for p in v}) > 1}
     if not series:
         return None
+    sources = {k[3] for k in series}
     fig, ax = plt.subplots(figsize=(9, 6))
-    for (technique, width, height, others), points in sorted(series.items(), key=lambda kv: str(kv[0])):
-        extra = f" {int(width)}x{int(height)}" if width else ""
-        ax.plot([p[0] for p in points], [p[1] for p in points], marker="o", ms=3, label=technique + extra)
+    drawn = {}
+    count = {}
+    for (technique, size, others, source), points in sorted(series.items(), key=lambda kv: str(kv[0])):
+        colour, marker = results.style(technique)
+        index = count.get(technique, 0)
+        count[technique] = index + 1
+        text = technique + (f" {results.size_name(size)}" if size else "")
+        if len(sources) > 1:
+            text += f" [{os.path.basename(source)}]"
+        ls = "--" if technique in NOT_CHARTED else LINESTYLES[index % len(LINESTYLES)]
+        ax.plot([p[0] for p in points], [p[1] for p in points], marker=marker, ms=4, color=colour, ls=ls,
+                label=text)
+        drawn[text] = (technique, points)
+    xs = [p[0] for _, pts in drawn.values() for p in pts]
+    ys = [p[1] for _, pts in drawn.values() for p in pts]
+    scales = (set_scale(ax, "x", xs, base), set_scale(ax, "y", ys))
     ax.set_xlabel(xlabel)
     ax.set_ylabel("GPU milliseconds per frame (median)")
-    if logx:
-        ax.set_xscale("log", base=2)
-    ax.set_title(f"{scene}: frame time against {xlabel}", fontsize=9)
+    title(ax, f"{scene}: frame time against {xlabel}", [r for r in rows if results.number(r.get(key)) is not None])
     ax.grid(alpha=0.3)
     ax.legend(fontsize=6, ncol=2)
-    path = os.path.join(out_dir, f"{name}-{scene}.png")
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    layout(fig)
+    return fig, {"series": drawn, "scales": scales}
+
+
+def triangles_figure(sweep):
+    """GPU ms per frame against triangles for one scene sweep (results.scene_sweeps): one line per
+    technique (and parameter set). Returns (figure, info) or None; info holds series, scenes."""
+    rows = [r for r in results.techniques(sweep["rows"]) if results.number(r.get("triangles")) is not None
+            and results.number(r.get(X)) is not None]
+    by_technique = results.group_by(rows, lambda r: r["technique"])
+    series = {}
+    for technique, items in by_technique.items():
+        keys = results.label_keys(items)
+        for row in items:
+            text = results.label(row, keys)
+            series.setdefault(text, (technique, []))[1].append((results.number(row["triangles"]), row[X]))
+    series = {k: (t, sorted(p)) for k, (t, p) in series.items() if len({x for x, _ in p}) > 1}
+    if not series:
+        return None
+    fig, ax = plt.subplots(figsize=(9, 6))
+    for text, (technique, points) in sorted(series.items()):
+        colour, marker = results.style(technique)
+        ax.plot([p[0] for p in points], [p[1] for p in points], marker=marker, ms=4, color=colour,
+                ls="--" if technique in NOT_CHARTED else "-",
+                label=text + (" (depth-only pass)" if technique == "depth-floor" else ""))
+    xs = [p[0] for _, pts in series.values() for p in pts]
+    ys = [p[1] for _, pts in series.values() for p in pts]
+    scales = (set_scale(ax, "x", xs), set_scale(ax, "y", ys))
+    ax.set_xlabel("triangles")
+    ax.set_ylabel("GPU milliseconds per frame (median)")
+    swept = ", ".join(sweep["keys"])
+    title(ax, f"{sweep['scene']}: frame time against triangles ({swept} swept, {results.size_name(sweep['size'])})",
+          rows)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    layout(fig)
+    return fig, {"series": series, "scenes": sorted({r["scene"] for r in rows}), "scales": scales}
+
+
+def triangle_chart_names(sweeps):
+    """(sweep, file name without .png): triangles-<scene>, then -<WxH> when the scene was swept at
+    several sizes and -<file> when in several files (each file is a run of its own)."""
+    named = []
+    for sweep in sweeps:
+        same = [s for s in sweeps if s["scene"] == sweep["scene"]]
+        name = f"triangles-{sweep['scene']}"
+        if len({s["size"] for s in same}) > 1:
+            name += f"-{results.size_name(sweep['size'])}"
+        if len({s["source"] for s in same}) > 1:
+            name += "-" + os.path.splitext(os.path.basename(sweep["source"]))[0]
+        named.append((sweep, name))
+    return named
+
+
+def save(made, path, dpi):
+    if made is None:
+        return None
+    fig = made[0]
+    fig.savefig(path, dpi=dpi)
     plt.close(fig)
     return path
 
 
-def main(argv):
-    if len(argv) != 3:
-        print(__doc__)
-        return 2
-    rows = [r for r in load(argv[1]) if r.get("technique") and r.get("technique") != "depth-floor"]
-    out_dir = argv[2]
+def write_charts(rows, out_dir, dpi=120):
+    """Every chart of the rows into out_dir; returns the paths written."""
     os.makedirs(out_dir, exist_ok=True)
     written = []
-    scenes = sorted({r["scene"] for r in rows})
-    for scene in scenes:
-        scene_rows = [r for r in rows if r["scene"] == scene]
-        for size in sorted({(int(r["width"]), int(r["height"])) for r in scene_rows if "width" in r}):
-            sized = [r for r in scene_rows if (int(r.get("width", 0)), int(r.get("height", 0))) == size]
-            for error_key in ("hard_mae", "soft_mae"):
-                written.append(chart_pareto(sized, scene, out_dir, f"{size[0]}x{size[1]}", error_key))
-        for key in varying_keys(scene_rows, "param.") + (["light_size"] if len({r.get("light_size") for r in scene_rows}) > 1 else []):
+    rows = results.techniques(rows)
+    charted = results.techniques(rows, NOT_CHARTED)
+    for (scene, size), sized in results.by_scene_size(charted).items():
+        for kind in ("hard", "soft"):
+            path = os.path.join(out_dir, f"pareto-{scene}-{results.size_name(size)}-{kind}.png")
+            written.append(save(pareto_figure(sized, scene, size, kind), path, dpi))
+    for scene in sorted({r["scene"] for r in charted if r.get("scene")}):
+        scene_rows = [r for r in charted if r.get("scene") == scene]
+        keys = results.varying(scene_rows, "param.")
+        if len({results.canonical(r.get("light_size")) for r in scene_rows if "light_size" in r}) > 1:
+            keys.append("light_size")
+        for key in keys:
             name = "sweep-" + key.replace("param.", "").replace("_", "-")
-            written.append(chart_against(scene_rows, key, scene, out_dir, key.replace("param.", ""), name,
-                                         logx=key == "param.resolution"))
-        written.append(chart_against(scene_rows, "pixels", scene, out_dir, "output pixels", "resolution"))
-    by_triangles = [r for r in rows if number(r.get("triangles"))]
-    if len({r["triangles"] for r in by_triangles}) > 1:
-        written.append(chart_against(by_triangles, "triangles", "all", out_dir, "triangles", "triangles"))
-    for path in written:
-        if path:
-            print(path)
+            base = 2 if key == "param.resolution" else 10
+            written.append(save(against_figure(scene_rows, key, scene, key.replace("param.", ""), base=base),
+                                os.path.join(out_dir, f"{name}-{scene}.png"), dpi))
+        written.append(save(against_figure(scene_rows, "pixels", scene, "output pixels", per_size=False),
+                            os.path.join(out_dir, f"resolution-{scene}.png"), dpi))
+    for sweep, name in triangle_chart_names(results.scene_sweeps(rows)):
+        written.append(save(triangles_figure(sweep), os.path.join(out_dir, name + ".png"), dpi))
+    return [p for p in written if p]
+
+
+def parse_args(argv):
+    parser = argparse.ArgumentParser(
+        prog="charts.py", description="Charts (PNG) of shadowlab bench results: Pareto fronts, sweeps, triangles.",
+        epilog="The older form `charts.py results.json OUT_DIR` still works (shadowlab report calls it so).")
+    parser.add_argument("inputs", nargs="+", metavar="RESULTS", help="results files (.json or .csv) of shadowlab bench")
+    parser.add_argument("--out", metavar="DIR", help="directory for the PNG files (default: charts)")
+    parser.add_argument("--dpi", type=int, default=120, help="resolution of the PNG files (default: 120)")
+    args = parser.parse_args(argv)
+    if args.out is None:
+        last = args.inputs[-1]
+        if len(args.inputs) > 1 and not last.endswith((".json", ".csv")) and not os.path.isfile(last):
+            args.out = args.inputs.pop()
+        else:
+            args.out = "charts"
+    return args
+
+
+def main(argv=None):
+    args = parse_args(sys.argv[1:] if argv is None else argv)
+    try:
+        rows = results.load(args.inputs)
+    except (OSError, ValueError) as e:
+        print(f"charts.py: {e}", file=sys.stderr)
+        return 1
+    for path in write_charts(rows, args.out, args.dpi):
+        print(path)
     return 0
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv))
+    sys.exit(main())

@@ -1,119 +1,321 @@
 #!/usr/bin/python3
-"""The ratios the project reports from one GPU run (issues 5 and 6), as Markdown.
+"""The ratios the project reports from GPU runs (issues 5, 6 and 10), as Markdown.
 
-    python3 tools/ratios.py default.json seed000.json
+    python3 tools/ratios.py default.json seed000.json [--out DIR]
 
-default.json: `shadowlab bench --spec assets/bench/default.json`; seed000.json: the same with
-assets/bench/seed000.json. Every ratio compares rows of the same run on the same machine.
+Inputs: results of `shadowlab bench` (JSON or CSV), typically `--spec assets/bench/default.json`
+and `--spec assets/bench/seed000.json`. Each file is one run: every ratio compares rows of one
+file (one run on one machine), never rows of two files. Without --out the Markdown goes to
+stdout; with it, to DIR/ratios.md (and that path is printed). When more than one file adds rows
+to a table, the table gains a `file` column.
+
+Sections (each appears when its rows exist): the shadow pass against the depth-only floor; the
+frame-time overhead of shadowmap over none; host CPU time per frame; time against triangle count
+(every sweep of one scene's `scene.*` parameter with none and shadowmap rows); adaptive PCF and
+VSM against PCF; every technique at the Fig. 4.15 settings; PCSS against light size.
+
+Columns beyond frame time: `technique passes ms` (technique_passes_ms, the technique's own passes
+summed), `shadow term ms` (shadow_term_ms: the main pass with the technique minus the main pass
+with `none`) and ratios against the floors (floor_depth_ms, a depth-only pass of the same casters
+at the row's resolution; floor_main_ms, the main pass of `none`). Files from before those columns:
+see tools/results.py; values it derived from rows measured with the G-buffer on every frame are
+marked with a dagger.
 """
-import json
+import argparse
+import os
 import statistics
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import results  # noqa: E402
 
-def rows_where(rows, **match):
-    out = []
-    for row in rows:
-        if all(str(row.get(k)) == str(v) for k, v in match.items()):
-            out.append(row)
-    return out
-
-
-def one(rows, **match):
-    found = rows_where(rows, **match)
-    return found[0] if found else None
+NAN = float("nan")
+DAGGER = "\u2020"
+SHADOW_SCENES = ("cube", "forest")     # the scenes default.json sweeps over shadow-map resolution
+OVERHEAD_SCENES = ("cube", "spheres", "contact", "overlap", "pillars", "forest")
+SIZES = ((1280, 720), (1920, 1080), (2560, 1440))
+SEED_SCENES = ("cube", "dragon-like")
+FIG415_SCENES = ("cube", "dragon-like", "contact", "dense")
 
 
-def main(default_path, seed_path):
-    d = json.load(open(default_path))
-    s = json.load(open(seed_path))
-    print(f"GPU {d[0]['gpu']}, driver {d[0]['driver']}, {d[0]['date']}, build {d[0]['commit']}\n")
+class Table:
+    """A Markdown table whose rows come from one or more files: a `file` column when several."""
 
-    print("## Shadow pass against the depth-only floor (same geometry, resolution and light)\n")
-    print("| scene | resolution | depth floor ms | shadowmap shadow pass ms | ratio |\n|---|---:|---:|---:|---:|")
-    for scene in ("cube", "forest"):
-        for res in (256, 512, 1024, 2048, 4096, 8192):
-            floor = one(d, scene=scene, technique="depth-floor", **{"param.resolution": res})
-            sm = [r for r in rows_where(d, scene=scene, technique="shadowmap", **{"param.resolution": res})
-                  if r.get("width") == 1920 and "gpu_shadow_map_ms" in r]
-            if floor and sm:
-                a, b = floor["gpu_depth_floor_ms"], sm[0]["gpu_shadow_map_ms"]
-                print(f"| {scene} | {res} | {a:.3f} | {b:.3f} | {b / a:.2f}x |")
+    def __init__(self, headers, aligns):
+        self.headers, self.aligns, self.rows = list(headers), list(aligns), []
+        self.daggers = False
 
-    print("\n## Frame-time overhead of shadowmap (2048) over none, 1920x1080\n")
-    print("| scene | none ms | shadowmap ms | overhead |\n|---|---:|---:|---:|")
-    for scene in ("cube", "spheres", "contact", "overlap", "pillars", "forest"):
-        none = [r for r in rows_where(d, scene=scene, technique="none") if r.get("width") == 1920]
-        sm = [r for r in rows_where(d, scene=scene, technique="shadowmap", **{"param.resolution": 2048}) if r.get("width") == 1920]
-        if none and sm:
-            a, b = none[0]["gpu_frame_ms"], sm[0]["gpu_frame_ms"]
-            print(f"| {scene} | {a:.3f} | {b:.3f} | +{b - a:.3f} ms ({100 * (b / a - 1):.0f}%) |")
+    def add(self, source, cells):
+        self.rows.append((source, [str(c) for c in cells]))
+        self.daggers = self.daggers or any(c.endswith(DAGGER) for _, cs in self.rows[-1:] for c in cs)
 
-    print("\n## Host CPU time per frame (median of medians, submission included, waits for the GPU excluded)\n")
-    print("| scene | techniques | median ms | max ms |\n|---|---:|---:|---:|")
-    for scene in ("cube", "spheres", "contact", "overlap", "pillars", "forest", "dense"):
-        values = [r["cpu_frame_ms"] for r in d if r.get("scene") == scene and r.get("technique") not in ("depth-floor",)
-                  and "cpu_frame_ms" in r]
-        if values:
-            print(f"| {scene} | {len(values)} rows | {statistics.median(values):.3f} | {max(values):.3f} |")
+    def drop_empty(self, index):
+        """Removes column `index` when every row has n/a there (a ratio no file could give)."""
+        if self.rows and all(cells[index] == "n/a" for _, cells in self.rows):
+            del self.headers[index], self.aligns[index]
+            for _, cells in self.rows:
+                del cells[index]
 
-    print("\n## Time against triangle count (dense, 400 spheres, 1920x1080)\n")
-    print("| triangles | none frame ms | shadowmap frame ms | shadow pass ms | depth floor ms |\n|---:|---:|---:|---:|---:|")
-    for seg in (8, 16, 32, 64, 128, 174):
-        none = one(d, scene="dense", technique="none", **{"scene.segments": float(seg)})
-        sm = one(d, scene="dense", technique="shadowmap", **{"scene.segments": float(seg)})
-        fl = one(d, scene="dense", technique="depth-floor", **{"scene.segments": float(seg)})
-        if none and sm:
-            print(f"| {none['triangles']:,} | {none['gpu_frame_ms']:.3f} | {sm['gpu_frame_ms']:.3f} | "
-                  f"{sm.get('gpu_shadow_map_ms', 0):.3f} | {fl['gpu_depth_floor_ms'] if fl else float('nan'):.3f} |")
+    def lines(self):
+        several = len({s for s, _ in self.rows}) > 1
+        headers = (["file"] if several else []) + self.headers
+        aligns = (["---"] if several else []) + self.aligns
+        out = ["| " + " | ".join(headers) + " |", "|" + "|".join(aligns) + "|"]
+        for source, cells in self.rows:
+            out.append("| " + " | ".join(([os.path.basename(source)] if several else []) + cells) + " |")
+        return out
 
-    print("\n## Adaptive PCF against PCF (same kernel footprint, 1024 map), seed 000: +15-104% FPS (smallest kernel), +392-1473% (largest)\n")
-    print("| scene | size | n | PCF ms | adaptive ms | FPS gain | PCF soft MAE | adaptive soft MAE | early-out rate |\n|---|---|---:|---:|---:|---:|---:|---:|---:|")
-    for scene in ("cube", "dragon-like"):
-        for w, h in ((1280, 720), (1920, 1080), (2560, 1440)):
-            for n in (3, 7, 11, 15):
-                p = one(s, spec="pcf-kernel", scene=scene, width=w, **{"param.kernel": n})
-                a = one(s, spec="adaptive-kernel", scene=scene, width=w, **{"param.grid": n})
-                if p and a:
-                    gain = 100 * (p["gpu_frame_ms"] / a["gpu_frame_ms"] - 1)
-                    print(f"| {scene} | {w}x{h} | {n} | {p['gpu_frame_ms']:.3f} | {a['gpu_frame_ms']:.3f} | {gain:+.0f}% | "
-                          f"{p['soft_mae']:.4f} | {a['soft_mae']:.4f} | {a.get('stat.early_out_rate', float('nan')):.2f} |")
 
-    print("\n## VSM with twice the kernel (2n+1 blur) against PCF n x n, 1024 map\n")
-    print("| scene | size | n | PCF ms | VSM ms | VSM/PCF | PCF soft MAE | VSM soft MAE |\n|---|---|---:|---:|---:|---:|---:|---:|")
-    for scene in ("cube", "dragon-like"):
-        for w, h in ((1280, 720), (1920, 1080), (2560, 1440)):
-            for n in (1, 3, 5, 7, 9, 11, 13, 15):
-                p = one(s, spec="pcf-kernel", scene=scene, width=w, **{"param.kernel": n})
-                v = one(s, spec="vsm-kernel", scene=scene, width=w, **{"param.kernel": 2 * n + 1})
-                if p and v:
-                    print(f"| {scene} | {w}x{h} | {n} | {p['gpu_frame_ms']:.3f} | {v['gpu_frame_ms']:.3f} | "
-                          f"{v['gpu_frame_ms'] / p['gpu_frame_ms']:.2f} | {p['soft_mae']:.4f} | {v['soft_mae']:.4f} |")
+def ms(row, key, digits=3):
+    """A timing cell: the value, a dagger when derived from G-buffer rows, n/a when absent."""
+    value = results.number((row or {}).get(key))
+    if value is None:
+        return "n/a"
+    return f"{value:.{digits}f}" + (DAGGER if results.derived_from_gbuffer(row, key) else "")
 
-    print("\n## Every technique at 1024 map, 1920x1080, 11x11 kernels (seed 000 Fig. 4.15)\n")
-    print("| scene | technique | frame ms | technique passes ms | MiB | hard MAE | soft MAE |\n|---|---|---:|---:|---:|---:|---:|")
-    for scene in ("cube", "dragon-like", "contact", "dense"):
-        for r in rows_where(s, spec="fig415", scene=scene):
-            print(f"| {scene} | {r['technique']} | {r['gpu_frame_ms']:.3f} | {r['gpu_technique_ms']:.3f} | "
-                  f"{r['gpu_bytes'] / 1048576:.1f} | {r.get('hard_mae', float('nan')):.4f} | {r.get('soft_mae', float('nan')):.4f} |")
-    print("\nPCSS against adaptive PCF (seed 000: about 2x):\n")
-    for scene in ("cube", "dragon-like", "contact", "dense"):
-        p = one(s, spec="fig415", scene=scene, technique="pcss")
-        a = one(s, spec="fig415", scene=scene, technique="adaptive-pcf")
-        if p and a:
-            print(f"- {scene}: frame {p['gpu_frame_ms'] / a['gpu_frame_ms']:.2f}x, technique passes "
-                  f"{p['gpu_technique_ms'] / max(a['gpu_technique_ms'], 1e-9):.2f}x")
 
-    print("\n## PCSS against light size (1024 map)\n")
-    print("| scene | size | light size (deg) | frame ms | soft MAE | penumbra share |\n|---|---|---:|---:|---:|---:|")
-    for r in rows_where(s, spec="pcss-light"):
-        print(f"| {r['scene']} | {r['width']}x{r['height']} | {r['light_size']:.2f} | {r['gpu_frame_ms']:.3f} | "
-              f"{r['soft_mae']:.4f} | {r.get('technique_penumbra_fraction', 0):.4f} |")
+def ratio(row, numerator, denominator, digits=2, suffix="x"):
+    a, b = results.number((row or {}).get(numerator)), results.number((row or {}).get(denominator))
+    if a is None or b is None or b <= 1e-9:
+        return "n/a"
+    gbuffer = results.derived_from_gbuffer(row, numerator) or results.derived_from_gbuffer(row, denominator)
+    return f"{a / b:.{digits}f}{suffix}" + (DAGGER if gbuffer else "")
+
+
+def quotient(a, b, pattern):
+    """pattern.format(a / b), or n/a when b is 0 (a no-op driver's timings)."""
+    return pattern.format(a / b) if b else "n/a"
+
+
+def passes_and_term(row):
+    return f"{ms(row, 'technique_passes_ms')} / {ms(row, 'shadow_term_ms')}"
+
+
+DAGGER_NOTE = (f"{DAGGER} derived by tools/results.py from rows measured with the G-buffer on every frame: "
+               "shadow term = main pass with the technique minus the main pass with `none` (same file, scene "
+               "and size); none's main pass taken from the `none` row. A bench that writes `shadow_term_ms` "
+               "measures it without the G-buffer.\n")
+
+
+def section_depth_floor(runs):
+    out = ["## Shadow pass against the depth-only floor (same geometry, resolution and light)\n"]
+    t = Table(["scene", "resolution", "depth floor ms", "shadowmap shadow pass ms", "ratio"],
+              ["---", "---:", "---:", "---:", "---:"])
+    for source, rows in runs.items():
+        for scene in SHADOW_SCENES:
+            maps = [r for r in results.where(rows, scene=scene, technique="shadowmap", width=1920)
+                    if "gpu_shadow_map_ms" in r]
+            for res in sorted({results.number(r.get("param.resolution")) for r in maps} - {None}):
+                sm = [r for r in maps if results.matches(r, **{"param.resolution": res})
+                      and results.number(r.get("floor_depth_ms")) is not None]
+                if sm:
+                    a, b = sm[0]["floor_depth_ms"], sm[0]["gpu_shadow_map_ms"]
+                    t.add(source, [scene, int(res), f"{a:.3f}", f"{b:.3f}", quotient(b, a, "{:.2f}x")])
+    return out + t.lines(), [t]
+
+
+def section_overhead(runs):
+    out = ["\n## Frame-time overhead of shadowmap (2048) over none, 1920x1080\n"]
+    t = Table(["scene", "none ms", "shadowmap ms", "overhead", "shadow term ms", "technique passes ms",
+               "passes / depth floor", "main / none's main"],
+              ["---", "---:", "---:", "---:", "---:", "---:", "---:", "---:"])
+    for source, rows in runs.items():
+        for scene in OVERHEAD_SCENES:
+            none = results.where(rows, scene=scene, technique="none", width=1920)
+            sm = results.where(rows, scene=scene, technique="shadowmap", width=1920, **{"param.resolution": 2048})
+            if none and sm:
+                a, b = none[0]["frame_ms"], sm[0]["frame_ms"]
+                t.add(source, [scene, f"{a:.3f}", f"{b:.3f}", f"+{b - a:.3f} ms ({quotient(100 * (b - a), a, '{:.0f}%')})",
+                               ms(sm[0], "shadow_term_ms"), ms(sm[0], "technique_passes_ms"),
+                               ratio(sm[0], "technique_passes_ms", "floor_depth_ms"),
+                               ratio(sm[0], "main_ms", "floor_main_ms", 3)])
+    return out + t.lines(), [t]
+
+
+def section_cpu(runs):
+    out = ["\n## Host CPU time per frame (median of medians, submission included, waits for the GPU excluded)\n"]
+    wait = any("cpu_wait_ms" in r for rows in runs.values() for r in rows)
+    t = Table(["scene", "techniques", "median ms", "max ms"] + (["CPU wait ms (median)"] if wait else []),
+              ["---", "---:", "---:", "---:"] + (["---:"] if wait else []))
+    for source, rows in runs.items():
+        rows = results.techniques(rows, ("depth-floor",))
+        for scene in results.group_by(rows, lambda r: r.get("scene")):
+            items = [r for r in rows if r.get("scene") == scene and results.number(r.get("cpu_frame_ms")) is not None]
+            if not items:
+                continue
+            values = [r["cpu_frame_ms"] for r in items]
+            cells = [scene, f"{len(values)} rows", f"{statistics.median(values):.3f}", f"{max(values):.3f}"]
+            if wait:
+                waits = [results.number(r.get("cpu_wait_ms")) for r in items]
+                waits = [w for w in waits if w is not None]
+                cells.append(f"{statistics.median(waits):.3f}" if waits else "n/a")
+            t.add(source, cells)
+    return out + t.lines(), [t]
+
+
+def section_triangles(runs):
+    out, tables = [], []
+    for source, rows in runs.items():
+        for sweep in results.scene_sweeps(rows):
+            items = sweep["rows"]
+            steps = results.group_by(items, lambda r: tuple(results.canonical(r.get(k)) for k in sweep["keys"]))
+            t = Table(["triangles", "none frame ms", "shadowmap frame ms", "shadow pass ms", "depth floor ms",
+                       "shadow term ms", "passes / depth floor"],
+                      ["---:", "---:", "---:", "---:", "---:", "---:", "---:"])
+            for key, step in sorted(steps.items(), key=lambda kv: [results.number(v) or 0 for v in kv[0]]):
+                none = results.first(step, technique="none")
+                sm = results.first(step, technique="shadowmap")
+                floor = results.first(step, technique="depth-floor")
+                if not (none and sm):
+                    continue
+                depth = results.number(sm.get("floor_depth_ms"))
+                if depth is None and floor:
+                    depth = results.number(floor.get("floor_depth_ms"))
+                t.add(source, [f"{int(results.number(none['triangles'])):,}", f"{none['frame_ms']:.3f}",
+                               f"{sm['frame_ms']:.3f}", ms(sm, "gpu_shadow_map_ms"),
+                               f"{depth if depth is not None else NAN:.3f}", ms(sm, "shadow_term_ms"),
+                               f"{sm['technique_passes_ms'] / depth:.2f}x" if depth else "n/a"])
+            if len(t.rows) > 1:
+                swept = ", ".join(sweep["keys"])
+                out += [f"\n## Time against triangle count ({sweep['scene']}, {swept} swept, "
+                        f"{results.size_name(sweep['size'])})\n"] + t.lines()
+                tables.append(t)
+    return out, tables
+
+
+def section_kernels(runs):
+    out = ["\n## Adaptive PCF against PCF (same kernel footprint, 1024 map), seed 000: +15-104% FPS (smallest "
+           "kernel), +392-1473% (largest)\n"]
+    a_table = Table(["scene", "size", "n", "PCF ms", "adaptive ms", "FPS gain", "PCF soft MAE", "adaptive soft MAE",
+                     "early-out rate", "PCF passes / term ms", "adaptive passes / term ms"],
+                    ["---", "---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"])
+    v_table = Table(["scene", "size", "n", "PCF ms", "VSM ms", "VSM/PCF", "PCF soft MAE", "VSM soft MAE",
+                     "PCF passes / term ms", "VSM passes / term ms"],
+                    ["---", "---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"])
+    for source, s in runs.items():
+        for scene in SEED_SCENES:
+            for w, h in SIZES:
+                for n in (3, 7, 11, 15):
+                    p = results.first(s, spec="pcf-kernel", scene=scene, width=w, **{"param.kernel": n})
+                    a = results.first(s, spec="adaptive-kernel", scene=scene, width=w, **{"param.grid": n})
+                    if p and a:
+                        gain = quotient(100 * (p["frame_ms"] - a["frame_ms"]), a["frame_ms"], "{:+.0f}%")
+                        a_table.add(source, [scene, f"{w}x{h}", n, f"{p['frame_ms']:.3f}", f"{a['frame_ms']:.3f}",
+                                             gain, f"{p.get('soft_mae', NAN):.4f}", f"{a.get('soft_mae', NAN):.4f}",
+                                             f"{a.get('stat.early_out_rate', NAN):.2f}", passes_and_term(p),
+                                             passes_and_term(a)])
+        for scene in SEED_SCENES:
+            for w, h in SIZES:
+                for n in (1, 3, 5, 7, 9, 11, 13, 15):
+                    p = results.first(s, spec="pcf-kernel", scene=scene, width=w, **{"param.kernel": n})
+                    v = results.first(s, spec="vsm-kernel", scene=scene, width=w, **{"param.kernel": 2 * n + 1})
+                    if p and v:
+                        v_table.add(source, [scene, f"{w}x{h}", n, f"{p['frame_ms']:.3f}", f"{v['frame_ms']:.3f}",
+                                             quotient(v["frame_ms"], p["frame_ms"], "{:.2f}"), f"{p.get('soft_mae', NAN):.4f}",
+                                             f"{v.get('soft_mae', NAN):.4f}", passes_and_term(p), passes_and_term(v)])
+    out += a_table.lines()
+    out += ["\n## VSM with twice the kernel (2n+1 blur) against PCF n x n, 1024 map\n"] + v_table.lines()
+    return out, [a_table, v_table]
+
+
+def section_fig415(runs):
+    out = ["\n## Every technique at 1024 map, 1920x1080, 11x11 kernels (seed 000 Fig. 4.15)\n"]
+    t = Table(["scene", "technique", "frame ms", "technique passes ms", "shadow term ms", "MiB", "hard MAE",
+               "soft MAE", "passes / depth floor", "main / none's main"],
+              ["---", "---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"])
+    bullets = []
+    for source, s in runs.items():
+        for scene in FIG415_SCENES:
+            for r in results.where(s, spec="fig415", scene=scene):
+                t.add(source, [scene, r["technique"], f"{r['frame_ms']:.3f}", f"{r['technique_passes_ms']:.3f}",
+                               ms(r, "shadow_term_ms"), f"{(results.number(r.get('gpu_bytes')) or 0) / 1048576:.1f}",
+                               f"{r.get('hard_mae', NAN):.4f}", f"{r.get('soft_mae', NAN):.4f}",
+                               ratio(r, "technique_passes_ms", "floor_depth_ms"),
+                               ratio(r, "main_ms", "floor_main_ms", 3)])
+        for scene in FIG415_SCENES:
+            p = results.first(s, spec="fig415", scene=scene, technique="pcss")
+            a = results.first(s, spec="fig415", scene=scene, technique="adaptive-pcf")
+            if p and a:
+                line = (f"{scene}: frame {quotient(p['frame_ms'], a['frame_ms'], '{:.2f}x')}, technique passes "
+                        f"{p['technique_passes_ms'] / max(a['technique_passes_ms'], 1e-9):.2f}x")
+                pt, at = results.number(p.get("shadow_term_ms")), results.number(a.get("shadow_term_ms"))
+                if pt is not None and at is not None and at > 1e-3:
+                    gbuffer = results.derived_from_gbuffer(p, "shadow_term_ms") or \
+                        results.derived_from_gbuffer(a, "shadow_term_ms")
+                    line += f", shadow term {pt / at:.2f}x" + (DAGGER if gbuffer else "")
+                bullets.append((source, line))
+                t.daggers = t.daggers or line.endswith(DAGGER)
+    t.drop_empty(8)
+    out += t.lines()
+    if bullets:
+        several = len({source for source, _ in bullets}) > 1
+        out += ["\nPCSS against adaptive PCF (seed 000: about 2x):\n"]
+        out += [f"- {os.path.basename(source) + ': ' if several else ''}{line}" for source, line in bullets]
+    return out, [t]
+
+
+def section_light_size(runs):
+    out = ["\n## PCSS against light size (1024 map)\n"]
+    t = Table(["scene", "size", "light size (deg)", "frame ms", "soft MAE", "penumbra share", "technique passes ms",
+               "shadow term ms"],
+              ["---", "---", "---:", "---:", "---:", "---:", "---:", "---:"])
+    for source, s in runs.items():
+        for r in results.where(s, spec="pcss-light"):
+            t.add(source, [r["scene"], f"{r['width']}x{r['height']}", f"{r['light_size']:.2f}", f"{r['frame_ms']:.3f}",
+                           f"{r.get('soft_mae', NAN):.4f}", f"{r.get('technique_penumbra_fraction', 0):.4f}",
+                           ms(r, "technique_passes_ms"), ms(r, "shadow_term_ms")])
+    return out + t.lines(), [t]
+
+
+def report(rows):
+    """The Markdown text of every section for the rows (results.load)."""
+    runs = results.by_source(rows)
+    lines, seen = [], []
+    for source, items in runs.items():
+        env = (items[0].get("gpu"), items[0].get("driver"), items[0].get("commit"))
+        if env not in seen:
+            seen.append(env)
+            lines.append(results.run_line(items[0]))
+    lines.append("")
+    note = results.gbuffer_note(rows)
+    if note:
+        lead = "Every row was " + note if note == results.gbuffer_note([{"technique": "x", "gbuffer_every_frame": True}]) \
+            else note[0].upper() + note[1:]
+        lines.append(f"{lead} (a bench from before `frame_ms`): the accuracy G-buffer was written in every timed "
+                     "frame, so their frame and main-pass times include it.\n")
+    body, tables = [], []
+    for section in (section_depth_floor, section_overhead, section_cpu, section_triangles, section_kernels,
+                    section_fig415, section_light_size):
+        text, made = section(runs)
+        if any(t.rows for t in made):
+            body += text
+            tables += made
+    if any(t.daggers for t in tables):
+        lines.append(DAGGER_NOTE)
+    text = "\n".join(lines + body) + "\n"
+    while "\n\n\n" in text:          # a section left out leaves no gap of two lines
+        text = text.replace("\n\n\n", "\n\n")
+    return text
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="ratios.py", description="The project's ratios (Markdown) from "
+                                     "shadowlab bench results; every ratio within one file (one run).")
+    parser.add_argument("inputs", nargs="+", metavar="RESULTS", help="results files (.json or .csv)")
+    parser.add_argument("--out", metavar="DIR", help="write DIR/ratios.md instead of printing")
+    args = parser.parse_args(sys.argv[1:] if argv is None else argv)
+    try:
+        rows = results.load(args.inputs)
+    except (OSError, ValueError) as e:
+        print(f"ratios.py: {e}", file=sys.stderr)
+        return 1
+    text = report(rows)
+    if args.out:
+        print(results.write_text(text, args.out, "ratios.md"))
+    else:
+        sys.stdout.write(text)
     return 0
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        print(__doc__)
-        sys.exit(2)
-    sys.exit(main(sys.argv[1], sys.argv[2]))
+    sys.exit(main())

@@ -1,9 +1,11 @@
 #!/usr/bin/python3
 """Rebuilds seed 000 Table 4.1 (visual characteristics of the techniques) from measurements.
 
-    python3 tools/table41.py results.json > table41.md
+    python3 tools/table41.py seed000.json [more.json ...] [--out DIR]
 
-Input: results of `shadowlab bench --spec assets/bench/seed000.json` (rows tagged table41-*).
+Input: results of `shadowlab bench --spec assets/bench/seed000.json` (rows tagged table41-*), JSON
+or CSV, read with tools/results.py; when several files hold a row, the first file's is used.
+Without --out the Markdown table goes to stdout; with it, to DIR/table41.md (the path is printed).
 Each characteristic is a measured criterion on one scene, judged against plain shadow mapping
 in the same run, so the thresholds travel between machines:
 
@@ -20,8 +22,12 @@ in the same run, so the thresholds travel between machines:
   Noise-free        (contact)      high-frequency error against the soft reference:
                                    Yes <= 1.5x shadowmap, ~ <= 3x
 """
-import json
+import argparse
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import results  # noqa: E402
 
 COLUMNS = [("shadowmap", "Shadow mapping", False), ("shadowmap", "HW filtering", True), ("pcf", "PCF", None),
            ("adaptive-pcf", "Adaptive PCF", None), ("vsm", "VSM", None), ("pcss", "PCSS", None),
@@ -34,15 +40,23 @@ SEED = {"Precise shadows": ["Yes", "Yes", "Yes", "Yes", "~", "Yes"],
         "Noise-free": ["Yes", "Yes", "Yes", "No", "No", "No"]}
 
 
+def scene_value(row, key):
+    value = results.number(row.get(key))
+    return -1.0 if value is None else value
+
+
 def pick(rows, tag, technique, hardware, **scene):
+    """The first row of sweep table41-<tag> for the column: shadowmap with hardware filtering
+    (hardware True), without it (False or None), any other technique as is; scene: scene.* values."""
     for row in rows:
         if row.get("spec") != "table41-" + tag or row.get("technique") != technique:
             continue
-        if hardware is not None and technique == "shadowmap" and (row.get("param.hardware_filter") == "true") != hardware:
+        filtered = results.canonical(row.get("param.hardware_filter")) == "true"
+        if technique == "shadowmap" and hardware is not None and filtered != hardware:
             continue
-        if technique == "shadowmap" and hardware is None and row.get("param.hardware_filter") == "true":
+        if technique == "shadowmap" and hardware is None and filtered:
             continue
-        if all(abs(float(row.get(k, -1)) - v) < 1e-6 for k, v in scene.items()):
+        if all(abs(scene_value(row, k) - v) < 1e-6 for k, v in scene.items()):
             return row
     return None
 
@@ -54,10 +68,10 @@ def grade(value, yes, partial, lower_is_better=True):
     return "Yes" if good(value, yes) else "~" if good(value, partial) else "No"
 
 
-def main(path):
-    rows = json.load(open(path))
+def table(rows):
+    """The Markdown table (a string) of rows (results.load)."""
     base = lambda tag, key, **s: (pick(rows, tag, "shadowmap", False, **s) or {}).get(key)
-    table = {}
+    verdicts = {}
     for technique, name, hardware in COLUMNS:
         cells = {}
         r = pick(rows, "precise", technique, hardware)
@@ -87,23 +101,41 @@ def main(path):
         r = pick(rows, "soft", technique, hardware)
         v, b = (r or {}).get("soft_noise"), base("soft", "soft_noise")
         cells["Noise-free"] = (grade(v, 1.5 * b, 3 * b) if v is not None and b else "n/a", v)
-        table[name] = cells
+        verdicts[name] = cells
 
     names = [name for _, name, _ in COLUMNS]
-    print("| characteristic (measured) | " + " | ".join(names) + " |")
-    print("|---|" + "---|" * len(names))
+    out = ["| characteristic (measured) | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]
     for characteristic in SEED:
         cells = []
         for name in names:
-            verdict, value = table[name][characteristic]
+            verdict, value = verdicts[name][characteristic]
             cells.append(verdict + (f" ({value:.3g})" if isinstance(value, float) else ""))
-        print(f"| {characteristic} | " + " | ".join(cells) + " |")
-        print(f"| *seed 000* | " + " | ".join(SEED[characteristic] + [""] * (len(names) - 6)) + " |")
+        out.append(f"| {characteristic} | " + " | ".join(cells) + " |")
+        out.append("| *seed 000* | " + " | ".join(SEED[characteristic] + [""] * (len(names) - 6)) + " |")
+    return "\n".join(out) + "\n"
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="table41.py", description="Seed 000 Table 4.1 rebuilt from the "
+                                     "table41-* rows of shadowlab bench results (Markdown).")
+    parser.add_argument("inputs", nargs="+", metavar="RESULTS", help="results files (.json or .csv)")
+    parser.add_argument("--out", metavar="DIR", help="write DIR/table41.md instead of printing")
+    args = parser.parse_args(sys.argv[1:] if argv is None else argv)
+    try:
+        rows = results.load(args.inputs)
+    except (OSError, ValueError) as e:
+        print(f"table41.py: {e}", file=sys.stderr)
+        return 1
+    if not any(str(r.get("spec", "")).startswith("table41-") for r in rows):
+        print("table41.py: no table41-* rows (run shadowlab bench --spec assets/bench/seed000.json)", file=sys.stderr)
+        return 1
+    text = table(rows)
+    if args.out:
+        print(results.write_text(text, args.out, "table41.md"))
+    else:
+        sys.stdout.write(text)
     return 0
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        print(__doc__)
-        sys.exit(2)
-    sys.exit(main(sys.argv[1]))
+    sys.exit(main())

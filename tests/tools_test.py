@@ -1,0 +1,484 @@
+#!/usr/bin/python3
+"""Tests of the result tools (tools/results.py, charts.py, ratios.py, table41.py), run by ctest.
+
+    python3 tests/tools_test.py [-v]
+
+A small synthetic fixture, written here, holds old-style rows (gpu_frame_ms, no G-buffer flag) and
+new-style rows (frame_ms, shadow_term_ms, floors, gbuffer_every_frame), as JSON and as CSV. The
+tools also run end to end on the committed GPU results in docs/results/h100-2026-11-25/*.json.
+Outputs go to a temporary directory. Needs python3-matplotlib: when the interpreter that runs this
+file lacks it (a pyenv or venv python3 first on PATH), the file runs itself again with
+/usr/bin/python3, the interpreter Debian's python3-matplotlib belongs to (as shadowlab report does).
+"""
+import contextlib
+import glob
+import io
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+from concurrent.futures import ThreadPoolExecutor
+
+try:
+    import matplotlib  # noqa: F401
+except ImportError:
+    if os.path.exists("/usr/bin/python3") and os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3") \
+            and not os.environ.get("SHADOWLAB_TOOLS_TEST_REEXEC"):
+        os.environ["SHADOWLAB_TOOLS_TEST_REEXEC"] = "1"
+        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
+    raise
+
+ROOT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
+TOOLS = os.path.join(ROOT, "tools")
+RESULTS = os.path.join(ROOT, "docs", "results", "h100-2026-11-25")
+sys.path.insert(0, TOOLS)
+import results  # noqa: E402
+import charts  # noqa: E402
+import ratios  # noqa: E402
+import table41  # noqa: E402
+from matplotlib.collections import PathCollection  # noqa: E402
+from matplotlib.markers import MarkerStyle  # noqa: E402
+
+ENV = {"gpu": "Test GPU", "driver": "test 1.0", "date": "2026-12-01T00:00:00Z", "commit": "abc123", "backend": "egl"}
+
+
+def old_row(technique, scene="box", width=1920, height=1080, frame=None, main=None, passes=0.0, **extra):
+    """A row as benches before `frame_ms` wrote it."""
+    row = dict(ENV, technique=technique, scene=scene, width=width, height=height, pixels=width * height,
+               triangles=extra.pop("triangles", 1000), light_size=0.5, cpu_frame_ms=0.1, gpu_technique_ms=passes)
+    if frame is not None:
+        row["gpu_frame_ms"] = frame
+    if main is not None:
+        row["gpu_main_ms"] = main
+    row.update(extra)
+    return row
+
+
+def depth_floor(scene, resolution, ms, **extra):
+    return old_row("depth-floor", scene, frame=ms + 0.001, passes=ms, gpu_depth_floor_ms=ms,
+                   **dict({"param.resolution": resolution}, **extra))
+
+
+def old_rows():
+    rows = [
+        old_row("none", frame=2.0, main=2.0, hard_mae=0.2, soft_mae=0.21, soft_mae_penumbra=0.5),
+        old_row("shadowmap", frame=2.5, main=2.05, passes=0.4, gpu_shadow_map_ms=0.4, hard_mae=0.010,
+                soft_mae=0.02, soft_mae_penumbra=0.30, **{"param.resolution": "1024", "param.kernel": "1"}),
+        old_row("shadowmap", frame=3.2, main=2.06, passes=1.1, gpu_shadow_map_ms=1.1, hard_mae=0.004,
+                soft_mae=0.02, soft_mae_penumbra=0.28, **{"param.resolution": "2048", "param.kernel": "1"}),
+        old_row("pcf", frame=4.0, main=3.5, passes=0.4, hard_mae=0.012, soft_mae=0.01, soft_mae_penumbra=0.20,
+                **{"param.resolution": "1024", "param.kernel": "3"}),
+        old_row("pcf", frame=9.0, main=8.5, passes=0.4, hard_mae=0.015, soft_mae=0.008, soft_mae_penumbra=0.12,
+                **{"param.resolution": "1024", "param.kernel": "7"}),
+        old_row("pcss", frame=30.0, main=20.0, passes=9.0, hard_mae=0.003, soft_mae=0.004, soft_mae_penumbra=0.05,
+                **{"param.resolution": "2048"}),
+        depth_floor("box", 1024, 0.35),
+        depth_floor("box", 2048, 1.0),
+        # A scene sweep: dense over scene.segments (triangles grow), none, shadowmap and the floor.
+    ]
+    for segments, triangles, base in ((8, 40000, 3.0), (16, 190000, 3.4), (32, 790000, 4.0), (64, 3200000, 6.5)):
+        s = {"scene.segments": float(segments), "triangles": triangles}
+        rows.append(old_row("none", "dense", frame=base, main=base, **s))
+        rows.append(old_row("shadowmap", "dense", frame=base * 1.3, main=base + 0.01, passes=base * 0.3,
+                            gpu_shadow_map_ms=base * 0.3, **dict(s, **{"param.resolution": "2048"})))
+        rows.append(depth_floor("dense", 2048, base * 0.28, **s))
+    # Another scene with a different triangle count: must never join the dense sweep.
+    rows.append(old_row("none", "forest", frame=7.0, main=7.0, triangles=240002))
+    rows.append(old_row("shadowmap", "forest", frame=8.0, main=7.01, passes=1.0, gpu_shadow_map_ms=1.0,
+                        triangles=240002, **{"param.resolution": "2048"}))
+    # Table 4.1 rows (seed000.json's table41-* sweeps), enough for every cell of two columns.
+    for technique, hw, precise, pen, noise_h, noise_s, false_shadow in (
+            ("shadowmap", "false", 0.0016, 0.0, 0.0006, 0.0012, 0.0008),
+            ("shadowmap", "true", 0.0023, 0.003, 0.0004, 0.0009, 0.0008),
+            ("pcf", None, 0.004, 0.007, 0.0007, 0.0008, 0.0008)):
+        p = {"param.hardware_filter": hw} if hw else {}
+        rows.append(old_row(technique, "dragon-like", 1280, 720, 1.0, 1.0, spec="table41-precise",
+                            hard_mae_outside_penumbra=precise, **p))
+        rows.append(old_row(technique, "contact", 1280, 720, 1.0, 1.0, spec="table41-soft",
+                            technique_penumbra_fraction=pen, soft_noise=noise_s, **p))
+        rows.append(old_row(technique, "cube", 1280, 720, 1.0, 1.0, spec="table41-aliasing", hard_noise=noise_h, **p))
+        rows.append(old_row(technique, "pillars", 1280, 720, 1.0, 1.0, spec="table41-grazing",
+                            hard_false_shadow=false_shadow, **p))
+        for height, share in ((0.5, pen), (2.0, pen * 1.6)):
+            rows.append(old_row(technique, "hover", 1280, 720, 1.0, 1.0, spec="table41-contact",
+                                technique_penumbra_fraction=share, **dict(p, **{"scene.height": height})))
+    return rows
+
+
+def new_row(technique, scene="box", frame=1.0, main=1.0, passes=0.0, term=0.0, **extra):
+    """A row as the bench writes it from `frame_ms` on."""
+    row = dict(ENV, technique=technique, scene=scene, width=1280, height=720, pixels=1280 * 720,
+               triangles=extra.pop("triangles", 1000), light_size=0.5, frame_ms=frame, main_ms=main,
+               technique_passes_ms=passes, shadow_term_ms=term, floor_main_ms=extra.pop("floor_main", 0.9),
+               cpu_frame_ms=0.05, cpu_wait_ms=0.01, gbuffer_every_frame=False, gpu_bytes=4194304)
+    row.update(extra)
+    return row
+
+
+def new_rows():
+    rows = [
+        new_row("none", frame=0.9, main=0.9, hard_mae=0.2, soft_mae=0.2, soft_mae_penumbra=0.45,
+                soft_reference_floor=0.01, soft_reference_rays=256),
+        new_row("shadowmap", frame=1.2, main=0.95, passes=0.25, term=0.05, floor_depth_ms=0.2, gpu_shadow_map_ms=0.25,
+                hard_mae=0.004, soft_mae=0.02, soft_mae_penumbra=0.3, soft_reference_floor=0.01,
+                soft_reference_rays=256, **{"param.resolution": "2048"}),
+        new_row("pcss", frame=12.0, main=9.0, passes=3.0, term=8.1, floor_depth_ms=0.2, hard_mae=0.003,
+                soft_mae=0.004, soft_mae_penumbra=0.04, soft_reference_floor=0.012, soft_reference_rays=256,
+                **{"param.resolution": "2048"}),
+        new_row("csm", frame=1.6, main=1.0, passes=0.6, term=0.1, hard_mae=0.002, soft_mae=0.02,
+                soft_mae_penumbra=0.3, soft_reference_floor=0.01, soft_reference_rays=256, **{"param.cascades": "4"}),
+        new_row("brand-new-technique", frame=2.0, main=1.0, passes=1.0, term=0.1, hard_mae=0.05, soft_mae=0.05,
+                soft_mae_penumbra=0.35, soft_reference_floor=0.01, soft_reference_rays=256),
+    ]
+    # A scene.count sweep of the forest (the new bench's triangle scaling): one scene, two techniques.
+    for count, base in ((100, 1.0), (1000, 2.0), (10000, 12.0)):
+        s = {"scene.count": count, "triangles": count * 48}
+        rows.append(new_row("none", "forest", frame=base, main=base, floor_main=base, **s))
+        rows.append(new_row("shadowmap", "forest", frame=base * 1.5, main=base + 0.02, passes=base * 0.4, term=0.02,
+                            floor_main=base, floor_depth_ms=base * 0.45, **dict(s, **{"param.resolution": "2048"})))
+    return rows
+
+
+def write_csv(rows, path):
+    """The bench's CSV: columns in first-seen order, strings raw, other values as JSON."""
+    columns = []
+    for row in rows:
+        for key in row:
+            if key not in columns:
+                columns.append(key)
+    with open(path, "w") as f:
+        f.write(",".join(columns) + "\n")
+        for row in rows:
+            cells = []
+            for c in columns:
+                if c not in row:
+                    cells.append("")
+                    continue
+                v = row[c]
+                text = v if isinstance(v, str) else json.dumps(v)
+                cells.append('"' + text.replace('"', '""') + '"' if any(ch in text for ch in ',"\n') else text)
+            f.write(",".join(cells) + "\n")
+
+
+def run_tool(name, *args):
+    """The tool as a user runs it: a process of its own."""
+    return subprocess.run([sys.executable, os.path.join(TOOLS, name), *args], capture_output=True, text=True,
+                          timeout=300)
+
+
+def call(module, *args):
+    """The tool's main(argv) in this process (matplotlib imported once): (exit code, stdout)."""
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(io.StringIO()):
+        try:
+            rc = module.main(list(args))
+        except SystemExit as e:          # argparse: --help, usage errors
+            rc = e.code
+    return rc, out.getvalue()
+
+
+def marker_vertices(marker):
+    style = MarkerStyle(marker)
+    return style.get_path().transformed(style.get_transform()).vertices.round(6).tolist()
+
+
+class Fixture(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory(prefix="shadowlab-tools-test-")
+        cls.dir = cls.tmp.name
+        cls.old_path = os.path.join(cls.dir, "old.json")
+        cls.new_path = os.path.join(cls.dir, "new.json")
+        cls.csv_path = os.path.join(cls.dir, "new.csv")
+        with open(cls.old_path, "w") as f:
+            json.dump(old_rows(), f)
+        with open(cls.new_path, "w") as f:
+            json.dump(new_rows(), f)
+        write_csv(new_rows(), cls.csv_path)
+        # The longest job, charts of every committed result, runs in a process of its own from the
+        # start, on the second core, while the other tests run here.
+        cls.committed = os.path.join(cls.dir, "committed")
+        cls.committed_files = sorted(glob.glob(os.path.join(RESULTS, "*.json")))
+        cls.pool = ThreadPoolExecutor(max_workers=1)
+        cls.committed_charts = cls.pool.submit(run_tool, "charts.py", *cls.committed_files, "--out",
+                                               os.path.join(cls.committed, "charts"), "--dpi", "40")
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.pool.shutdown(wait=True)
+        cls.tmp.cleanup()
+
+    # --- loader -------------------------------------------------------------------------------
+    def test_old_rows_normalised_and_flagged(self):
+        rows = results.load(self.old_path)
+        sm = results.first(rows, technique="shadowmap", scene="box", **{"param.resolution": 2048})
+        self.assertEqual(sm["frame_ms"], 3.2)
+        self.assertEqual(sm["technique_passes_ms"], 1.1)
+        self.assertEqual(sm["main_ms"], 2.06)
+        self.assertIs(sm["gbuffer_every_frame"], True)
+        # The shadow term: main with the technique minus main with none, same file, scene and size.
+        self.assertAlmostEqual(sm["shadow_term_ms"], 0.06)
+        self.assertTrue(results.derived(sm, "shadow_term_ms"))
+        self.assertTrue(results.derived_from_gbuffer(sm, "shadow_term_ms"))
+        self.assertEqual(sm["floor_main_ms"], 2.0)
+        # The depth floor of the same scene, size and resolution (an int there, a string here).
+        self.assertEqual(sm["floor_depth_ms"], 1.0)
+        self.assertTrue(results.derived(sm, "floor_depth_ms"))
+        floor = results.first(rows, technique="depth-floor", scene="box", **{"param.resolution": "1024"})
+        self.assertEqual(floor["floor_depth_ms"], 0.35)
+        # Each dense step gets its own step's none, not another step's.
+        dense = results.first(rows, technique="shadowmap", scene="dense", **{"scene.segments": 16})
+        self.assertAlmostEqual(dense["shadow_term_ms"], 0.01)
+        self.assertEqual(results.gbuffer_note(rows), "measured with the G-buffer on every frame")
+
+    def test_new_rows_json_and_csv(self):
+        for path in (self.new_path, self.csv_path):
+            rows = results.load(path)
+            sm = results.first(rows, technique="shadowmap", scene="box")
+            self.assertIs(sm["gbuffer_every_frame"], False, path)
+            self.assertEqual(sm["shadow_term_ms"], 0.05, path)
+            self.assertFalse(results.derived(sm, "shadow_term_ms"), path)
+            self.assertFalse(results.derived(sm, "floor_depth_ms"), path)
+            self.assertEqual(results.canonical(sm["param.resolution"]), "2048", path)
+            self.assertEqual(sm["cpu_wait_ms"], 0.01, path)
+            self.assertEqual(results.gbuffer_note(rows), "", path)
+        # A row with frame_ms and no flag is a new-style row; one without frame_ms is old.
+        self.assertIs(results.normalise([{"technique": "x", "frame_ms": 1.0}])[0]["gbuffer_every_frame"], False)
+        self.assertIs(results.normalise([{"technique": "x", "gpu_frame_ms": 1.0}])[0]["gbuffer_every_frame"], True)
+        both = results.load([self.old_path, self.new_path])
+        self.assertEqual(len(results.by_source(both)), 2)
+        self.assertIn("of", results.gbuffer_note(both))
+
+    def test_no_derivation_across_files(self):
+        # A row whose view (scene, size) has a `none` row in another file only: no shadow term.
+        other = os.path.join(self.dir, "other.json")
+        with open(other, "w") as f:
+            json.dump([old_row("shadowmap", frame=3.0, main=2.5, passes=0.5, **{"param.resolution": "2048"})], f)
+        rows = results.load([self.old_path, other])
+        lone = [r for r in rows if r["_source"] == other][0]
+        self.assertNotIn("shadow_term_ms", lone)
+
+    # --- helpers ------------------------------------------------------------------------------
+    def test_pareto_front(self):
+        pts = [(1, 5), (2, 3), (3, 4), (4, 1), (2, 3.5), (5, 1), (0.5, None)]
+        rows = [{"x": x, "y": y} for x, y in pts]
+        front = [(r["x"], r["y"]) for r in results.pareto_front(rows, "x", "y")]
+        self.assertEqual(front, [(1, 5), (2, 3), (4, 1)])
+
+    def test_log_scale_decision(self):
+        self.assertFalse(results.use_log([1.0, 10.0]))
+        self.assertTrue(results.use_log([1.0, 10.5]))
+        self.assertTrue(results.use_log([0.0, 0.01, 5.0]))     # zeros do not count
+        self.assertFalse(results.use_log([3.0]))
+        self.assertFalse(results.use_log([0.0, 0.0]))
+
+    def test_styles_fixed(self):
+        ids = ["none", "planar", "shadowmap", "pcf", "adaptive-pcf", "vsm", "esm", "evsm", "msm", "pcss",
+               "area-reference", "reference", "depth-floor", "csm", "psm", "lispsm", "tsm", "stochastic", "cssm",
+               "translucent"]
+        for technique in ids:
+            self.assertIn(technique, results.STYLE)
+        self.assertEqual(len(set(results.STYLE.values())), len(results.STYLE), "two techniques share a style")
+        for plugin in os.listdir(os.path.join(ROOT, "plugins")):
+            if os.path.isdir(os.path.join(ROOT, "plugins", plugin)):
+                self.assertIn(plugin, results.STYLE, f"plugins/{plugin} has no fixed style")
+        # Unknown ids: a style from the fallback tables, the same in every process (no salted hash()).
+        colour, marker = results.style("brand-new-technique")
+        self.assertIn(colour, results.FALLBACK_COLOURS)
+        self.assertIn(marker, results.FALLBACK_MARKERS)
+        code = "import sys; sys.path.insert(0, sys.argv[1]); import results; print(results.style('brand-new-technique'))"
+        for seed in ("1", "2"):
+            other = subprocess.run([sys.executable, "-c", code, TOOLS], capture_output=True, text=True,
+                                   env=dict(os.environ, PYTHONHASHSEED=seed))
+            self.assertEqual(other.stdout.strip(), str((colour, marker)))
+
+    def test_param_string_only_varying(self):
+        rows = [r for r in results.load(self.old_path) if r.get("scene") == "box" and r["technique"] == "pcf"]
+        keys = results.label_keys(rows)
+        self.assertEqual(keys, ["param.kernel"])
+        self.assertEqual(results.label(rows[0], keys), "pcf kernel=3")
+
+    def test_scene_sweeps_one_scene_each(self):
+        rows = results.load([self.old_path, self.new_path])
+        sweeps = [s for s in results.scene_sweeps(rows) if s["scene"] in ("dense", "forest")]
+        self.assertEqual([(s["scene"], s["keys"]) for s in sweeps],
+                         [("dense", ["scene.segments"]), ("forest", ["scene.count"])])
+        for s in sweeps:
+            self.assertEqual({r["scene"] for r in s["rows"]}, {s["scene"]})
+            self.assertEqual({r["_source"] for r in s["rows"]}, {s["rows"][0]["_source"]})
+
+    # --- charts -------------------------------------------------------------------------------
+    def test_pareto_styles_none_and_labels(self):
+        rows = results.load(self.old_path)
+        box = results.by_scene_size(results.techniques(rows, ("depth-floor",)))[("box", (1920, 1080))]
+        styles = []
+        for kind in ("hard", "soft"):
+            fig, info = charts.pareto_figure(box, "box", (1920, 1080), kind)
+            ax = fig.axes[0]
+            seen = {}
+            for c in ax.collections:
+                if isinstance(c, PathCollection) and c.get_label() in results.STYLE:
+                    colour = matplotlib.colors.to_hex(c.get_facecolor()[0])
+                    seen[c.get_label()] = (colour, c.get_paths()[0].vertices.round(6).tolist())
+            self.assertNotIn("none", seen, "none must be a reference line, not a point")
+            lines = [ln.get_label() for ln in ax.get_lines()]
+            self.assertTrue(any(label.startswith("none:") for label in lines), lines)
+            for technique, (colour, vertices) in seen.items():
+                self.assertEqual(colour, results.style(technique)[0])
+                self.assertEqual(vertices, marker_vertices(results.style(technique)[1]))
+            texts = [t.get_text() for t in ax.texts]
+            self.assertEqual(len(texts), len(info["front"]))   # every front point labelled
+            self.assertIn("G-buffer", ax.get_title())
+            styles.append(seen)
+            if kind == "soft":
+                self.assertEqual(info["y"], "soft_mae_penumbra")
+                self.assertIn("penumbra", ax.get_ylabel())
+                self.assertIn("pcf kernel=3", texts)
+                self.assertEqual(texts[-1], "pcss")
+            else:
+                self.assertEqual(info["y"], "hard_mae")
+                self.assertEqual(info["scales"], ("log", "linear"))   # 2 to 30 ms; errors 0.003 to 0.015
+                self.assertEqual(texts, ["shadowmap resolution=1024", "shadowmap resolution=2048", "pcss"])
+            matplotlib.pyplot.close(fig)
+        common = set(styles[0]) & set(styles[1])
+        self.assertGreaterEqual(len(common), 3)
+        for technique in common:
+            self.assertEqual(styles[0][technique], styles[1][technique])
+
+    def test_soft_chart_reference_floor_and_new_rows(self):
+        rows = results.load(self.new_path)
+        box = results.by_scene_size(rows)[("box", (1280, 720))]
+        fig, info = charts.pareto_figure(box, "box", (1280, 720), "soft")
+        ax = fig.axes[0]
+        self.assertEqual(info["floor"], 0.01)
+        self.assertTrue(any("sampling error (256 rays)" in ln.get_label() for ln in ax.get_lines()))
+        self.assertNotIn("G-buffer", ax.get_title())
+        self.assertEqual(info["scales"][1], "log")               # 0.01 (floor) to 0.35
+        labels = {c.get_label() for c in ax.collections}
+        self.assertIn("brand-new-technique", labels)
+        matplotlib.pyplot.close(fig)
+
+    def test_sweep_chart_uses_same_styles(self):
+        rows = [r for r in results.load(self.old_path) if r.get("scene") == "box"]
+        fig, info = charts.against_figure(results.techniques(rows, ("depth-floor",)), "param.resolution", "box",
+                                          "resolution", base=2)
+        for line in fig.axes[0].get_lines():
+            technique = info["series"][line.get_label()][0]
+            self.assertEqual(matplotlib.colors.to_hex(line.get_color()), results.style(technique)[0])
+            self.assertEqual(line.get_marker(), results.style(technique)[1])
+        matplotlib.pyplot.close(fig)
+
+    def test_triangles_chart_one_scene(self):
+        rows = results.load([self.old_path, self.new_path])
+        checked = []
+        for sweep in results.scene_sweeps(rows):
+            if sweep["scene"] not in ("dense", "forest"):
+                continue
+            checked.append(sweep["scene"])
+            made = charts.triangles_figure(sweep)
+            self.assertIsNotNone(made, sweep["scene"])
+            fig, info = made
+            self.assertEqual(info["scenes"], [sweep["scene"]])
+            xs = {x for _, pts in info["series"].values() for x, _ in pts}
+            wanted = {results.number(r["triangles"]) for r in sweep["rows"]}
+            self.assertEqual(xs, wanted)
+            self.assertNotIn(240002.0, xs)                     # the old file's lone forest rows
+            techniques = sorted(t for t, _ in info["series"].values())
+            self.assertEqual(len(techniques), len(set(techniques)), "one line per technique")
+            self.assertEqual(info["scales"][0], "log")
+            matplotlib.pyplot.close(fig)
+        self.assertEqual(checked, ["dense", "forest"])
+
+    # --- end to end ---------------------------------------------------------------------------
+    def test_tools_end_to_end_on_fixture(self):
+        out = os.path.join(self.dir, "out")
+        inputs = [self.old_path, self.csv_path]
+        helped = run_tool("charts.py", "--help")
+        self.assertEqual(helped.returncode, 0, helped.stderr)
+        self.assertIn("--out DIR", helped.stdout)
+        for module in (ratios, table41):
+            rc, text = call(module, "--help")
+            self.assertEqual(rc, 0)
+            self.assertIn("--out DIR", text)
+        rc, printed = call(charts, *inputs, "--out", os.path.join(out, "charts"), "--dpi", "40")
+        self.assertEqual(rc, 0)
+        names = sorted(os.path.basename(p) for p in printed.split())
+        for p in printed.split():
+            with open(p, "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n", p)
+        for name in ("pareto-box-1920x1080-hard.png", "pareto-box-1920x1080-soft.png", "pareto-box-1280x720-soft.png",
+                     "sweep-resolution-box.png", "sweep-kernel-box.png", "triangles-dense.png",
+                     "triangles-forest.png"):
+            self.assertIn(name, names)
+        self.assertFalse([n for n in names if n.startswith("triangles-all")])
+        # The older form, as shadowlab report calls it (a process of its own, its stdout the list).
+        legacy = run_tool("charts.py", self.new_path, os.path.join(out, "legacy"), "--dpi", "40")
+        self.assertEqual(legacy.returncode, 0, legacy.stderr)
+        self.assertIn(os.path.join(out, "legacy", "pareto-box-1280x720-hard.png"), legacy.stdout.split())
+        self.assertTrue(os.path.isfile(os.path.join(out, "legacy", "pareto-box-1280x720-hard.png")))
+
+        done = run_tool("ratios.py", *inputs, "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        with open(os.path.join(out, "ratios.md")) as f:
+            text = f.read()
+        self.assertIn("shadow term ms", text)
+        self.assertIn("technique passes ms", text)
+        self.assertIn("CPU wait ms", text)
+        self.assertIn(ratios.DAGGER, text)                     # the old file's derived terms
+        self.assertIn("## Time against triangle count (dense, scene.segments swept, 1920x1080)", text)
+        self.assertIn("## Time against triangle count (forest, scene.count swept, 1280x720)", text)
+        self.assertIn("| 4,800 | 1.000 | 1.500 | n/a | 0.450 | 0.020 | 0.89x |", text)   # new rows: no dagger
+        self.assertIn("G-buffer on every frame", text)
+        self.assertIn("| file |", text)                        # two files in the CPU table
+
+        done = run_tool("table41.py", *inputs, "--out", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        with open(os.path.join(out, "table41.md")) as f:
+            text = f.read()
+        self.assertIn("| Precise shadows | Yes (0.0016) | Yes (0.0023) | ~ (0.004) |", text)
+        rc, _ = call(table41, self.new_path)                   # no table41-* rows: an error, not n/a
+        self.assertEqual(rc, 1)
+
+    def test_tools_on_committed_results(self):
+        # Sorted after the fixture tests (unittest runs them by name): its charts run meanwhile.
+        files = self.committed_files
+        self.assertTrue(files)
+        out = self.committed
+        for module, args in ((ratios, [os.path.join(RESULTS, "default.json"), os.path.join(RESULTS, "seed000.json"),
+                                       "--out", out]),
+                             (table41, [os.path.join(RESULTS, "seed000.json"), "--out", out]),
+                             (table41, files + ["--out", os.path.join(out, "all")]),
+                             (ratios, files + ["--out", os.path.join(out, "all")])):
+            self.assertEqual(call(module, *args)[0], 0, (module.__name__, args))
+        done = self.committed_charts.result()
+        self.assertEqual(done.returncode, 0, done.stderr)
+        charts_made = done.stdout.split()
+        self.assertGreater(len(charts_made), 40)
+        for p in charts_made:
+            self.assertGreater(os.path.getsize(p), 1000, p)
+        names = {os.path.basename(p) for p in charts_made}
+        for name in ("pareto-cube-1920x1080-hard.png", "pareto-dragon-like-1920x1080-soft.png",
+                     "sweep-kernel-cube.png", "sweep-resolution-forest.png", "resolution-cube.png",
+                     "triangles-dense-default.png", "triangles-dense-default-before-instancing.png"):
+            self.assertIn(name, names)
+        self.assertFalse([n for n in names if n.startswith("triangles-") and "dense" not in n], names)
+        with open(os.path.join(out, "ratios.md")) as f:
+            text = f.read()
+        for heading in ("## Shadow pass against the depth-only floor", "## Frame-time overhead of shadowmap",
+                        "## Host CPU time per frame", "## Time against triangle count (dense, scene.segments swept",
+                        "## Adaptive PCF against PCF", "## VSM with twice the kernel",
+                        "## Every technique at 1024 map", "## PCSS against light size"):
+            self.assertIn(heading, text)
+        self.assertIn("| cube | 2048 | 0.445 | 0.458 | 1.03x |", text)   # unchanged from ratios.md
+        with open(os.path.join(RESULTS, "table41.md")) as f:
+            committed = f.read().split("\n\n")[0].strip()
+        with open(os.path.join(out, "table41.md")) as f:
+            self.assertEqual(f.read().strip(), committed)
+        for name in ("table41.md", "ratios.md"):
+            self.assertGreater(os.path.getsize(os.path.join(out, "all", name)), 1000)
+
+
+if __name__ == "__main__":
+    unittest.main()
