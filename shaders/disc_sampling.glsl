@@ -88,12 +88,12 @@ bool quadAll(bool v) {
 // rest is skipped (`earlyOut`). Known artefact (seed 000 sec. 4.3.2): a lit gap narrower than
 // the disc, surrounded by shadow, is classified shadowed.
 //
-// With `coherent` (a uniform; call in uniform control flow then) the decision is taken per 2x2
+// With `quadCoherent` (a uniform; call in uniform control flow then) the decision is taken per 2x2
 // quad: a quad stops only when every pixel's ring agrees (pixels with `skip`, outside the map,
 // count as agreeing). GPUs shade quads together, and a warp runs as long as its slowest pixel,
 // so per-pixel early outs that differ inside a quad save nothing there and add divergence; seed
 // 000 measured its adaptive PCF on hardware that branched per pixel block, too.
-float adaptiveDiscPcf(sampler3D offsets, ivec2 pixel, int n, vec3 coord, vec2 radiusUv, float rimBias, bool coherent,
+float adaptiveDiscPcf(sampler3D offsets, ivec2 pixel, int n, vec3 coord, vec2 radiusUv, float rimBias, bool quadCoherent,
                       bool skip, out bool earlyOut) {
     int count = n * n;
     int texels = (count + 1) / 2;
@@ -104,7 +104,7 @@ float adaptiveDiscPcf(sampler3D offsets, ivec2 pixel, int n, vec3 coord, vec2 ra
     for (int t = 0; t < ringTexels; ++t)
         lit += discTapPair(discOffsetPair(offsets, pixel, t), 2 * t + 1 < count, coord, radiusUv, rimBias, taken);
     bool agree = skip || lit == 0.0 || lit == float(taken);
-    bool stop = coherent ? quadAll(agree) : agree;
+    bool stop = quadCoherent ? quadAll(agree) : agree;
     if (ringTexels < texels && stop) {
         earlyOut = true;
         return lit / float(taken);

@@ -51,7 +51,9 @@ TEST(HonestMeasurement, TimedFramesBindOnlyTheColourTarget) {
         EXPECT_EQ(type, GL_NONE) << "attachment " << attachment - GL_COLOR_ATTACHMENT0 << " is bound on timed frames";
     }
     GLint drawBuffer = -1;
-    glGetNamedFramebufferParameteriv(timed, GL_DRAW_BUFFER1, &drawBuffer);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, timed);
+    glGetIntegerv(GL_DRAW_BUFFER1, &drawBuffer);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     EXPECT_EQ(drawBuffer, GL_NONE);
     GLint colour = GL_NONE;
     glGetNamedFramebufferAttachmentParameteriv(timed, GL_COLOR_ATTACHMENT0, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &colour);
