@@ -33,8 +33,9 @@ struct BenchSpec {
     std::string reference = "auto";          // hard | soft | both | auto
     // Soft reference: N rays per pixel, sampled adaptively (ReferenceOptions::adaptive: a first
     // batch of 32 everywhere, all N where the batch disagrees nearby). 1024 adaptive keeps the
-    // reference's own penumbra error near 0.002 (0.014 at 64 uniform rays) for about 2x the time
-    // of 64 uniform rays (docs/benchmarks.md, "The soft reference's own error and adaptive sampling").
+    // reference's own penumbra error (its floor) at 0.0012 to 0.0017 on contact and dragon-like
+    // (0.009 to 0.012 at 64 uniform rays) for 0.8x to 1.4x the CPU time of 64 uniform rays
+    // (docs/benchmarks.md, "The soft reference's own error and adaptive sampling").
     int referenceSamples = 1024;
     bool referenceAdaptive = true;
     bool depthFloor = false;                 // add "depth-floor" rows (bare depth pass per resolution)
