@@ -101,6 +101,8 @@ expect_bounded 2 "--sweep resolution=...: shadowmap: parameter 'resolution': 'ab
 expect_bounded 2 "--reference 'sofft': expected hard, soft, both or auto" -- "${bench[@]}" --accuracy --reference sofft
 expect_bounded 2 "--reference 'bogus'" -- "${bench[@]}" --accuracy --reference bogus
 expect_bounded 2 "--samples 0: expected 1 to 4096" -- "${bench[@]}" --accuracy --samples 0
+expect_bounded 2 "--reference-adaptive 'maybe': expected on or off" -- "${bench[@]}" --accuracy --reference-adaptive maybe
+expect_bounded 2 "--reference-adaptive 'yes': expected on or off" -- eval --backend osmesa --size 64x48 --frames 1 --reference-adaptive yes
 expect_bounded 2 "--size '64x64junk': expected WIDTHxHEIGHT" -- "${bench[@]}" --size 64x64junk
 expect_bounded 2 "--scenes 'nowhere': nowhere: cannot open scene file" -- "${bench[@]}" --scenes cube,contact,nowhere
 expect_bounded 2 "--techniques: no technique 'pfc'" -- "${bench[@]}" --techniques shadowmap,pfc

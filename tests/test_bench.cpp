@@ -125,6 +125,49 @@ TEST(Bench, RejectsAKeyNoTechniqueHasAndSceneSweepsReloadTheScene) {
     EXPECT_LT(rows[0]["triangles"].get<size_t>(), rows[1]["triangles"].get<size_t>()) << "8 more spheres";
 }
 
+// Soft rows carry the soft reference's ray count, its own penumbra error (floor), whether it was
+// adaptive and the share of pixels it refined.
+TEST(Bench, SoftRowsReportTheReferenceFloor) {
+    auto app = test::makeHeadlessApp("cube", {96, 64});
+    ASSERT_TRUE(app);
+    BenchSpec spec;
+    spec.techniques = {"pcf"};
+    spec.scenes = {"cube"};
+    spec.sizes = {{96, 64}};
+    spec.frames = 1;
+    spec.warmupFrames = 0;
+    spec.accuracy = true;
+    spec.reference = "soft";
+    spec.referenceSamples = 256;
+    std::string error;
+    for (const bool adaptive : {true, false}) {
+        spec.referenceAdaptive = adaptive;
+        std::vector<nlohmann::json> rows;
+        ASSERT_TRUE(runBench(*app, spec, rows, error)) << error;
+        ASSERT_EQ(rows.size(), 1u);
+        const auto& row = rows[0];
+        ASSERT_TRUE(row.contains("soft_mae_penumbra")) << row.dump();
+        EXPECT_FALSE(row.contains("hard_mae"));
+        EXPECT_EQ(row["soft_reference_rays"], 256);
+        EXPECT_EQ(row["soft_reference_adaptive"], adaptive);
+        EXPECT_GT(row["soft_reference_floor"].get<double>(), 0.0);
+        EXPECT_LT(row["soft_reference_floor"].get<double>(), 0.05);
+        const double refined = row["soft_reference_refined_fraction"].get<double>();
+        if (adaptive) {
+            EXPECT_GT(refined, 0.0);
+            EXPECT_LT(refined, 1.0);
+        } else {
+            EXPECT_EQ(refined, 1.0);
+        }
+    }
+    EXPECT_TRUE(BenchSpec{}.referenceAdaptive);
+    const auto json = nlohmann::json::parse(R"({"referenceAdaptive": false, "referenceSamples": 64})");
+    BenchSpec parsed;
+    ASSERT_TRUE(parseBenchSpec(json, parsed, error)) << error;
+    EXPECT_FALSE(parsed.referenceAdaptive);
+    EXPECT_EQ(parsed.referenceSamples, 64);
+}
+
 TEST(Bench, SpecFromJson) {
     BenchSpec spec;
     std::string error;

@@ -1,10 +1,13 @@
 // Ray-traced ground truth (libshadowlab_groundtruth.so, loaded as the host loads it): the hard
 // reference of a box on a plane against the analytic shadow polygon, absence of acne at grazing
-// light, determinism across runs and thread counts, soft penumbrae, coloured transmission.
+// light, determinism across runs and thread counts, soft penumbrae, coloured transmission; the
+// soft reference's own sampling error against the closed-form shadow of a sphere, and the
+// adaptive soft reference against the uniform one.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <numbers>
 #include <string>
@@ -505,10 +508,14 @@ TEST(GroundTruth, ColouredTransmissionMultiplies) {
     }
     const glm::vec3 red(1.0f, 0.5f, 0.5f), both(0.5f, 0.25f, 0.5f);
 
-    for (ReferenceOptions::Mode mode : {ReferenceOptions::Mode::Hard, ReferenceOptions::Mode::Soft}) {
+    // Soft twice: uniform and adaptive (a first batch of 8 of the 16 strata, all agreeing here).
+    for (int variant = 0; variant < 3; ++variant) {
+        const ReferenceOptions::Mode mode = variant == 0 ? ReferenceOptions::Mode::Hard : ReferenceOptions::Mode::Soft;
         ReferenceOptions options;
         options.mode = mode;
         options.samplesPerPixel = 16;
+        options.adaptive = variant == 2;
+        options.firstBatch = 8;
         options.transmission = true;
         const std::vector<glm::vec3> v = trace(*groundTruth, g, sun, options);
         EXPECT_EQ(v[0], red);
@@ -563,4 +570,245 @@ TEST(GroundTruth, InstancedMeshesCastLikeFlattenedOnes) {
     EXPECT_NEAR(top.positions[centre].y, 1.0f, 1e-4f);
     EXPECT_NEAR(top.positions[centre].x, -3.0f, 0.05f);
     EXPECT_NEAR(top.normals[centre].y, 1.0f, 1e-5f);
+}
+
+// --- the soft reference's own error, and adaptive sampling -----------------------------------
+
+namespace {
+
+// A sphere of radius 0.5 centred 1.2 above the ground (no contact) under a sun of angular radius
+// 4 degrees, seen top-down by a grid of ground points 0.015 apart around its shadow: the
+// penumbra is about 12 samples wide.
+constexpr float kSunRadius = 4.0f * std::numbers::pi_v<float> / 180.0f;
+const glm::vec3 kSphereCentre(0.0f, 1.2f, 0.0f);
+constexpr float kSphereRadius = 0.5f;
+
+struct SphereSetup {
+    Scene scene;
+    LightInfo sun;
+    GBuffer ground;
+    std::vector<uint8_t> mask;
+    std::vector<glm::vec3> exact; // closed form, per ground point
+};
+
+// Solid angle of the intersection of two spherical caps of angular radii a and b whose centres
+// are g apart (on the unit sphere).
+double capIntersection(double a, double b, double g) {
+    if (g >= a + b) return 0.0;
+    if (g <= std::abs(a - b)) return 2.0 * std::numbers::pi * (1.0 - std::cos(std::min(a, b)));
+    auto arc = [](double x) { return std::acos(std::clamp(x, -1.0, 1.0)); };
+    const double ca = std::cos(a), cb = std::cos(b), cg = std::cos(g);
+    const double sa = std::sin(a), sb = std::sin(b), sg = std::sin(g);
+    return 2.0 * (std::numbers::pi - arc((cg - ca * cb) / (sa * sb)) - arc((cb - cg * ca) / (sg * sa)) * ca -
+                  arc((ca - cg * cb) / (sg * sb)) * cb);
+}
+
+// Closed-form visibility of a ground point p: the fraction of the sun's cap (uniform in solid
+// angle, as the reference samples it) not covered by the cap the sphere subtends from p.
+float exactSphereVisibility(glm::dvec3 p, glm::dvec3 toSun, double sunRadius) {
+    const glm::dvec3 toCentre = glm::dvec3(kSphereCentre) - p;
+    const double distance = glm::length(toCentre);
+    const double sphere = std::asin(static_cast<double>(kSphereRadius) / distance);
+    const double separation = std::acos(std::clamp(glm::dot(toCentre / distance, toSun), -1.0, 1.0));
+    const double cap = 2.0 * std::numbers::pi * (1.0 - std::cos(sunRadius));
+    return static_cast<float>(1.0 - capIntersection(sunRadius, sphere, separation) / cap);
+}
+
+// `rayOffset`: where the reference's rays start, above the ground point (IGroundTruth::rayOffset).
+// The closed form is taken there too: 0.003 higher (this scene's offset) the shadow is 0.001
+// to the side, a visibility difference of about 0.004 over this penumbra, larger than the
+// sampling error the tests measure.
+SphereSetup sphereUnderSun(float rayOffset) {
+    SphereSetup s;
+    s.scene = planeScene();
+    s.scene.meshes.push_back(makeSphere(kSphereRadius, 256, 128)); // silhouette within 4e-5 of the sphere
+    SceneObject sphere;
+    sphere.name = "sphere";
+    sphere.mesh = 1;
+    sphere.transform = glm::translate(glm::mat4(1.0f), kSphereCentre);
+    s.scene.objects.push_back(sphere);
+    s.sun = directional({0.3f, -1.0f, 0.2f}, kSunRadius);
+    // The shadow's centre on the ground, and a 160 x 96 grid around it.
+    const glm::vec3 centre = kSphereCentre + s.sun.direction * (-kSphereCentre.y / s.sun.direction.y);
+    const float step = 0.015f;
+    s.ground = groundGrid(centre.x - 80.0f * step, centre.z - 48.0f * step, step, 160, 96);
+    s.mask = compareMask(s.ground.view(), s.sun);
+    for (const glm::vec4& p : s.ground.positions)
+        s.exact.emplace_back(exactSphereVisibility(glm::dvec3(p) + glm::dvec3(0.0, rayOffset, 0.0),
+                                                   -glm::dvec3(s.sun.direction), kSunRadius));
+    return s;
+}
+
+ReferenceOptions softOptions(int samples, bool adaptive) {
+    ReferenceOptions options;
+    options.mode = ReferenceOptions::Mode::Soft;
+    options.samplesPerPixel = samples;
+    options.adaptive = adaptive;
+    return options;
+}
+
+struct SoftRun {
+    std::vector<glm::vec3> image;
+    ReferenceStats stats;
+    double floor = 0.0;             // estimated: penumbraMean of the per-pixel sampling error
+    AccuracyMetrics againstExact;   // the closed form as the reference
+};
+
+SoftRun runSoft(IGroundTruth& groundTruth, const SphereSetup& s, const ReferenceOptions& options) {
+    SoftRun run;
+    groundTruth.trace(s.ground.view(), s.sun, options, run.image, &run.stats);
+    run.floor = penumbraMean(run.stats.sampleError, run.image, s.mask, s.ground.width, s.ground.height);
+    run.againstExact = compareVisibility(run.image, s.exact, s.mask, s.ground.width, s.ground.height);
+    return run;
+}
+
+} // namespace
+
+// The closed form itself: umbra under the sphere's centre, open ground far away, partial values
+// on a ring, and the 1024-ray reference close to it.
+TEST(GroundTruthSoftError, SphereClosedFormHasUmbraPenumbraAndLitGround) {
+    const SphereSetup s = sphereUnderSun(0.0f);
+    const size_t centre = 48u * 160u + 80u;
+    EXPECT_EQ(s.exact[centre].x, 0.0f);
+    EXPECT_EQ(s.exact[0].x, 1.0f);
+    size_t partial = 0;
+    for (const glm::vec3& v : s.exact) partial += v.x > 0.02f && v.x < 0.98f;
+    EXPECT_GT(partial, 1500u);
+    EXPECT_LT(partial, 6000u);
+}
+
+// (c) The floor: the per-pixel estimate averaged over the penumbra is about 0.014 at 64 uniform
+// rays and 0.0025 at 1024, and within 1.5x of the error actually measured against the closed form.
+TEST(GroundTruthSoftError, FloorEstimateMatchesTheMeasuredError) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    groundTruth->setScene(sphereUnderSun(0.0f).scene);
+    const SphereSetup s = sphereUnderSun(groundTruth->rayOffset());
+    const SoftRun low = runSoft(*groundTruth, s, softOptions(64, false));
+    const SoftRun high = runSoft(*groundTruth, s, softOptions(1024, false));
+    const double lowError = low.againstExact.maePenumbra, highError = high.againstExact.maePenumbra;
+    std::printf("[ floor    ] 64 rays: measured %.5f, estimated %.5f; 1024 rays: measured %.5f, estimated %.5f\n",
+                lowError, low.floor, highError, high.floor);
+    EXPECT_EQ(low.stats.samplesPerPixel, 64);
+    EXPECT_EQ(high.stats.samplesPerPixel, 1024);
+    EXPECT_FALSE(high.stats.adaptive);
+    EXPECT_EQ(high.stats.refinedPixels, high.stats.tracedPixels);
+    EXPECT_GT(low.floor, 0.014 / 1.5);
+    EXPECT_LT(low.floor, 0.014 * 1.5);
+    EXPECT_GT(high.floor, 0.0025 / 1.5);
+    EXPECT_LT(high.floor, 0.0025 * 1.5);
+    EXPECT_GT(low.floor, lowError / 1.5);
+    EXPECT_LT(low.floor, lowError * 1.5);
+    EXPECT_GT(high.floor, highError / 1.5);
+    EXPECT_LT(high.floor, highError * 1.5);
+    EXPECT_LT(highError, lowError / 4.0) << "1024 stratified rays: at least 4x below 64";
+}
+
+// (a) and (b): adaptive 1024 rays equals uniform 1024 where it refined (bit for bit), keeps 0 or 1
+// elsewhere, stays within the uniform estimate's own noise over the penumbra, and is as close to
+// the closed-form shadow as the uniform reference.
+TEST(GroundTruthSoftError, AdaptiveMatchesUniformAndTheClosedForm) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    groundTruth->setScene(sphereUnderSun(0.0f).scene);
+    const SphereSetup s = sphereUnderSun(groundTruth->rayOffset());
+    const SoftRun uniform = runSoft(*groundTruth, s, softOptions(1024, false));
+    const SoftRun adaptive = runSoft(*groundTruth, s, softOptions(1024, true));
+    EXPECT_TRUE(adaptive.stats.adaptive);
+    EXPECT_EQ(adaptive.stats.firstBatch, 32);
+    EXPECT_EQ(adaptive.stats.tracedPixels, uniform.stats.tracedPixels);
+    EXPECT_LT(adaptive.stats.refinedPixels, adaptive.stats.tracedPixels);
+    EXPECT_LT(adaptive.stats.shadowRays, uniform.stats.shadowRays / 2);
+
+    size_t refined = 0, stopped = 0, stoppedDiffering = 0;
+    double largestStoppedDifference = 0.0;
+    for (size_t i = 0; i < s.mask.size(); ++i) {
+        if (!s.mask[i]) continue;
+        const glm::vec3 a = adaptive.image[i], u = uniform.image[i];
+        if (adaptive.stats.sampleError[i] > 0.0f || (a.x > 0.0f && a.x < 1.0f)) {
+            ++refined;
+            EXPECT_EQ(a, u) << "a refined pixel is the uniform estimate, bit for bit (pixel " << i << ")";
+            continue;
+        }
+        ++stopped;
+        EXPECT_TRUE(a == glm::vec3(0.0f) || a == glm::vec3(1.0f)) << "a stopped pixel is unanimous";
+        if (a != u) {
+            ++stoppedDiffering;
+            largestStoppedDifference = std::max(largestStoppedDifference, static_cast<double>(std::abs(a.x - u.x)));
+        }
+    }
+    EXPECT_GT(refined, 1000u);
+    EXPECT_GT(stopped, 5000u);
+    const AccuracyMetrics againstUniform = compareVisibility(adaptive.image, uniform.image, s.mask, s.ground.width, s.ground.height);
+    std::printf("[ adaptive ] refined %.1f%%, %.1f rays per pixel; vs uniform: penumbra MAE %.6f, %zu stopped pixels "
+                "differ (largest %.4f); vs closed form: adaptive %.5f, uniform %.5f (floor %.5f)\n",
+                100.0 * double(adaptive.stats.refinedPixels) / double(adaptive.stats.tracedPixels),
+                double(adaptive.stats.shadowRays) / double(adaptive.stats.tracedPixels), againstUniform.maePenumbra,
+                stoppedDiffering, largestStoppedDifference, adaptive.againstExact.maePenumbra,
+                uniform.againstExact.maePenumbra, uniform.floor);
+    EXPECT_LT(againstUniform.maePenumbra, uniform.floor) << "(a) within the uniform reference's own noise";
+    EXPECT_LT(largestStoppedDifference, 0.02) << "a stopped pixel misses at most a sliver of the emitter";
+    // (b) against the closed form: no worse than the 1024-ray floor plus 0.001.
+    EXPECT_LT(adaptive.againstExact.maePenumbra, uniform.floor + 0.001);
+    EXPECT_LT(adaptive.againstExact.maeOutsidePenumbra, 0.001);
+    EXPECT_NEAR(adaptive.againstExact.maePenumbra, uniform.againstExact.maePenumbra, 0.0005);
+}
+
+// (d) Mostly lit or shadowed: the box under a 4 degree sun seen by the test camera. Few pixels
+// are refined, the rays per pixel stay near the first batch, the image does not depend on the
+// thread count, and a stopped pixel of the first batch is the uniform value where the uniform
+// reference is 0 or 1.
+TEST(GroundTruthSoftError, AdaptiveRefinesFewPixelsAndIsDeterministic) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    groundTruth->setScene(boxOnPlane());
+    View view;
+    view.width = 160;
+    view.height = 120;
+    const GBuffer g = primary(*groundTruth, view);
+    const LightInfo sun = directional({0.5f, -1.0f, 0.35f}, kSunRadius);
+    ReferenceOptions options = softOptions(1024, true);
+    options.threads = 1;
+    ReferenceStats stats;
+    std::vector<glm::vec3> one;
+    groundTruth->trace(g.view(), sun, options, one, &stats);
+    const double refined = double(stats.refinedPixels) / double(stats.tracedPixels);
+    const double raysPerPixel = double(stats.shadowRays) / double(stats.tracedPixels);
+    std::printf("[ adaptive ] box: %.1f%% of %zu pixels refined, %.1f rays per pixel\n", 100.0 * refined,
+                stats.tracedPixels, raysPerPixel);
+    EXPECT_GT(stats.tracedPixels, 10000u);
+    EXPECT_GT(refined, 0.01);
+    EXPECT_LT(refined, 0.2);
+    EXPECT_LT(raysPerPixel, 32.0 + 0.2 * 1056.0);
+    options.threads = 3;
+    EXPECT_TRUE(identical(one, trace(*groundTruth, g, sun, options)));
+    options.threads = 0;
+    EXPECT_TRUE(identical(one, trace(*groundTruth, g, sun, options)));
+
+    // Turning adaptivity off, or a first batch as large as N, gives the uniform reference.
+    const std::vector<glm::vec3> uniform = trace(*groundTruth, g, sun, softOptions(1024, false));
+    ReferenceOptions whole = softOptions(1024, true);
+    whole.firstBatch = 1024;
+    ReferenceStats wholeStats;
+    std::vector<glm::vec3> wholeImage;
+    groundTruth->trace(g.view(), sun, whole, wholeImage, &wholeStats);
+    EXPECT_FALSE(wholeStats.adaptive);
+    EXPECT_TRUE(identical(uniform, wholeImage));
+    size_t differing = 0;
+    for (size_t i = 0; i < one.size(); ++i) differing += one[i] != uniform[i];
+    EXPECT_LT(differing, stats.tracedPixels / 200) << "stopped pixels are nearly always exactly the uniform value";
+}
+
+TEST(GroundTruthSoftError, HardReferenceHasNoSamplingError) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    groundTruth->setScene(boxOnPlane());
+    const GBuffer g = primary(*groundTruth, View{});
+    ReferenceStats stats;
+    std::vector<glm::vec3> v;
+    groundTruth->trace(g.view(), directional({0.5f, -1.0f, 0.35f}, kSunRadius), ReferenceOptions{}, v, &stats);
+    EXPECT_EQ(stats.samplesPerPixel, 1);
+    EXPECT_TRUE(stats.sampleError.empty());
+    EXPECT_EQ(stats.refinedPixels, stats.tracedPixels);
+    EXPECT_GT(stats.tracedPixels, 0u);
 }

@@ -508,6 +508,19 @@ TEST(RobustBench, EveryValueIsCheckedBeforeTheRunNamingTheOption) {
     }
     EXPECT_TRUE(parseSize("64X48", size, error));
     EXPECT_EQ(size, glm::ivec2(64, 48));
+
+    // --reference-adaptive on | off
+    bool adaptive = false;
+    EXPECT_TRUE(parseOnOff("on", adaptive, error, "--reference-adaptive"));
+    EXPECT_TRUE(adaptive);
+    EXPECT_TRUE(parseOnOff("off", adaptive, error, "--reference-adaptive"));
+    EXPECT_FALSE(adaptive);
+    for (const char* bad : {"maybe", "", "On ", "yes"}) {
+        EXPECT_FALSE(parseOnOff(bad, adaptive, error, "--reference-adaptive")) << bad;
+        EXPECT_MENTIONS(error, "--reference-adaptive '" + std::string(bad) + "': expected on or off");
+    }
+    EXPECT_TRUE(BenchSpec{}.referenceAdaptive) << "the soft reference is adaptive by default";
+    EXPECT_EQ(BenchSpec{}.referenceSamples, 1024);
 }
 
 TEST(RobustBench, TheShippedSpecsPassTheCheck) {
@@ -534,7 +547,7 @@ TEST(RobustBench, JsonSpecsAreStrictAboutTypesAndRanges) {
     for (const char* bad : {R"({"frames": 1e300})", R"({"frames": 3.5})", R"({"frames": 0})", R"({"warmup": -1})",
                             R"({"referenceSamples": 0})", R"({"accuracy": "yes"})", R"({"scenes": []})", R"({"scenes": "cube"})",
                             R"({"sizes": ["64x64junk"]})", R"({"sweep": {"resolution": [[512]]}})", R"({"base": {"kernel": {}}})",
-                            R"({"reference": 3})"}) {
+                            R"({"reference": 3})", R"({"referenceAdaptive": "on"})", R"({"referenceAdaptive": 1})"}) {
         EXPECT_FALSE(parseBenchSpec(nlohmann::json::parse(bad), spec, error)) << bad;
     }
     TempDir dir;

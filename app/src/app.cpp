@@ -345,7 +345,7 @@ bool App::measureDepthFloor(int resolution, int warmupFrames, int frames, Measur
 }
 
 bool App::traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
-                         std::string& error) {
+                         std::string& error, ReferenceStats* stats) {
     if (!groundTruth_) {
         groundTruth_ = loadGroundTruth(error);
         if (!groundTruth_) return false;
@@ -355,7 +355,7 @@ bool App::traceReference(const GBufferView& gbuffer, const ReferenceOptions& opt
             groundTruth_->setScene(*scene_);   // the BVH is built once per scene
             groundTruthGeneration_ = sceneGeneration_;
         }
-        groundTruth_->trace(gbuffer, light_, options, visibility);
+        groundTruth_->trace(gbuffer, light_, options, visibility, stats);
     } catch (const std::exception& e) {
         error = std::string("ground truth: ") + e.what();
         return false;
@@ -376,9 +376,12 @@ bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string
     for (size_t i = 0; i < visibility.size(); ++i) out.technique[i] = glm::clamp(glm::vec3(visibility[i]), 0.0f, 1.0f);
     out.mask = compareMask(gbuffer, light_);
     const auto start = std::chrono::steady_clock::now();
-    if (!traceReference(gbuffer, options, out.reference, error)) return false;
+    if (!traceReference(gbuffer, options, out.reference, error, &out.referenceStats)) return false;
     out.traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out.metrics = compareVisibility(out.technique, out.reference, out.mask, size.x, size.y);
+    out.referenceFloor = out.referenceStats.sampleError.empty()
+                             ? 0.0
+                             : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);
     return true;
 }
 

@@ -59,6 +59,8 @@ struct Evaluation {
     int width = 0;
     int height = 0;
     double traceSeconds = 0.0;
+    ReferenceStats referenceStats;      // rays, refined pixels, per-pixel sampling error of the reference
+    double referenceFloor = 0.0;        // soft: the reference's own penumbra MAE (penumbraMean of its sampleError)
     Image heatmap() const;              // errorHeatmap() as an RGBA image
 };
 
@@ -108,7 +110,7 @@ public:
     bool evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error);
     // Traces the current scene and light for `gbuffer` (loads the Embree module on first use).
     bool traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
-                        std::string& error);
+                        std::string& error, ReferenceStats* stats = nullptr);
 
     GlBackend& backend() { return *backend_; }
     Renderer& renderer() { return *renderer_; }

@@ -300,6 +300,7 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                     ReferenceOptions options;
                     options.mode = mode;
                     options.samplesPerPixel = spec.referenceSamples;
+                    options.adaptive = spec.referenceAdaptive;
                     Evaluation evaluation;
                     if (!app.evaluate(options, evaluation, error)) return false;
                     const std::string prefix = mode == ReferenceOptions::Mode::Hard ? "hard_" : "soft_";
@@ -313,6 +314,16 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                     row[prefix + "compared_fraction"] = a.comparedFraction;
                     row[prefix + "noise"] = a.noiseEnergy;
                     row["technique_penumbra_fraction"] = a.techniquePenumbraFraction;
+                    if (mode == ReferenceOptions::Mode::Soft) {
+                        // The soft reference's own error: soft figures (and differences between
+                        // them) below about 4x the floor are not resolved.
+                        const ReferenceStats& r = evaluation.referenceStats;
+                        row["soft_reference_rays"] = r.samplesPerPixel;
+                        row["soft_reference_adaptive"] = r.adaptive;
+                        row["soft_reference_floor"] = evaluation.referenceFloor;
+                        row["soft_reference_refined_fraction"] =
+                            r.tracedPixels ? double(r.refinedPixels) / double(r.tracedPixels) : 0.0;
+                    }
                 }
             }
         }

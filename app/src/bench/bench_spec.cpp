@@ -108,6 +108,18 @@ std::optional<double> parseNumberText(const std::string& text) {
     return value;
 }
 
+bool parseOnOff(const std::string& text, bool& value, std::string& error, const std::string& option) {
+    if (text == "on" || text == "true" || text == "1") {
+        value = true;
+    } else if (text == "off" || text == "false" || text == "0") {
+        value = false;
+    } else {
+        error = option + " '" + text.substr(0, 60) + "': expected on or off";
+        return false;
+    }
+    return true;
+}
+
 bool addSweep(BenchSpec& spec, const std::string& text, std::string& error) {
     const auto equals = text.find('=');
     if (equals == std::string::npos || equals == 0 || equals + 1 == text.size()) {
@@ -129,7 +141,8 @@ bool addSweep(BenchSpec& spec, const std::string& text, std::string& error) {
 
 bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
     static const std::set<std::string> known{"techniques", "scenes", "sizes", "sweep", "base", "frames", "warmup",
-                                             "accuracy", "reference", "referenceSamples", "depthFloor", "description", "tag"};
+                                             "accuracy", "reference", "referenceSamples", "referenceAdaptive", "depthFloor",
+                                             "description", "tag"};
     if (!spec.is_object()) {
         error = "a benchmark spec is a JSON object, got " + describe(spec);
         return false;
@@ -196,6 +209,9 @@ bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
         return false;
     if (const auto it = spec.find("referenceSamples"); it != spec.end() &&
         !readWholeNumber(*it, "referenceSamples", 1, kMaxReferenceSamples, result.referenceSamples, error))
+        return false;
+    if (const auto it = spec.find("referenceAdaptive");
+        it != spec.end() && !readBool(*it, "referenceAdaptive", result.referenceAdaptive, error))
         return false;
     if (const auto it = spec.find("accuracy"); it != spec.end() && !readBool(*it, "accuracy", result.accuracy, error)) return false;
     if (const auto it = spec.find("depthFloor"); it != spec.end() && !readBool(*it, "depthFloor", result.depthFloor, error))

@@ -46,6 +46,7 @@ bool writeImages(App& app, const BenchSpec& spec, const std::filesystem::path& d
             options.mode = (info.category == "hard" || info.category == "baseline") ? ReferenceOptions::Mode::Hard
                                                                                      : ReferenceOptions::Mode::Soft;
             options.samplesPerPixel = spec.referenceSamples;
+            options.adaptive = spec.referenceAdaptive;
             Evaluation evaluation;
             if (!app.evaluate(options, evaluation, error)) return false;
             if (!writePng(dir / (name + "-error.png"), evaluation.heatmap(), error)) return false;

@@ -21,7 +21,7 @@
 
 #include "scene/scene.h"
 
-#define SHADOWLAB_GROUNDTRUTH_ABI_VERSION 1u
+#define SHADOWLAB_GROUNDTRUTH_ABI_VERSION 2u
 #define SHADOWLAB_GROUNDTRUTH_ENTRY_SYMBOL "shadowlab_create_groundtruth"
 #define SHADOWLAB_GROUNDTRUTH_MODULE "libshadowlab_groundtruth.so"
 
@@ -41,7 +41,10 @@ struct ReferenceOptions {
     // Soft: samplesPerPixel stratified rays over the emitter (disc of radius light.size, or a
     //       cone of angular radius light.size for directional lights); visibility is the visible
     //       fraction of the emitter's area (solid angle for directional lights), unweighted by
-    //       cosine or distance, i.e. what PCSS-like techniques estimate.
+    //       cosine or distance, i.e. what PCSS-like techniques estimate. The N samples are a
+    //       jittered nx x ny grid of strata (nx = floor(sqrt N), the N - nx*ny left over uniform);
+    //       the jitter of stratum k at pixel p is a hash of (p, seed, k), so any subset of the
+    //       strata, traced in any order, gives the same samples.
     enum class Mode { Hard, Soft } mode = Mode::Hard;
     int samplesPerPixel = 64;
     uint32_t seed = 1;         // with the pixel index, fixes every sample: same image for any thread count
@@ -49,6 +52,32 @@ struct ReferenceOptions {
                                // (1 - alpha) + alpha * transmission colour, 0 at the first opaque
                                // one; otherwise every caster, translucent or not, blocks
     int threads = 0;           // 0 = std::thread::hardware_concurrency()
+
+    // Soft, adaptive: every pixel first traces `firstBatch` of the N strata (half on the emitter's
+    // rim, half spread over its area). A pixel whose first-batch rays all agree keeps that value
+    // unless some pixel within `refineRadius` pixels (a square window) disagreed; every other
+    // pixel traces all N strata, exactly as the uniform reference does, so a refined pixel equals
+    // the uniform N-ray pixel bit for bit. Ignored (uniform) when firstBatch >= N or N < 4. The
+    // rule and the case it can miss are explained in the module (embree_groundtruth.cpp).
+    bool adaptive = false;
+    int firstBatch = 32;
+    int refineRadius = 2;
+};
+
+// What a trace did, and how far the soft reference is from its own limit (N -> infinity).
+struct ReferenceStats {
+    int samplesPerPixel = 1;        // N of the estimate: 1 for hard, the rays of a refined (or uniform) pixel
+    bool adaptive = false;          // adaptive sampling was used (ReferenceOptions::adaptive and applicable)
+    int firstBatch = 0;             // rays of the first batch (adaptive only)
+    size_t tracedPixels = 0;        // pixels facing the light (compareMask)
+    size_t refinedPixels = 0;       // of those, the ones traced with all N strata (uniform: all)
+    uint64_t shadowRays = 0;        // emitter samples traced (below the horizon not counted), first batches included
+    // Soft only (else empty), per pixel: the expected |error| of the pixel's own sampling,
+    // sqrt(2/pi) * an estimate of its standard error (collapsed strata: the pixel's strata in
+    // adjacent pairs, the smaller of the row-wise and the column-wise pairing); 0 for a pixel
+    // that stopped after a unanimous first batch. penumbraMean() (metrics.h) averages it over the
+    // penumbra pixels: the reference's own penumbra MAE, the floor under soft metrics.
+    std::vector<float> sampleError;
 };
 
 class IGroundTruth {
@@ -64,8 +93,9 @@ public:
     // Visibility of `light` for every texel of `gbuffer`, resized to width * height: grey
     // (v, v, v) in [0, 1], or the rgb transmittance with options.transmission. Texels outside
     // compareMask() (background, N.L <= 0, outside a spot cone) are 0.
+    // With `stats`, also what was traced and the per-pixel sampling error (ReferenceStats).
     virtual void trace(const GBufferView& gbuffer, const LightInfo& light, const ReferenceOptions& options,
-                       std::vector<glm::vec3>& visibility) = 0;
+                       std::vector<glm::vec3>& visibility, ReferenceStats* stats = nullptr) = 0;
 
     // A CPU G-buffer of the view: one ray per pixel centre from cameraPos through the point that
     // inverse(viewProjection) maps the pixel to (row 0 = bottom, as GL). Positions as GBufferView

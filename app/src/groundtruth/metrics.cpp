@@ -29,6 +29,25 @@ void checkSizes(size_t technique, size_t reference, size_t mask, int width, int 
                                     std::to_string(height) + " pixels");
 }
 
+// The penumbra class of metrics.h: compared pixel (x, y) with 0.02 < reference < 0.98, or with a
+// compared 8-neighbour on the other side of 0.5.
+bool inPenumbra(const std::vector<glm::vec3>& reference, const std::vector<uint8_t>& mask, int x, int y, int width,
+                int height) {
+    const float ref = scalarVisibility(reference[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)]);
+    if (ref > kPenumbraLow && ref < kPenumbraHigh) return true;
+    const bool refLit = ref >= kLitThreshold;
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = x + dx, ny = y + dy;
+            if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+            const size_t j = static_cast<size_t>(ny) * static_cast<size_t>(width) + static_cast<size_t>(nx);
+            // Excluded neighbours hold no visibility (0 by convention): not a shadow edge.
+            if (mask[j] && (scalarVisibility(reference[j]) >= kLitThreshold) != refLit) return true;
+        }
+    }
+    return false;
+}
+
 } // namespace
 
 std::vector<uint8_t> compareMask(const GBufferView& gbuffer, const LightInfo& light) {
@@ -66,17 +85,7 @@ AccuracyMetrics compareVisibility(const std::vector<glm::vec3>& technique, const
             if (refLit && tech < kLitThreshold) ++falseShadow;
             if (!refLit && tech > kLitThreshold) ++falseLight;
 
-            bool penumbra = ref > kPenumbraLow && ref < kPenumbraHigh;
-            for (int dy = -1; dy <= 1 && !penumbra; ++dy) {
-                for (int dx = -1; dx <= 1 && !penumbra; ++dx) {
-                    const int nx = x + dx, ny = y + dy;
-                    if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
-                    const size_t j = static_cast<size_t>(ny) * static_cast<size_t>(width) + static_cast<size_t>(nx);
-                    // Excluded neighbours hold no visibility (0 by convention): not a shadow edge.
-                    if (mask[j] && (scalarVisibility(reference[j]) >= kLitThreshold) != refLit) penumbra = true;
-                }
-            }
-            if (penumbra) {
+            if (inPenumbra(reference, mask, x, y, width, height)) {
                 ++m.penumbraPixels;
                 sumPenumbra += error;
             } else {
@@ -124,6 +133,22 @@ AccuracyMetrics compareVisibility(const std::vector<glm::vec3>& technique, const
     m.techniquePenumbraFraction = static_cast<double>(techniquePenumbra) / compared;
     m.noiseEnergy = noiseSamples ? noiseSum / static_cast<double>(noiseSamples) : 0.0;
     return m;
+}
+
+double penumbraMean(const std::vector<float>& values, const std::vector<glm::vec3>& reference,
+                    const std::vector<uint8_t>& mask, int width, int height) {
+    checkSizes(values.size(), reference.size(), mask.size(), width, height, "penumbraMean");
+    double sum = 0.0;
+    size_t count = 0;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const size_t i = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+            if (!mask[i] || !inPenumbra(reference, mask, x, y, width, height)) continue;
+            sum += static_cast<double>(values[i]);
+            ++count;
+        }
+    }
+    return count ? sum / static_cast<double>(count) : 0.0;
 }
 
 std::vector<uint8_t> errorHeatmap(const std::vector<glm::vec3>& technique, const std::vector<glm::vec3>& reference,

@@ -50,6 +50,13 @@ struct AccuracyMetrics {
 AccuracyMetrics compareVisibility(const std::vector<glm::vec3>& technique, const std::vector<glm::vec3>& reference,
                                   const std::vector<uint8_t>& mask, int width, int height);
 
+// Mean of `values` (one per pixel) over the penumbra pixels of `reference`, the same pixels
+// maePenumbra averages over; 0 when there are none. With ReferenceStats::sampleError: the soft
+// reference's own penumbra MAE, the floor below which a soft maePenumbra (or a difference
+// between two) means nothing. Throws std::invalid_argument when a size is not width * height.
+double penumbraMean(const std::vector<float>& values, const std::vector<glm::vec3>& reference,
+                    const std::vector<uint8_t>& mask, int width, int height);
+
 // RGB8 error image, width * height * 3 bytes, same row order as the input. With e = technique -
 // reference (scalar visibility) and a = sqrt(min(|e|, 1)) (square root: a 0.1 error is already a
 // third of the way to full colour):

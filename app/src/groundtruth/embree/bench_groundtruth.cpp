@@ -4,11 +4,22 @@
 // asserted; the targets are 1 s (hard) and 30 s (64-sample soft) on 2 cores.
 //
 //   shadowlab_groundtruth_bench [--threads N] [--spp N] [--width W --height H] [scene ...]
+//
+// --adaptive N: the adaptive soft reference instead (a first batch of --first-batch rays, all N
+// within --radius pixels of a split batch) timed against the uniform --spp reference (today's 64)
+// and the uniform N reference, with the reference's own penumbra error (its floor, estimated per
+// pixel; and measured: the MAE between two uniform N references of different seeds / sqrt 2).
+//
+//   shadowlab_groundtruth_bench --adaptive 1024 [--first-batch 32] [--radius 2] [--quick] [--threads N] [scene ...]
+//
+// --quick: the uniform --spp and the adaptive reference only (no uniform N, no comparisons).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <exception>
 #include <string>
 #include <thread>
@@ -77,7 +88,8 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 } // namespace
 
 int main(int argc, char** argv) {
-    int threads = 0, samples = 64, width = 1280, height = 720;
+    int threads = 0, samples = 64, width = 1280, height = 720, adaptive = 0, firstBatch = 32, radius = 2;
+    bool quick = false;
     std::vector<std::string> names;
     for (int i = 1; i < argc; ++i) {
         auto value = [&](const char* flag) {
@@ -91,8 +103,15 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--spp")) samples = value("--spp");
         else if (!std::strcmp(argv[i], "--width")) width = value("--width");
         else if (!std::strcmp(argv[i], "--height")) height = value("--height");
+        else if (!std::strcmp(argv[i], "--adaptive")) adaptive = value("--adaptive");
+        else if (!std::strcmp(argv[i], "--first-batch")) firstBatch = value("--first-batch");
+        else if (!std::strcmp(argv[i], "--radius")) radius = value("--radius");
+        else if (!std::strcmp(argv[i], "--quick")) quick = true;
         else if (argv[i][0] == '-') {
-            std::fprintf(stderr, "usage: %s [--threads N] [--spp N] [--width W --height H] [scene ...]\n", argv[0]);
+            std::fprintf(stderr,
+                         "usage: %s [--threads N] [--spp N] [--width W --height H] [--adaptive N [--first-batch B] "
+                         "[--radius R] [--quick]] [scene ...]\n",
+                         argv[0]);
             return 2;
         } else names.emplace_back(argv[i]);
     }
@@ -117,6 +136,94 @@ int main(int argc, char** argv) {
     }
 
     const unsigned cores = std::thread::hardware_concurrency();
+    if (adaptive > 0) {
+        std::printf("soft reference %dx%d, %d thread(s) (%u hardware): uniform %d against adaptive %d (first batch %d, "
+                    "radius %d) and uniform %d\n",
+                    width, height, threads > 0 ? threads : static_cast<int>(cores), cores, samples, adaptive, firstBatch,
+                    radius, adaptive);
+        for (Scene& scene : scenes) {
+            if (scene.light.size <= 0.0f) scene.light.size = scene.light.type == LightType::Directional ? 0.05f : 0.2f;
+            groundTruth->setScene(scene);
+            const SceneCamera& camera = scene.camera;
+            const glm::mat4 viewProjection =
+                glm::perspective(camera.fovY, static_cast<float>(width) / static_cast<float>(height), camera.nearPlane,
+                                 camera.farPlane) *
+                glm::lookAt(camera.position, camera.target, camera.up);
+            std::vector<glm::vec4> positions, normals;
+            groundTruth->tracePrimary(viewProjection, camera.position, width, height, positions, normals);
+            const GBufferView gbuffer{width, height, positions.data(), normals.data()};
+            const std::vector<uint8_t> mask = compareMask(gbuffer, scene.light);
+
+            struct Run {
+                const char* name;
+                int samples;
+                bool adaptive;
+                uint32_t seed;
+                std::vector<glm::vec3> image;
+                ReferenceStats stats;
+                double seconds = 0.0, cpuSeconds = 0.0, floor = 0.0;
+            };
+            Run runs[] = {{"uniform", samples, false, 1, {}, {}, 0.0, 0.0, 0.0}, {"adaptive", adaptive, true, 1, {}, {}, 0.0, 0.0, 0.0},
+                          {"uniform", adaptive, false, 1, {}, {}, 0.0, 0.0, 0.0},
+                          {"uniform", adaptive, false, 2, {}, {}, 0.0, 0.0, 0.0}};
+            for (Run& run : runs) {
+                if (quick && &run - runs >= 2) break;
+                ReferenceOptions options;
+                options.mode = ReferenceOptions::Mode::Soft;
+                options.threads = threads;
+                options.samplesPerPixel = run.samples;
+                options.adaptive = run.adaptive;
+                options.firstBatch = firstBatch;
+                options.refineRadius = radius;
+                options.seed = run.seed;
+                const auto start = std::chrono::steady_clock::now();
+                const std::clock_t cpuStart = std::clock();
+                groundTruth->trace(gbuffer, scene.light, options, run.image, &run.stats);
+                run.seconds = secondsSince(start);
+                // CPU time of the whole process (every tracing thread): on a shared machine the
+                // wall time also counts other jobs' use of the cores.
+                run.cpuSeconds = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
+                run.floor = penumbraMean(run.stats.sampleError, run.image, mask, width, height);
+                std::printf("%-12s %-8s %5d rays seed %u: %8.2f s wall, %8.2f s CPU, %6.2f%% of %zu pixels refined, "
+                            "%.1f rays per pixel, floor (estimated) %.5f\n",
+                            scene.name.c_str(), run.name, run.samples, run.seed, run.seconds, run.cpuSeconds,
+                            100.0 * double(run.stats.refinedPixels) / double(std::max<size_t>(run.stats.tracedPixels, 1)),
+                            run.stats.tracedPixels, double(run.stats.shadowRays) / double(std::max<size_t>(run.stats.tracedPixels, 1)),
+                            run.floor);
+                std::fflush(stdout);
+            }
+            const Run &baseline = runs[0], &fast = runs[1], &uniform = runs[2], &other = runs[3];
+            if (quick) {
+                std::printf("%-12s time: adaptive %d / uniform %d = %.2fx wall, %.2fx CPU\n", scene.name.c_str(), adaptive,
+                            samples, fast.seconds / baseline.seconds, fast.cpuSeconds / baseline.cpuSeconds);
+                continue;
+            }
+            // Differences against the uniform N reference over its penumbra (compareVisibility's
+            // maePenumbra with the uniform image as the reference).
+            const AccuracyMetrics adaptiveVsUniform = compareVisibility(fast.image, uniform.image, mask, width, height);
+            const AccuracyMetrics seeds = compareVisibility(other.image, uniform.image, mask, width, height);
+            const AccuracyMetrics lowVsHigh = compareVisibility(baseline.image, uniform.image, mask, width, height);
+            size_t differing = 0;
+            float largest = 0.0f;
+            for (size_t i = 0; i < mask.size(); ++i) {
+                const glm::vec3 e = glm::abs(fast.image[i] - uniform.image[i]);
+                const float d = std::max(e.x, std::max(e.y, e.z));
+                differing += d > 0.0f;
+                largest = std::max(largest, d);
+            }
+            std::printf("%-12s time: adaptive %d / uniform %d = %.2fx wall, %.2fx CPU; uniform %d / uniform %d = %.2fx wall, "
+                        "%.2fx CPU\n",
+                        scene.name.c_str(), adaptive, samples, fast.seconds / baseline.seconds,
+                        fast.cpuSeconds / baseline.cpuSeconds, adaptive, samples, uniform.seconds / baseline.seconds,
+                        uniform.cpuSeconds / baseline.cpuSeconds);
+            std::printf("%-12s penumbra MAE: adaptive vs uniform %d %.5f (%zu pixels differ, largest %.4f); uniform %d seed 2 "
+                        "vs seed 1 %.5f (/sqrt 2: measured floor %.5f); uniform %d vs uniform %d %.5f\n",
+                        scene.name.c_str(), adaptive, adaptiveVsUniform.maePenumbra, differing, largest, adaptive,
+                        seeds.maePenumbra, seeds.maePenumbra / std::sqrt(2.0), samples, adaptive, lowVsHigh.maePenumbra);
+            std::fflush(stdout);
+        }
+        return 0;
+    }
     std::printf("ground truth %dx%d, %d thread(s) (%u hardware), soft: %d samples per pixel\n", width, height,
                 threads > 0 ? threads : static_cast<int>(cores), cores, samples);
     std::printf("%-10s %10s %8s %10s %10s %10s %9s\n", "scene", "triangles", "bvh s", "primary s", "hard s", "soft s",
