@@ -482,13 +482,14 @@ TEST_F(MomentShadows, ComputeBlurMatchesTheFragmentBlurTexelForTexel) {
             SCOPED_TRACE(label);
             auto with = [&](const char* blur) {
                 std::vector<std::string> sets = c.sets;
+                sets.push_back("resolution=512");   // a quarter of the fast map's texels: llvmpipe's compute is slow
                 sets.push_back(std::string("blur=") + blur);
                 render(c.technique, sets);
                 return readMoments(*app_, c.technique);
             };
             const MomentTexture fragment = with("fragment");
             const MomentTexture compute = with("compute");
-            ASSERT_EQ(compute.width, 1024);
+            ASSERT_EQ(compute.width, 512);
             ASSERT_EQ(fragment.width, compute.width);
             // The map holds a shadow, not only empty texels.
             int occupied = 0;
