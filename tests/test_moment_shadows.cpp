@@ -465,6 +465,12 @@ TEST_F(MomentShadows, ComputeBlurMatchesTheFragmentBlurTexelForTexel) {
         {"vsm", {"kernel=1"}, 1e-5},                      // no blur: the moments alone
         {"vsm", {"kernel=31", "filter=box", "mipmaps=true"}, 1e-5},
         {"vsm", {"kernel=5", "derivative_moment=true"}, 1e-5},   // rendered moments, blurred in compute
+        // Partial work groups at the map's edges. At power-of-two sizes both paths agree to float
+        // rounding; at 1000 they differ by up to 1.9e-5 on llvmpipe, most likely because the
+        // fragment path's bilinear lookups at (i + 0.5 + x) / 1000 miss the texel centres by a
+        // rounding error that llvmpipe's weights resolve (8-bit sub-texel weights would round it
+        // away; not checked on a GPU), while the compute path fetches the texels themselves.
+        {"vsm", {"kernel=7", "resolution=1000"}, 5e-5},
         {"esm", {"kernel=5"}, 1e-5},
         {"esm", {"kernel=8", "filter=gaussian"}, 1e-5},
         {"evsm", {"kernel=5"}, 1e-5},
@@ -481,15 +487,16 @@ TEST_F(MomentShadows, ComputeBlurMatchesTheFragmentBlurTexelForTexel) {
             for (const auto& set : c.sets) label += " " + set;
             SCOPED_TRACE(label);
             auto with = [&](const char* blur) {
-                std::vector<std::string> sets = c.sets;
-                sets.push_back("resolution=512");   // a quarter of the fast map's texels: llvmpipe's compute is slow
+                // 512 texels unless the case says otherwise: a quarter of the fast map's, llvmpipe's compute is slow.
+                std::vector<std::string> sets = {"resolution=512"};
+                sets.insert(sets.end(), c.sets.begin(), c.sets.end());
                 sets.push_back(std::string("blur=") + blur);
                 render(c.technique, sets);
                 return readMoments(*app_, c.technique);
             };
             const MomentTexture fragment = with("fragment");
             const MomentTexture compute = with("compute");
-            ASSERT_EQ(compute.width, 512);
+            ASSERT_EQ(compute.width, label.find("resolution=1000") != std::string::npos ? 1000 : 512);
             ASSERT_EQ(fragment.width, compute.width);
             // The map holds a shadow, not only empty texels.
             int occupied = 0;
