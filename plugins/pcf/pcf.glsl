@@ -26,18 +26,26 @@ float discTap(vec2 uv, float ref) { return texture(uShadowMap, vec3(uv, ref)); }
 // paragraph): a tap r texels from the centre may see the receiver's own surface up to slope * r
 // closer to the light; accept that much.
 float tapReference(vec3 coord, float slope, float centre, ivec2 tap) {
-    vec2 offset = (vec2(tap) - centre) * uOffsetScale;   // texels, multiples of 1/s
+    vec2 offset = (vec2(tap) - centre) * uOffsetScale;
     return coord.z - slope * length(offset);
 }
 
+// Taps are placed in texel units, u = coord.xy * resolution. A nearest tap is looked up at the
+// centre of the texel its position falls in: the texture unit rounds coordinates to a few
+// sub-texel bits before it picks a texel, so a position within that rounding of a texel edge
+// would otherwise take whichever texel the hardware's precision gives, and the gather below could
+// not know which. Bilinear taps stay where they are: their weights are continuous in the position.
 float pcfTaps(vec3 coord, float slope) {
-    float texel = 1.0 / uLightDepth.w;
+    float resolution = uLightDepth.w;
     float centre = 0.5 * float(uKernel - 1);
+    vec2 u = coord.xy * resolution;
     float lit = 0.0;
     for (int j = 0; j < uKernel; ++j)
         for (int i = 0; i < uKernel; ++i) {
-            vec2 offset = (vec2(i, j) - centre) * uOffsetScale;
-            lit += discTap(coord.xy + offset * texel, tapReference(coord, slope, centre, ivec2(i, j)));
+            vec2 offset = (vec2(i, j) - centre) * uOffsetScale;   // texels, multiples of 1/s
+            vec2 position = u + offset;
+            if (uBilinear == 0) position = floor(position) + 0.5;
+            lit += discTap(position / resolution, tapReference(coord, slope, centre, ivec2(i, j)));
         }
     return lit;
 }
@@ -45,8 +53,9 @@ float pcfTaps(vec3 coord, float slope) {
 // The gather variant, for unit spacing (pcf.cpp uses the taps otherwise). Derivation, per axis
 // (the filter is separable apart from the references), in texel units: the point is at u, texel t
 // covers [t, t + 1), tap i (0 <= i < n) sits at u + i - c with c = (n - 1) / 2.
-//   Nearest taps read texel floor(u + i - c) = t0 + i with t0 = floor(u - c): the n taps are n
-//   neighbouring texels, each with weight 1.
+//   Nearest taps read texel floor(u + i - c) = t0 + i with t0 = floor(u - c) (pcfTaps looks each up
+//   at that texel's centre, so the texture unit takes the same one): the n taps are n neighbouring
+//   texels, each with weight 1.
 //   Bilinear taps read texels floor(u + i - c - 1/2) = t0 + i and t0 + i + 1 with weights 1 - f and
 //   f, where t0 = floor(u - c - 1/2) and f = fract(u - c - 1/2) are the same for every tap (the
 //   offsets are whole texels apart). Texel t0 + k (0 <= k <= n) is then the left texel of tap k and
