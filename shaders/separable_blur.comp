@@ -70,7 +70,10 @@ void main() {
         ivec2 local = ivec2(k % box.x, k / box.x);
         sTile[k] = loadSource(clamp(origin - kAxis * reach + local, ivec2(0), size - 1));
     }
-    barrier();   // in a compute shader this also orders the shared-memory writes before the reads
+    // The tile's writes visible to the whole group before any reads (barrier() alone does this for
+    // shared variables since GLSL 4.30; the explicit memory barrier is for drivers that read it so).
+    memoryBarrierShared();
+    barrier();
 
     ivec2 texel = origin + ivec2(gl_LocalInvocationID.xy);
     if (any(greaterThanEqual(texel, size))) return;
