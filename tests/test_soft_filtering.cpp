@@ -636,6 +636,60 @@ TEST_P(SoftAccuracy, WithinStatedBoundsOfTheSoftReference) {
 
 INSTANTIATE_TEST_SUITE_P(BuiltIn, SoftAccuracy, ::testing::Values("cube", "contact", "overlap"));
 
+// ---------------------------------------------------------------------------------------------
+// pcf's two samplings (pcf.glsl): the n x n taps looked up one by one, and their texels fetched
+// four at a time with textureGather and weighted as the taps weight them. The same filter: the
+// shadow terms (as App::evaluate reads them) agree within one 8-bit level on every pixel, for
+// nearest and bilinear taps, with and without the cone bias (per-tap references, compared in the
+// shader), odd and even kernels.
+
+class PcfGather : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(PcfGather, MatchesTheTapLoopWithinOne8BitLevel) {
+    using Mode = ReferenceOptions::Mode;
+    auto app = test::makeHeadlessApp(GetParam(), {320, 240});
+    ASSERT_TRUE(app);
+    const double level = 1.0 / 255.0;
+    // Every kernel size at 1024 texels; 11 x 11 also at 1000, where texel positions are not exact floats.
+    const std::vector<std::pair<int, int>> maps = {{1024, 1}, {1024, 4}, {1024, 7}, {1024, 11}, {1024, 15}, {1000, 11}};
+    for (const bool bilinear : {false, true})
+        for (const bool cone : {true, false})
+            for (const auto& [resolution, kernel] : maps) {
+                const std::vector<std::string> sets = {"resolution=" + std::to_string(resolution),
+                                                       "kernel=" + std::to_string(kernel),
+                                                       bilinear ? "hardware_filter=1" : "hardware_filter=0",
+                                                       cone ? "cone_bias=1" : "cone_bias=0", "offset_scale=1"};
+                const std::string label = std::string(GetParam()) + " map " + std::to_string(resolution) + " kernel " +
+                                          std::to_string(kernel) + (bilinear ? " bilinear" : " nearest") +
+                                          (cone ? " cone bias" : "");
+                SCOPED_TRACE(label);
+                auto shadow = [&](const char* sampling) {
+                    std::vector<std::string> with = sets;
+                    with.push_back(std::string("sampling=") + sampling);
+                    return test::evaluateTechnique(*app, "pcf", with, Mode::Hard, 1).technique;
+                };
+                const auto taps = shadow("taps");
+                const auto gather = shadow("gather");
+                ASSERT_EQ(taps.size(), gather.size());
+                double worst = 0.0;
+                int penumbra = 0, beyond = 0;
+                for (size_t i = 0; i < taps.size(); ++i) {
+                    const double difference = std::abs(double(taps[i].r) - double(gather[i].r));
+                    worst = std::max(worst, difference);
+                    beyond += difference > level;
+                    penumbra += taps[i].r > 0.02f && taps[i].r < 0.98f;
+                }
+                std::printf("pcf %s: gather vs taps, largest difference %.2g (%d pixels beyond 1/255), %d penumbra\n",
+                            label.c_str(), worst, beyond, penumbra);
+                if (kernel > 1 || bilinear) {
+                    EXPECT_GT(penumbra, 100) << "the comparison covers filtered edges";
+                }
+                EXPECT_LE(worst, level);
+            }
+}
+
+INSTANTIATE_TEST_SUITE_P(CubeAndContact, PcfGather, ::testing::Values("cube", "contact"));
+
 TEST(SoftTechniques, PcssMinDepthMipsAreConservative) {
     // Every texel of level k must be <= each shadow-map texel it stands for
     // ([x 2^(k+1), (x + 1) 2^(k+1)) in each direction), or the bounded blocker search leaks light.
@@ -669,3 +723,23 @@ TEST(SoftTechniques, PcssMinDepthMipsAreConservative) {
     }
     EXPECT_EQ(violations, 0);
 }
+
+// The accuracy condition for pcf's gather: soft MAE no worse than the taps', at the
+// default kernel and at 11 x 11.
+class PcfGatherAccuracy : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(PcfGatherAccuracy, SoftAccuracyNoWorseThanTheTaps) {
+    using Mode = ReferenceOptions::Mode;
+    auto app = test::makeHeadlessApp(GetParam(), {320, 240});
+    ASSERT_TRUE(app);
+    for (const char* kernel : {"kernel=5", "kernel=11"}) {
+        SCOPED_TRACE(kernel);
+        const double taps = test::measureAccuracy(*app, "pcf", {"resolution=1024", kernel, "sampling=taps"}, Mode::Soft, 32).mae;
+        const double gather =
+            test::measureAccuracy(*app, "pcf", {"resolution=1024", kernel, "sampling=gather"}, Mode::Soft, 32).mae;
+        std::printf("pcf %s on %s: soft MAE taps %.6f, gather %.6f\n", kernel, GetParam(), taps, gather);
+        EXPECT_LE(gather, taps * 1.001 + 1e-6);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(BuiltIn, PcfGatherAccuracy, ::testing::Values("cube", "contact", "overlap"));

@@ -109,9 +109,12 @@ inline GroundClassification classifyGround(App& app) {
 }
 
 
-// Accuracy of `technique` (after `sets`) against the reference of the given mode, on one frame.
-inline AccuracyMetrics measureAccuracy(App& app, const std::string& technique, const std::vector<std::string>& sets,
-                                       ReferenceOptions::Mode mode, int samples = 32) {
+// One frame of `technique` (after `sets`) evaluated against the reference of the given mode:
+// the technique's shadow term per pixel as App::evaluate reads it (Evaluation::technique), the
+// reference and the accuracy. Tests that compare two techniques' shadow terms use this rather
+// than the visibility target.
+inline Evaluation evaluateTechnique(App& app, const std::string& technique, const std::vector<std::string>& sets,
+                                    ReferenceOptions::Mode mode, int samples = 32) {
     std::string error;
     EXPECT_TRUE(app.applyAssignments(sets, technique, error)) << error;
     for (int frame = 0; frame < 2; ++frame) EXPECT_TRUE(app.renderFrame(technique, error)) << error;
@@ -120,7 +123,13 @@ inline AccuracyMetrics measureAccuracy(App& app, const std::string& technique, c
     options.samplesPerPixel = samples;
     Evaluation evaluation;
     EXPECT_TRUE(app.evaluate(options, evaluation, error)) << error;
-    return evaluation.metrics;
+    return evaluation;
+}
+
+// Accuracy of `technique` (after `sets`) against the reference of the given mode, on one frame.
+inline AccuracyMetrics measureAccuracy(App& app, const std::string& technique, const std::vector<std::string>& sets,
+                                       ReferenceOptions::Mode mode, int samples = 32) {
+    return evaluateTechnique(app, technique, sets, mode, samples).metrics;
 }
 
 } // namespace shadowlab::test

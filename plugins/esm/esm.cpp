@@ -49,7 +49,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
 
 class ExponentialShadowMaps final : public kit::MomentTechnique<shared::esm::EsmUniforms> {
 public:
-    ExponentialShadowMaps() : MomentTechnique("esm_moments.frag") {}
+    ExponentialShadowMaps() : MomentTechnique("esm_moments.glsl") {}
 
 private:
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {

@@ -1,4 +1,4 @@
-// esm's block, shared by esm.cpp, its moment shader and esm.glsl (shadowlab/kit/shared.h).
+// esm's block, shared by esm.cpp, its moment file and esm.glsl (shadowlab/kit/shared.h).
 #ifndef ESM_SHARED_H
 #define ESM_SHARED_H
 #include "shadowlab/kit/shared.h"

@@ -63,7 +63,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
 
 class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<shared::evsm::EvsmUniforms> {
 public:
-    ExponentialVarianceShadowMaps() : MomentTechnique("evsm_moments.frag") {}
+    ExponentialVarianceShadowMaps() : MomentTechnique("evsm_moments.glsl") {}
 
 private:
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {

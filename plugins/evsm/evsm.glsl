@@ -8,7 +8,7 @@
 
 vec3 shadowTerm(ShadowInput s) {
     MomentSample m = sampleMoments(s.worldPos);
-    float x = 2.0 * m.depth - 1.0;   // as in evsm_moments.frag
+    float x = 2.0 * m.depth - 1.0;   // as in evsm_moments.glsl
     float p = exp(uExponents.x * x);
     float n = -exp(-uExponents.y * x);
     // The minimum variance is given for the depth d; a warp w scales small deviations by dw/dd, so

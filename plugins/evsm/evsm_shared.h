@@ -1,4 +1,4 @@
-// evsm's block, shared by evsm.cpp, its moment shader and evsm.glsl (shadowlab/kit/shared.h).
+// evsm's block, shared by evsm.cpp, its moment file and evsm.glsl (shadowlab/kit/shared.h).
 #ifndef EVSM_SHARED_H
 #define EVSM_SHARED_H
 #include "shadowlab/kit/shared.h"

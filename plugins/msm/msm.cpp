@@ -65,7 +65,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
 
 class MomentShadowMapping final : public kit::MomentTechnique<shared::msm::MsmUniforms> {
 public:
-    MomentShadowMapping() : MomentTechnique("msm_moments.frag") {}
+    MomentShadowMapping() : MomentTechnique("msm_moments.glsl") {}
 
 private:
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {

@@ -1,4 +1,4 @@
-// msm's block, shared by msm.cpp, its moment shader and msm.glsl (shadowlab/kit/shared.h).
+// msm's block, shared by msm.cpp, its moment file and msm.glsl (shadowlab/kit/shared.h).
 #ifndef MSM_SHARED_H
 #define MSM_SHARED_H
 #include "shadowlab/kit/shared.h"

@@ -2,29 +2,141 @@
 // test s(t, z) = H(d(t) - z) over an n x n box of texel-aligned offsets around the shaded
 // point's map position, keeping its depth z (optionally minus the cone bias). With GL_LINEAR
 // each tap is itself the texture unit's 2x2 bilinear comparison (Fig. 3.11c).
+//
+// Two ways to evaluate the same filter (the `sampling` parameter):
+//   taps    the loop of n^2 lookups below (pcfTaps), one texture() per tap;
+//   gather  the texels the taps read, four at a time with textureGather (pcfGather), each weighted
+//           by how much of it the taps take. The idea is Castano's ("Shadow Mapping Summary -
+//           Part 1", 2013: the optimised PCF of The Witness, also in MJP's Shadows sample), which
+//           folds the bilinear taps of a kernel onto its texels and fetches them with the fewest
+//           lookups; here the weights are chosen to reproduce this box of taps exactly rather than
+//           a wider tent.
 #include "light_space.glsl"
 #include "disc_sampling.glsl"
 
 #include "shadowlab/kit/depth_map_shared.h"
 #include "pcf_shared.h"
 
-layout(binding = kDepthMapUnit) uniform sampler2DShadow uShadowMap;
+layout(binding = kDepthMapUnit) uniform sampler2DShadow uShadowMap;   // comparison: hardware PCF
+layout(binding = kRawDepthUnit) uniform sampler2D uShadowDepth;       // the same map, raw depths
 
 float discTap(vec2 uv, float ref) { return texture(uShadowMap, vec3(uv, ref)); }
 
-vec3 shadowTerm(ShadowInput s) {
-    vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
-    if (!insideShadowMap(coord)) return vec3(1.0);
-    float texel = 1.0 / uLightDepth.w;
-    // Cone bias (sec. 3.2.4, last paragraph): a tap r texels from the centre may see the
-    // receiver's own surface up to slope * r closer to the light; accept that much.
-    float slope = uConeBias * receiverDepthSlope(s.worldNormal, uLightAxis, coord.z, uLightDepth, uLightWorldSize);
+// Reference depth of tap (i, j): the shaded point's depth less the cone bias (sec. 3.2.4, last
+// paragraph): a tap r texels from the centre may see the receiver's own surface up to slope * r
+// closer to the light; accept that much.
+float tapReference(vec3 coord, float slope, float centre, ivec2 tap) {
+    vec2 offset = (vec2(tap) - centre) * uOffsetScale;
+    return coord.z - slope * length(offset);
+}
+
+// Taps are placed in texel units, u = coord.xy * resolution. A nearest tap is looked up at the
+// centre of the texel its position falls in: the texture unit rounds coordinates to a few
+// sub-texel bits before it picks a texel, so a position within that rounding of a texel edge
+// would otherwise take whichever texel the hardware's precision gives, and the gather below could
+// not know which. Bilinear taps stay where they are: their weights are continuous in the position.
+float pcfTaps(vec3 coord, float slope) {
+    float resolution = uLightDepth.w;
     float centre = 0.5 * float(uKernel - 1);
+    vec2 u = coord.xy * resolution;
     float lit = 0.0;
     for (int j = 0; j < uKernel; ++j)
         for (int i = 0; i < uKernel; ++i) {
             vec2 offset = (vec2(i, j) - centre) * uOffsetScale;   // texels, multiples of 1/s
-            lit += discTap(coord.xy + offset * texel, coord.z - slope * length(offset));
+            vec2 position = u + offset;
+            if (uBilinear == 0) position = floor(position) + 0.5;
+            lit += discTap(position / resolution, tapReference(coord, slope, centre, ivec2(i, j)));
         }
+    return lit;
+}
+
+// The gather variant, for unit spacing (pcf.cpp uses the taps otherwise). Derivation, per axis
+// (the filter is separable apart from the references), in texel units: the point is at u, texel t
+// covers [t, t + 1), tap i (0 <= i < n) sits at u + i - c with c = (n - 1) / 2.
+//   Nearest taps read texel floor(u + i - c) = t0 + i with t0 = floor(u - c) (pcfTaps looks each up
+//   at that texel's centre, so the texture unit takes the same one): the n taps are n neighbouring
+//   texels, each with weight 1.
+//   Bilinear taps read texels floor(u + i - c - 1/2) = t0 + i and t0 + i + 1 with weights 1 - f and
+//   f, where t0 = floor(u - c - 1/2) and f = fract(u - c - 1/2) are the same for every tap (the
+//   offsets are whole texels apart). Texel t0 + k (0 <= k <= n) is then the left texel of tap k and
+//   the right texel of tap k - 1, so its weight is
+//       w_k = (1 - f) [k < n] + f [k > 0]  =  (1 - f, 1, 1, ..., 1, f),
+//   the box of n bilinear taps as an (n + 1)-texel kernel, the tent-convolved box of Castano's
+//   derivation without widening it. In 2D the weight of a texel is w_kx w_ky.
+// The m = n (nearest) or n + 1 (bilinear) texels per axis are fetched in 2 x 2 blocks, one
+// textureGather at the corner the block's four texels share: ceil(m / 2)^2 lookups instead of n^2
+// (36 instead of 121 at 11 x 11). textureGather returns the block's texels in the order (0, 1),
+// (1, 1), (1, 0), (0, 0) (x right, y up) and clamps to the edge as the taps do.
+// Without the cone bias every tap compares with the same depth, and the gather compares in the
+// texture unit (textureGather on the sampler2DShadow). With it each tap has its own reference and
+// a texel of a bilinear kernel meets up to four of them, so the raw depths are gathered and
+// compared here, each texel against the reference of every tap that reads it, with that tap's
+// bilinear weight (the texture unit's own comparison is the same `ref <= depth` on a float map).
+
+// Weight of texel k of the kernel along one axis (nearest taps: f = 0 and k < n).
+float texelWeight(int k, float f) {
+    return (k < uKernel ? 1.0 - f : 0.0) + (k > 0 ? f : 0.0);
+}
+
+float pcfGather(vec3 coord, float slope) {
+    float resolution = uLightDepth.w;
+    float centre = 0.5 * float(uKernel - 1);
+    bool bilinear = uBilinear != 0;
+    vec2 start = coord.xy * resolution - centre - (bilinear ? 0.5 : 0.0);
+    vec2 origin = floor(start);                          // texel t0 in x and y
+    vec2 f = bilinear ? start - origin : vec2(0.0);
+    int texels = uKernel + (bilinear ? 1 : 0);           // m
+    int blocks = (texels + 1) / 2;
+    float lit = 0.0;
+    for (int b = 0; b < blocks; ++b)
+        for (int a = 0; a < blocks; ++a) {
+            ivec2 k0 = 2 * ivec2(a, b);                           // the block's lower-left texel
+            vec2 corner = (origin + vec2(k0 + 1)) / resolution;   // shared by its four texels
+            // Texel weights, 0 past the kernel (the last block of an odd m).
+            vec2 wx = vec2(texelWeight(k0.x, f.x), k0.x + 1 < texels ? texelWeight(k0.x + 1, f.x) : 0.0);
+            vec2 wy = vec2(texelWeight(k0.y, f.y), k0.y + 1 < texels ? texelWeight(k0.y + 1, f.y) : 0.0);
+            if (uConeBias == 0.0) {
+                vec4 visible = textureGather(uShadowMap, corner, coord.z);
+                lit += dot(visible, vec4(wx.x * wy.y, wx.y * wy.y, wx.y * wy.x, wx.x * wy.x));
+                continue;
+            }
+            vec4 gathered = textureGather(uShadowDepth, corner);
+            float depth[4] = float[4](gathered.w, gathered.z, gathered.x, gathered.y);   // (0,0) (1,0) (0,1) (1,1)
+            if (!bilinear) {   // texel k is tap k
+                for (int t = 0; t < 4; ++t) {
+                    ivec2 k = k0 + ivec2(t & 1, t >> 1);
+                    if (k.x < uKernel && k.y < uKernel)
+                        lit += tapReference(coord, slope, centre, k) <= depth[t] ? 1.0 : 0.0;
+                }
+                continue;
+            }
+            // Bilinear: texel k is read by taps k - (1, 1) .. k, as their right (weight f) or left
+            // (1 - f) texel along x and their upper (f) or lower (1 - f) one along y. The block's
+            // four texels meet the 3 x 3 taps k0 - (1, 1) .. k0 + (1, 1); each reference once.
+            float reference[9];
+            for (int j = 0; j < 3; ++j)
+                for (int i = 0; i < 3; ++i) {
+                    ivec2 tap = k0 - 1 + ivec2(i, j);
+                    bool inKernel = all(greaterThanEqual(tap, ivec2(0))) && all(lessThan(tap, ivec2(uKernel)));
+                    // Outside the kernel: a reference no depth in [0, 1] reaches, so the tap adds nothing.
+                    reference[3 * j + i] = inKernel ? tapReference(coord, slope, centre, tap) : 2.0;
+                }
+            for (int t = 0; t < 4; ++t) {
+                ivec2 texel = ivec2(t & 1, t >> 1);   // in the block; its taps are texel + (0..1, 0..1) of the 3 x 3
+                for (int dy = 0; dy < 2; ++dy)
+                    for (int dx = 0; dx < 2; ++dx) {
+                        float w = (dx == 0 ? f.x : 1.0 - f.x) * (dy == 0 ? f.y : 1.0 - f.y);
+                        lit += reference[3 * (texel.y + dy) + texel.x + dx] <= depth[t] ? w : 0.0;
+                    }
+            }
+        }
+    return lit;
+}
+
+vec3 shadowTerm(ShadowInput s) {
+    vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
+    if (!insideShadowMap(coord)) return vec3(1.0);
+    float slope = uConeBias * receiverDepthSlope(s.worldNormal, uLightAxis, coord.z, uLightDepth, uLightWorldSize);
+    float lit = uGather != 0 ? pcfGather(coord, slope) : pcfTaps(coord, slope);
     return vec3(lit / float(uKernel * uKernel));
 }

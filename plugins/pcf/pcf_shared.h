@@ -1,13 +1,19 @@
-// pcf's main-pass block, shared by pcf.cpp and pcf.glsl (see shadowlab/kit/shared.h).
+// pcf's main-pass block and its second texture unit, shared by pcf.cpp and pcf.glsl (see
+// shadowlab/kit/shared.h).
 #ifndef PCF_SHARED_H
 #define PCF_SHARED_H
 #include "shadowlab/kit/shared.h"
 SHADOWLAB_SHARED_BEGIN(pcf)
+SHADOWLAB_TEXTURE_UNIT(kRawDepthUnit, 5)   // the shadow map again, without comparison (gather + cone bias)
 SHADOWLAB_UNIFORM_BLOCK(PcfUniforms, 2) {
     int uKernel;           // n: n x n taps
     float uOffsetScale;    // texels between neighbouring taps
     float uConeBias;       // 0 off, else multiplier of the receiver slope
-    float uPcfPad;
+    int uGather;           // 1: the taps' texels fetched by textureGather (unit spacing only)
+    int uBilinear;         // 1: the taps are bilinear comparisons (the gather weights their texels so)
+    int uPcfPad0;
+    int uPcfPad1;
+    int uPcfPad2;
 };
 SHADOWLAB_SHARED_END
 #endif

@@ -60,13 +60,14 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
 
 class VarianceShadowMaps final : public kit::MomentTechnique<shared::vsm::VsmUniforms> {
 public:
-    VarianceShadowMaps() : MomentTechnique("vsm_moments.frag") {}
+    VarianceShadowMaps() : MomentTechnique("vsm_moments.glsl") {}
 
 private:
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         kit::MomentMapConfig config = kit::readCommonParams(params);
         config.format = GL_RG32F;   // 32 bits per moment: M2 - M1^2 cancels badly in 16 bits
         config.clearValue = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);   // d = 1: M1 = 1, M2 = 1
+        config.momentsNeedDerivatives = params.asBool(kDerivativeMoment);   // eq. 3.16 takes dFdx, dFdy
         render(frame, config, {{}, params.asBool(kDerivativeMoment) ? 1 : 0, params.asFloat(kMinVariance),
                        params.asFloat(kLightBleedingReduction), 0.0f});
     }

@@ -1,4 +1,4 @@
-// vsm's block, shared by vsm.cpp, its moment shader and vsm.glsl (shadowlab/kit/shared.h).
+// vsm's block, shared by vsm.cpp, its moment file and vsm.glsl (shadowlab/kit/shared.h).
 #ifndef VSM_SHARED_H
 #define VSM_SHARED_H
 #include "shadowlab/kit/shared.h"

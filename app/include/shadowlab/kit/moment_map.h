@@ -1,9 +1,22 @@
-// The GL side shared by the filterable shadow maps (vsm, esm, evsm, msm): render the casters'
-// moments from the light, blur them with a separable filter (ping-pong between the map and a
-// scratch texture of the same format), optionally build mipmaps, and bind the result for the main
-// pass. Each technique supplies only its moment fragment shader, its format and the value of an
-// empty texel (MomentTechnique below does setup for it); its own uniforms go in a block at
-// binding 2 that its moment shader and its main-pass GLSL both read.
+// The GL side shared by the filterable shadow maps (vsm, esm, evsm, msm): render the casters from
+// the light, turn their depth into the technique's moments, blur them with a separable filter,
+// optionally build mipmaps, and bind the result for the main pass. Each technique supplies only
+// its moment file (a GLSL function `vec4 momentsFromDepth(float depth)`, see
+// shaders/moment_map_passes.glsl), its format and the value of an empty texel (MomentTechnique
+// below does setup for it); its own uniforms go in a block at binding 2 that its moment file and
+// its main-pass GLSL both read.
+//
+// Two paths give the same map (the `blur` parameter; tests/test_moment_shadows.cpp compares them):
+//   fragment  the light renders the moments into a colour target of the map's format; two
+//             full-screen passes blur it along x (map -> scratch) and y (scratch -> map), each tap
+//             a bilinear texture lookup (shaders/separable_blur.frag).
+//   compute   the light renders depth only (shaders/moment_depth_only.frag); one compute pass reads
+//             the depth, derives the moments and blurs them along x in shared memory
+//             (depth -> scratch), a second blurs along y (scratch -> map) (shaders/separable_blur.comp).
+//             No moment target is written by the rasteriser (for msm and evsm 16 bytes a texel, for
+//             every covering fragment), and each texel's moments are computed once, not per
+//             fragment. Moments that need screen-space derivatives (vsm's eq. 3.16) are still
+//             rendered as colour, then blurred in compute.
 #pragma once
 
 #include <glad/gl.h>
@@ -23,8 +36,12 @@
 namespace shadowlab::kit {
 
 using shared::moment_map::BlurUniforms;
+using shared::moment_map::kBlurDestinationImageUnit;
+using shared::moment_map::kBlurSourceUnit;
 using shared::moment_map::kMomentMapUnit;
 using shared::moment_map::MomentMapUniforms;
+
+enum class BlurPath : int { Fragment = 0, Compute = 1 };   // the `blur` parameter's values
 
 struct MomentMapConfig {
     int resolution = 1024;
@@ -32,12 +49,17 @@ struct MomentMapConfig {
     bool mipmaps = false;        // trilinear lookups; mipmaps are rebuilt after the blur
     int kernelSize = 1;          // taps per direction; 1 = no blur
     bool gaussian = false;       // blur weights: false box, true Gaussian (sigma = kernel / 6)
-    glm::vec4 clearValue{1.0f};  // moments of an empty texel: depth 1, nothing occludes there
+    glm::vec4 clearValue{1.0f};  // moments of an empty texel: depth 1, nothing occludes there (the
+                                 // fragment path clears to it; the compute path derives it from the
+                                 // cleared depth 1, so it must equal momentsFromDepth(1))
+    BlurPath blur = BlurPath::Compute;
+    bool momentsNeedDerivatives = false;   // momentsFromDepth uses dFdx/dFdy now: the moments are
+                                           // rendered as colour on both paths (blurred in compute)
 };
 
-// Parameters every filterable map shares: each plugin's descriptor starts with these four (same ids,
+// Parameters every filterable map shares: each plugin's descriptor starts with these five (same ids,
 // ranges and help in vsm, esm, evsm and msm), then lists its own from index kCommonParamCount.
-enum CommonParam : uint32_t { kResolution, kKernel, kFilter, kMipmaps, kCommonParamCount };
+enum CommonParam : uint32_t { kResolution, kKernel, kFilter, kMipmaps, kBlur, kCommonParamCount };
 
 #define SHADOWLAB_MOMENT_MAP_PARAMS(defaultResolution)                                                          \
     {"resolution", "resolution", ParamType::Int, 128, 4096, defaultResolution, "texels",                         \
@@ -53,7 +75,14 @@ enum CommonParam : uint32_t { kResolution, kKernel, kFilter, kMipmaps, kCommonPa
     {"mipmaps", "mipmaps", ParamType::Bool, 0, 1, 0, "",                                                         \
      "Build mipmaps after the blur and sample trilinearly, so distant or grazing receivers average the map "      \
      "instead of aliasing. Off, minified shadows shimmer; on, they widen and leak more where the footprint is "  \
-     "large, and memory grows by a third.", nullptr}
+     "large, and memory grows by a third.", nullptr},                                                         \
+    {"blur", "blur pass", ParamType::Enum, 0, 1, 1, "",                                                          \
+     "How the moments are made and blurred; both give the same map. fragment: the light renders the moments "    \
+     "into a colour target (16 bytes a texel for evsm and msm) and two full-screen passes blur it, a texture "   \
+     "lookup per tap. compute: the light renders depth only, one compute pass turns it into moments and blurs "  \
+     "them along x in shared memory, a second blurs along y (vsm's derivative-based M2 still renders its "       \
+     "moments, then blurs in compute). Compare the passes' times in the timing panel or with --sweep.",         \
+     "fragment|compute"}
 
 inline MomentMapConfig readCommonParams(const ParamValues& params) {
     MomentMapConfig config;
@@ -61,18 +90,30 @@ inline MomentMapConfig readCommonParams(const ParamValues& params) {
     config.kernelSize = params.asInt(kKernel);
     config.gaussian = params.asInt(kFilter) == 1;
     config.mipmaps = params.asBool(kMipmaps);
+    config.blur = params.asInt(kBlur) == 1 ? BlurPath::Compute : BlurPath::Fragment;
     return config;
 }
 
 class MomentMap {
 public:
-    bool create(IHost& host, const char* momentFragment, std::string& error) {
+    // `momentFile`: the technique's moment file (momentsFromDepth, then moment_map_passes.glsl).
+    // Every program either path needs is built here, once.
+    bool create(IHost& host, const char* momentFile, std::string& error) {
         host_ = &host;
-        if (!momentProgram_.build(host, {.vertexFile = "moment_depth.vert", .fragmentFile = momentFragment}, error))
+        if (!momentProgram_.build(host, {.vertexFile = "moment_depth.vert", .fragmentFile = momentFile,
+                                         .defines = "MOMENT_PASS_FRAGMENT 1"}, error))
+            return false;
+        if (!depthProgram_.build(host, {.vertexFile = "moment_depth.vert", .fragmentFile = "moment_depth_only.frag"}, error))
             return false;
         if (!blurProgram_.build(host, {.vertexFile = "fullscreen.vert", .fragmentFile = "separable_blur.frag"}, error))
             return false;
+        if (!computeBlurX_.build(host, {.computeFile = momentFile, .defines = "MOMENT_PASS_COMPUTE 1;MOMENT_BLUR_AXIS 0"},
+                                 error))
+            return false;
+        if (!computeBlurY_.build(host, {.computeFile = "separable_blur.comp", .defines = "MOMENT_BLUR_AXIS 1"}, error))
+            return false;
         momentFramebuffer_ = makeFramebuffer(host, "moment map");
+        depthFramebuffer_ = makeFramebuffer(host, "moment map (depth only)");
         blurFramebuffer_ = makeFramebuffer(host, "moment blur");
         mapUniforms_.create(host, "moment map uniforms");
         blurUniforms_[0].create(host, "moment blur uniforms (x)");
@@ -86,32 +127,27 @@ public:
         space_ = fitMomentLightSpace(host_->fitLightSpace(frame.light, DrawSet::All), host_->bounds(DrawSet::Casters),
                                      host_->bounds(DrawSet::All));
         mapUniforms_.set({{}, space_.light.viewProjection, space_.depthPlane});
+        const bool compute = config.blur == BlurPath::Compute;
+        const bool depthOnly = compute && !config.momentsNeedDerivatives;
         {
             GpuPass pass(*host_, "shadow map");
-            glBindFramebuffer(GL_FRAMEBUFFER, momentFramebuffer_);
             glViewport(0, 0, resolution_, resolution_);
             const float farDepth = 1.0f;
-            glClearNamedFramebufferfv(momentFramebuffer_, GL_COLOR, 0, glm::value_ptr(config.clearValue));
-            glClearNamedFramebufferfv(momentFramebuffer_, GL_DEPTH, 0, &farDepth);
+            if (depthOnly) {
+                glBindFramebuffer(GL_FRAMEBUFFER, depthFramebuffer_);
+                glClearNamedFramebufferfv(depthFramebuffer_, GL_DEPTH, 0, &farDepth);
+            } else {
+                glBindFramebuffer(GL_FRAMEBUFFER, momentFramebuffer_);
+                glClearNamedFramebufferfv(momentFramebuffer_, GL_COLOR, 0, glm::value_ptr(config.clearValue));
+                glClearNamedFramebufferfv(momentFramebuffer_, GL_DEPTH, 0, &farDepth);
+            }
             // No culling (the contract's default): thin and open casters need both sides.
-            host_->drawScene(DrawSet::OpaqueCasters, momentProgram_.use());
+            host_->drawScene(DrawSet::OpaqueCasters, (depthOnly ? depthProgram_ : momentProgram_).use());
         }
-        if (config.kernelSize > 1) {
-            GpuPass pass(*host_, "blur");
-            glDisable(GL_DEPTH_TEST);
-            blurProgram_.use();
-            const float texel = 1.0f / float(resolution_);
-            // Along x: map -> scratch; along y: scratch -> map.
-            blurUniforms_[0].set({{}, {texel, 0.0f, 0.0f, 0.0f}, config.kernelSize, config.gaussian ? 1 : 0, 0, 0});
-            glBindFramebuffer(GL_FRAMEBUFFER, blurFramebuffer_);
-            glBindTextureUnit(shared::moment_map::kBlurSourceUnit, moments_);
-            host_->drawFullscreenTriangle();
-            blurUniforms_[1].set({{}, {0.0f, texel, 0.0f, 0.0f}, config.kernelSize, config.gaussian ? 1 : 0, 0, 0});
-            glBindFramebuffer(GL_FRAMEBUFFER, momentFramebuffer_);
-            glBindTextureUnit(shared::moment_map::kBlurSourceUnit, scratch_);
-            host_->drawFullscreenTriangle();
-            glBindTextureUnit(shared::moment_map::kBlurSourceUnit, 0);
-        }
+        if (compute)
+            computeBlur(config, depthOnly);
+        else if (config.kernelSize > 1)
+            fragmentBlur(config);
         if (config.mipmaps) {
             GpuPass pass(*host_, "mipmaps");
             glGenerateTextureMipmap(moments_);
@@ -129,6 +165,58 @@ public:
     GLuint texture() const { return moments_; }
 
 private:
+    BlurUniforms blurValues(const MomentMapConfig& config, glm::vec2 step, int source) const {
+        return {{}, {step, 0.0f, 0.0f}, config.kernelSize, config.gaussian ? 1 : 0, source,
+                format_ == GL_RGBA16 ? 1 : 0};
+    }
+
+    // Along x: map -> scratch; along y: scratch -> map.
+    void fragmentBlur(const MomentMapConfig& config) {
+        GpuPass pass(*host_, "blur");
+        glDisable(GL_DEPTH_TEST);
+        blurProgram_.use();
+        const float texel = 1.0f / float(resolution_);
+        blurUniforms_[0].set(blurValues(config, {texel, 0.0f}, 0));
+        glBindFramebuffer(GL_FRAMEBUFFER, blurFramebuffer_);
+        glBindTextureUnit(kBlurSourceUnit, moments_);
+        host_->drawFullscreenTriangle();
+        blurUniforms_[1].set(blurValues(config, {0.0f, texel}, 0));
+        glBindFramebuffer(GL_FRAMEBUFFER, momentFramebuffer_);
+        glBindTextureUnit(kBlurSourceUnit, scratch_);
+        host_->drawFullscreenTriangle();
+        glBindTextureUnit(kBlurSourceUnit, 0);
+    }
+
+    // Along x: depth (derived into moments as they are loaded) or rendered moments -> scratch, or
+    // straight into the map when there is no blur; along y: scratch -> map. Image stores are not
+    // ordered with later reads by themselves: a barrier before the y pass fetches the scratch, and
+    // one after the last pass for what reads the map next (the main pass's lookups and the next
+    // frame's blur: texture fetches; mipmap generation and read-back: texture updates; the
+    // fragment path's render targets if the parameter changes: framebuffer; the next image stores).
+    void computeBlur(const MomentMapConfig& config, bool fromDepth) {
+        const bool blur = config.kernelSize > 1;
+        if (!fromDepth && !blur) return;   // the rendered moments are the map
+        GpuPass pass(*host_, blur ? "blur" : "moments");
+        const GLuint groupsX = GLuint(resolution_ + 255) / 256u;   // separable_blur.comp's group sizes
+        blurUniforms_[0].set(blurValues(config, {1.0f, 0.0f}, fromDepth ? 1 : 0));
+        glBindTextureUnit(kBlurSourceUnit, fromDepth ? depth_ : moments_);
+        glBindImageTexture(kBlurDestinationImageUnit, blur ? scratch_ : moments_, 0, GL_FALSE, 0, GL_WRITE_ONLY, format_);
+        computeBlurX_.use();
+        glDispatchCompute(groupsX, GLuint(resolution_), 1);
+        if (blur) {
+            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+            blurUniforms_[1].set(blurValues(config, {0.0f, 1.0f}, 0));
+            glBindTextureUnit(kBlurSourceUnit, scratch_);
+            glBindImageTexture(kBlurDestinationImageUnit, moments_, 0, GL_FALSE, 0, GL_WRITE_ONLY, format_);
+            computeBlurY_.use();
+            glDispatchCompute(GLuint(resolution_ + 3) / 4u, GLuint(resolution_ + 63) / 64u, 1);
+        }
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
+                        GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glBindTextureUnit(kBlurSourceUnit, 0);
+        glBindImageTexture(kBlurDestinationImageUnit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    }
+
     // (Re)allocates only when the resolution, format, mipmapping or the need for a scratch texture
     // changed: never per frame.
     void ensureTextures(const MomentMapConfig& config) {
@@ -144,11 +232,19 @@ private:
         moments_ = makeTexture(*host_, {.internalFormat = format_, .width = resolution_, .height = resolution_,
                                         .levels = levels, .label = "moment map"});
         setSampling(moments_, mipmaps_);
+        // The depth buffer of the colour pass; on the compute path the linear depth the moments
+        // are derived from (fetched, never filtered).
         depth_ = makeTexture(*host_, {.internalFormat = GL_DEPTH_COMPONENT32F, .width = resolution_,
                                       .height = resolution_, .label = "moment map depth buffer"});
+        glTextureParameteri(depth_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(depth_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glNamedFramebufferTexture(momentFramebuffer_, GL_COLOR_ATTACHMENT0, moments_, 0);
         glNamedFramebufferTexture(momentFramebuffer_, GL_DEPTH_ATTACHMENT, depth_, 0);
         host_->checkFramebuffer(momentFramebuffer_, "moment map");
+        glNamedFramebufferTexture(depthFramebuffer_, GL_DEPTH_ATTACHMENT, depth_, 0);
+        glNamedFramebufferDrawBuffer(depthFramebuffer_, GL_NONE);
+        glNamedFramebufferReadBuffer(depthFramebuffer_, GL_NONE);
+        host_->checkFramebuffer(depthFramebuffer_, "moment map (depth only)");
         if (blur) {
             scratch_ = makeTexture(*host_, {.internalFormat = format_, .width = resolution_, .height = resolution_,
                                             .label = "blur scratch"});
@@ -168,8 +264,8 @@ private:
     }
 
     IHost* host_ = nullptr;
-    Program momentProgram_, blurProgram_;
-    Framebuffer momentFramebuffer_, blurFramebuffer_;
+    Program momentProgram_, depthProgram_, blurProgram_, computeBlurX_, computeBlurY_;
+    Framebuffer momentFramebuffer_, depthFramebuffer_, blurFramebuffer_;
     Texture moments_, scratch_, depth_;
     UniformBlock<MomentMapUniforms> mapUniforms_;
     UniformBlock<BlurUniforms> blurUniforms_[2];
@@ -180,17 +276,17 @@ private:
 };
 
 // A technique built on one filtered moment map and its own block `Block` (binding 2, read by its
-// moment shader and its main-pass GLSL): setup and bindMainPass are done here; the plugin writes
+// moment file and its main-pass GLSL): setup and bindMainPass are done here; the plugin writes
 // renderShadows() (its format, clear value and block values) and calls render().
 template <class Block>
 class MomentTechnique : public TechniqueBase {
 public:
-    explicit MomentTechnique(const char* momentFragment) : momentFragment_(momentFragment) {}
+    explicit MomentTechnique(const char* momentFile) : momentFile_(momentFile) {}
 
 protected:
     bool setup(std::string& error) override {
         uniforms_.create(host(), "technique uniforms");
-        return map_.create(host(), momentFragment_, error);
+        return map_.create(host(), momentFile_, error);
     }
     void render(const FrameContext& frame, const MomentMapConfig& config, const Block& block) {
         uniforms_.set(block);
@@ -202,7 +298,7 @@ protected:
     }
 
 private:
-    const char* momentFragment_;
+    const char* momentFile_;
     MomentMap map_;
     UniformBlock<Block> uniforms_;
 };

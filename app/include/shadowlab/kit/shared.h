@@ -18,7 +18,8 @@
 // constexpr. Only types whose std140 layout equals C++'s exist on the C++ side (mat4, vec4,
 // ivec4, uvec4, float, int, uint), so a member that would be laid out differently does not compile.
 // Bindings: 0 is the host's frame block; 1 the kit's depth or moment map; 2+ the technique's.
-// Texture units 0-3 are the host's; 4+ the technique's.
+// Texture units 0-3 are the host's; 4+ the technique's. Image units (SHADOWLAB_IMAGE_UNIT, for
+// imageLoad/imageStore): 0 is the kit moment map's compute blur; 1+ the technique's.
 #ifndef SHADOWLAB_KIT_SHARED_H
 #define SHADOWLAB_KIT_SHARED_H
 
@@ -39,6 +40,7 @@ using uint = uint32_t;
 #define SHADOWLAB_SHARED_BEGIN(name) namespace shadowlab::shared::name { using namespace shadowlab::glsl;
 #define SHADOWLAB_SHARED_END }
 #define SHADOWLAB_TEXTURE_UNIT(name, unit) inline constexpr uint32_t name = unit;
+#define SHADOWLAB_IMAGE_UNIT(name, unit) inline constexpr uint32_t name = unit;
 #define SHADOWLAB_UNIFORM_BLOCK(Name, bindingPoint) struct alignas(16) Name : ::shadowlab::glsl::Binding<bindingPoint>
 
 namespace shadowlab::glsl {
@@ -52,6 +54,7 @@ template <uint32_t bindingPoint> struct Binding {
 #define SHADOWLAB_SHARED_BEGIN(name)
 #define SHADOWLAB_SHARED_END
 #define SHADOWLAB_TEXTURE_UNIT(name, unit) const int name = unit;
+#define SHADOWLAB_IMAGE_UNIT(name, unit) const int name = unit;
 #define SHADOWLAB_UNIFORM_BLOCK(Name, bindingPoint) layout(std140, binding = bindingPoint) uniform Name
 #endif
 
