@@ -30,8 +30,8 @@
 //   - The budget's triangles are counted while scanning, before tinyobjloader allocates anything;
 //     its GPU bytes are checked before the vertices are built.
 // Time is linear in the file. tinyobjloader's triangulation is off: it splits every quad along the
-// shorter diagonal, which is outside a concave quad, and gives up on degenerate polygons; faces are
-// triangulated here (a fan when convex, ear clipping otherwise) into n - 2 triangles. What
+// shorter diagonal, which runs outside a concave quad (test RobustObj.ConcaveQuadsAreSplitInside);
+// faces are triangulated here as before (a fan when convex, ear clipping otherwise). What
 // tinyobjloader returns is checked against the pre-scan once more (counts, indices, finiteness);
 // a difference would be a bug, reported as such (the fuzz target treats it as one).
 // Anything that would give a wrong mesh throws a SceneError naming the file and line.
