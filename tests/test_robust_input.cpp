@@ -5,7 +5,7 @@
 //   numbers checked as stored in float, transforms and world coordinates;
 //   the scene budget (objects, drawn triangles, GPU bytes) and checkScene;
 //   OBJ files: mtllib never opened, FIFOs and devices refused, 64-bit indices, polygon size and
-//   triangulation;
+//   triangulation, and only pre-scanned lines reaching tinyobjloader, read as it reads them;
 //   benchmark specs checked as a whole.
 #include <gtest/gtest.h>
 
@@ -426,6 +426,68 @@ TEST(RobustObj, ConcaveAndConvexPolygonsAreTriangulatedExactly) {
     const Mesh disc = parseObj(text + "\n", "disc.obj");
     EXPECT_EQ(disc.indices.size(), 3u * 253u);
     EXPECT_NEAR(projectedArea(disc), 0.5 * 255 * std::sin(6.283185307 / 255), 1e-4);
+}
+
+// tinyobjloader parses OBJ files, after the pre-scan: what it would act on but the mesh does not
+// need never reaches it. Unblanked, `l 0 1`, `p 0` and `vw 0 -1 1` would make it fail the file,
+// a `t` line allocates 3 x 8192 values and `vw 0 1e30 1` casts 1e30 to int.
+TEST(RobustObj, OnlyTheCheckedLinesReachTinyobjloader) {
+    std::string text = "mtllib /dev/zero\no one\ng two\nusemtl x\ns 1\nl 0 1\np 0\nvw 0 -1 1\nvw 0 1e30 1\ncstype bspline\n";
+    for (int i = 0; i < 100; ++i) text += "t crease 8192/8192/8192\n";
+    text += std::string(kTriangle) + "g three\nf 1 3 2\n";
+    const Mesh mesh = parseObj(text, "ext.obj");
+    EXPECT_EQ(mesh.indices.size(), 6u) << "both faces, the groups merged";
+}
+
+TEST(RobustObj, LinesEndWhereTinyobjloaderEndsThem) {
+    EXPECT_EQ(parseObj("v 0 0 0\rv 1 0 0\rv 0 0 -1\rf 1 2 3\r", "cr.obj").indices.size(), 3u);
+    EXPECT_EQ(parseObj("v 0 0 0\r\nv 1 0 0\r\nv 0 0 -1\r\nf 1 2 3", "crlf.obj").indices.size(), 3u);
+    EXPECT_MENTIONS(sceneErrorOf([] { parseObj("v 0 0 0\rv 1 0 0\r\nv 0 0 -1\r\rf 1 2 4\n", "cr.obj"); }),
+                    "cr.obj:5: face refers to vertex 4 but the file has 3 (index out of range)");
+    // A NUL ends tinyobjloader's line: refused where it would cut a number or a corner short.
+    EXPECT_MENTIONS(sceneErrorOf([] { parseObj(std::string("v 0 0 0\nv 1 0 0\nv 0 0 -1\nf 1 2 3") + '\0' + " 4\n", "nul.obj"); }),
+                    "nul.obj:4: OBJ parse error:");
+}
+
+TEST(RobustObj, CornersAndNumbersAreReadAsTinyobjloaderReadsThem) {
+    const std::string points = "v 0 0 0\nv 1 0 0\nv 0 0 -1\nvt 0 0\nvn 0 1 0\n";
+    auto error = [&](const std::string& line) { return sceneErrorOf([&] { parseObj(points + line + "\n", "c.obj"); }); };
+    EXPECT_EQ(parseObj(points + "f 1/1/1 2//1 3/-1/-1\n", "c.obj").indices.size(), 3u);
+    // tinyobjloader refuses an empty index after '/', and atoi reads 3x as 3 and +3 as 3.
+    EXPECT_MENTIONS(error("f 1/ 2 3"), "c.obj:6: OBJ parse error: corner '1/' has no texture coordinate index after '/'");
+    EXPECT_MENTIONS(error("f 1// 2 3"), "c.obj:6: OBJ parse error: corner '1//' has no normal index after '/'");
+    EXPECT_MENTIONS(error("f 1/1/ 2 3"), "has no normal index");
+    EXPECT_MENTIONS(error("f 1/1/1/1 2 3"), "'1/1' is not a normal index");
+    EXPECT_MENTIONS(error("f 1 2 3x"), "c.obj:6: OBJ parse error: '3x' is not a vertex index");
+    EXPECT_MENTIONS(error("f 1 2 +3"), "'+3' is not a vertex index");
+    EXPECT_MENTIONS(error("f 1 2 -4"), "face refers to vertex -4 but only 3 come before it");
+    // Its number reader: 0e999 is nan, a 70-digit fraction loses its digits, +-1 and 1.5abc are read
+    // as 0 and 1.5, an exponent beyond 2^31 overflows an int (also in a vertex colour).
+    EXPECT_MENTIONS(error("v 0e999 0 0"), "c.obj:6: OBJ parse error: '0e999' has an exponent beyond +-400");
+    EXPECT_MENTIONS(error("v 0." + std::string(70, '0') + "1e71 0 0"), "characters");
+    EXPECT_MENTIONS(error("v +-1 0 0"), "c.obj:6: OBJ parse error: '+-1' is not a finite number");
+    EXPECT_MENTIONS(error("v 1.5abc 0 0"), "'1.5abc' is not a finite number");
+    EXPECT_MENTIONS(error("v 0 0 0 1 1 0e2147483649"), "c.obj:6: OBJ parse error: '0e2147483649' has an exponent");
+    EXPECT_MENTIONS(error("vt 0 1e39"), "'1e39' is not a finite number");
+    EXPECT_MENTIONS(error("vn 0 1"), "c.obj:6: OBJ parse error: a normal needs 3 numbers");
+    // Accepted: a leading '+', '.5' and '5.', w, colours, a comment after the numbers.
+    const Mesh mesh = parseObj("v +1 0 0 1\nv .5 0 5. 1 0 0\nv 0 0 -1 # tip\nf 1 2 3\n", "ok.obj");
+    ASSERT_EQ(mesh.vertices.size(), 3u);
+    EXPECT_EQ(mesh.vertices[0].position, glm::vec3(1.0f, 0.0f, 0.0f));
+    EXPECT_EQ(mesh.vertices[1].position, glm::vec3(0.5f, 0.0f, 5.0f));
+}
+
+TEST(RobustObj, ConcaveQuadsAreSplitInside) {
+    // Seen from +y: (0,0), (0.5,0.1), (1,0), (0.5,10), the second corner reflex. The shorter diagonal
+    // (tinyobjloader's choice) runs outside; ours from the reflex corner.
+    const Mesh dart = parseObj("v 0 0 0\nv 0.5 0 -0.1\nv 1 0 0\nv 0.5 0 -10\nf 1 2 3 4\n", "dart.obj");
+    ASSERT_EQ(dart.indices.size(), 6u);
+    for (size_t t = 0; t < 6; t += 3) {
+        const glm::vec3 a = dart.vertices[dart.indices[t]].position, b = dart.vertices[dart.indices[t + 1]].position,
+                        c = dart.vertices[dart.indices[t + 2]].position;
+        EXPECT_GT(glm::cross(b - a, c - a).y, 0.0f) << "triangle " << t / 3 << " wound like the quad";
+    }
+    EXPECT_NEAR(projectedArea(dart), 4.95, 1e-5);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -11,7 +11,7 @@ mode=${1:-run}
 shift || true
 
 packages=(build-essential cmake ninja-build pkg-config python3 python3-glad
-          libglfw3-dev libglm-dev libimgui-dev libstb-dev
+          libglfw3-dev libglm-dev libimgui-dev libtinyobjloader-dev libstb-dev
           libegl-dev libgl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri
           libgtest-dev libcli11-dev nlohmann-json3-dev libembree-dev
           glslang-tools python3-matplotlib xvfb xauth)
