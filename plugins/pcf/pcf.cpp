@@ -37,12 +37,13 @@ constexpr ParamDesc kParams[] = {
      "Each tap is the texture unit's 2x2 bilinear comparison, which removes the banding of the plain box "
      "at almost no cost (seed 000 figure 3.11c against 3.11b). Off shows the n^2 + 1 discrete shades and "
      "the texel steps.", nullptr},
-    {"sampling", "sampling", ParamType::Enum, 0, 1, 1, "",
+    {"sampling", "sampling", ParamType::Enum, 0, 1, 0, "",
      "How the n x n taps are evaluated; both give the same shadow. taps: n^2 texture lookups. gather: the "
      "texels the taps read, fetched four at a time with textureGather and weighted as the taps weight them "
      "(Castano 2013), about (n + 1)^2 / 4 lookups (36 instead of 121 at 11 x 11); with the cone bias the "
-     "comparisons move from the texture unit into the shader. Needs offset scale 1 (neighbouring taps "
-     "sharing texels); at other spacings the taps are used.", "taps|gather"},
+     "comparisons move from the texture unit into the shader, and on an H200 that made gather 1.3-1.5x "
+     "slower than the taps (docs/results/h200-2026-12-01), hence taps by default. Needs offset scale 1 "
+     "(neighbouring taps sharing texels); at other spacings the taps are used.", "taps|gather"},
     kit::coneBiasParam(),
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
