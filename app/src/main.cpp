@@ -248,6 +248,7 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         ReferenceOptions options;
         options.mode = modes.front();
         options.samplesPerPixel = samples;
+        options.adaptive = true;   // as eval and bench: all the rays only where a penumbra may be
         Evaluation evaluation;
         if (!app.evaluate(options, evaluation, error)) return fail(error, kExitFailure);
         image = view == "error" ? evaluation.heatmap()
@@ -459,9 +460,9 @@ int run(int argc, char** argv) {
                        "lit | visibility | error (heatmap vs the reference) | reference | a debug image (e.g. 'shadow map')");
     render->add_option("--frames", renderFrames, "frames to render before saving (default 3)")->check(CLI::Range(1, 10000));
     std::string reference = "auto";
-    int referenceSamples = 64;
+    int referenceSamples = BenchSpec{}.referenceSamples;
     render->add_option("--reference", reference, "--view error/reference: hard | soft (default hard)");
-    render->add_option("--samples", referenceSamples, "soft reference: rays per pixel (default 64)")->check(CLI::Range(1, 4096));
+    render->add_option("--samples", referenceSamples, "soft reference: rays per pixel, traced adaptively (default 1024)")->check(CLI::Range(1, 4096));
 
     auto* bench = cli.add_subcommand("bench", "measure sweeps of techniques, scenes and parameters into CSV or JSON");
     BenchSpec benchSpec;
