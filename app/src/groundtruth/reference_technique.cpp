@@ -15,8 +15,9 @@ const ParamDesc kParams[] = {
     {"mode", "mode", ParamType::Enum, 0, 1, 0, "",
      "hard: one shadow ray to the light's centre per pixel. soft: stratified rays over the light's area "
      "(its size in the scene), the visible fraction of the emitter.", "hard|soft"},
-    {"samples", "samples per pixel", ParamType::Int, 1, 1024, 64, "",
-     "Soft mode: rays per pixel over the light's area. Fewer is faster and noisier.", nullptr},
+    {"samples", "samples per pixel", ParamType::Int, 1, 4096, 1024, "",
+     "Soft mode: rays per pixel over the light's area, traced adaptively (a first batch everywhere, all "
+     "of them only where a penumbra may be; docs/benchmarks.md). Fewer is faster and noisier.", nullptr},
     {"transmission", "coloured transmission", ParamType::Bool, 0, 1, 0, "",
      "Multiply the transmission of every translucent surface a shadow ray crosses (coloured shadows); "
      "off, every caster blocks.", nullptr},
@@ -45,6 +46,7 @@ ReferenceOptions referenceOptions(const ParamValues& params) {
     ReferenceOptions options;
     options.mode = params.asInt(kMode) == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
     options.samplesPerPixel = std::max(params.asInt(kSamples), 1);
+    options.adaptive = true;
     options.transmission = params.asBool(kTransmission);
     return options;
 }
