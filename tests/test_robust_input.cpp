@@ -60,16 +60,7 @@ private:
     fs::path path_;
 };
 
-template <typename Load>
-std::string sceneErrorOf(Load load) {
-    try {
-        load();
-    } catch (const SceneError& error) {
-        return error.what();
-    }
-    ADD_FAILURE() << "no SceneError thrown";
-    return "";
-}
+using test::sceneErrorOf;
 
 std::string parseError(const std::string& json) {
     return sceneErrorOf([&] { parseScene(json, "bad.json", fs::current_path()); });

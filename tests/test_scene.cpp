@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/scene.h"
+#include "test_support.h"
 
 namespace shadowlab {
 namespace {
@@ -46,17 +47,7 @@ private:
     fs::path path_;
 };
 
-// The message of the SceneError `load` throws ("" and a test failure when it throws none).
-template <typename Load>
-std::string sceneErrorOf(Load load) {
-    try {
-        load();
-    } catch (const SceneError& error) {
-        return error.what();
-    }
-    ADD_FAILURE() << "no SceneError thrown";
-    return "";
-}
+using test::sceneErrorOf;
 
 #define EXPECT_MENTIONS(message, part) EXPECT_NE((message).find(part), std::string::npos) << (message)
 

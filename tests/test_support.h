@@ -10,6 +10,18 @@
 
 namespace shadowlab::test {
 
+// The message of the SceneError `load` throws ("" and a test failure when it throws none).
+template <typename Load>
+std::string sceneErrorOf(Load load) {
+    try {
+        load();
+    } catch (const SceneError& error) {
+        return error.what();
+    }
+    ADD_FAILURE() << "no SceneError thrown";
+    return "";
+}
+
 // Headless App on OSMesa with the given scene; fails the test (and returns nullptr) otherwise.
 inline std::unique_ptr<App> makeHeadlessApp(const std::string& scene, glm::ivec2 size = {320, 240},
                                             std::optional<glm::vec3> lightDirection = std::nullopt) {
