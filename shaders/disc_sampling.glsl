@@ -90,9 +90,10 @@ bool quadAll(bool v) {
 //
 // With `quadCoherent` (a uniform; call in uniform control flow then) the decision is taken per 2x2
 // quad: a quad stops only when every pixel's ring agrees (pixels with `skip`, outside the map,
-// count as agreeing). GPUs shade quads together, and a warp runs as long as its slowest pixel,
-// so per-pixel early outs that differ inside a quad save nothing there and add divergence; seed
-// 000 measured its adaptive PCF on hardware that branched per pixel block, too.
+// count as agreeing). GPUs shade quads together and a warp runs as long as its slowest pixel, so
+// per-pixel early outs that differ inside a quad were expected to save nothing there. Measured on
+// an H200 it changes nothing (within 1% on cube, 1-3% slower on dragon-like, slightly lower
+// penumbra error; docs/results/h200-2026-12-01): divergence is not what limits this filter.
 float adaptiveDiscPcf(sampler3D offsets, ivec2 pixel, int n, vec3 coord, vec2 radiusUv, float rimBias, bool quadCoherent,
                       bool skip, out bool earlyOut) {
     int count = n * n;

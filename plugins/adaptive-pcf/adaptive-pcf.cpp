@@ -44,8 +44,9 @@ constexpr ParamDesc kParams[] = {
      nullptr},
     {"coherent", "early out per 2x2 quad", ParamType::Bool, 0, 1, 1, "",
      "Take the early-out decision per 2x2 pixel quad: the quad stops only when all four rings agree. A GPU "
-     "shades quads (and warps) together, so a pixel that stops alone next to one that continues saves "
-     "nothing and adds divergence; off gives seed 000's per-pixel decision.", nullptr},
+     "shades quads (and warps) together, so a pixel that stops alone next to one that continues should save "
+     "nothing; measured on an H200 it made no difference in speed and lowered the penumbra error slightly. "
+     "Off gives seed 000's per-pixel decision.", nullptr},
     {"count_early_outs", "count early outs", ParamType::Bool, 0, 1, 0, "",
      "Count the calls and early outs with two atomic counters and report the early-out rate (statistics). "
      "Every fragment increments the same counters, which costs GPU time: leave it off when timing.",

@@ -29,8 +29,8 @@ std::string jsonValueText(const nlohmann::json& value) {
     return value.is_string() ? value.get<std::string>() : value.dump();
 }
 
-// The technique's own passes: every pass it marked (not the host's frame, main pass, depth
-// pre-pass or camera pre-pass... the camera pre-pass is the technique's cost: it asked for it).
+// The technique's own passes: every pass but the host's frame, main pass and depth pre-pass. The
+// camera pre-pass counts: the technique asked for it.
 bool isTechniquePass(const std::string& pass) { return pass != "frame" && pass != "main" && pass != "depth pre-pass"; }
 
 void addTiming(nlohmann::json& row, const Measurement& m) {
