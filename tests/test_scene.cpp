@@ -645,13 +645,8 @@ TEST(Terrain, FollowTerrainNeedsATerrainBeforeIt) {
     EXPECT_NE(message.find("no terrain"), std::string::npos) << message;
 }
 
-} // namespace
-} // namespace shadowlab
-
 // ---------------------------------------------------------------------------------------------
 // Textures (docs/scene-format.md, "Textures")
-
-namespace {
 
 // A 2 x 1 RGBA PNG: texel 0 red glass of alpha 0.4, texel 1 opaque black.
 fs::path writeTwoTexelPng(const TempDir& dir, const std::string& name, int channels = 4) {
@@ -667,8 +662,6 @@ std::string texturedScene(const std::string& texture) {
     return R"({"materials": {"glass": {"alpha": 0.5, "transmissionTexture": )" + texture +
            R"(}}, "objects": [{"shape": "plane"}, {"shape": "plane", "size": [2, 2], "translate": [0, 1, 0], "material": "glass"}]})";
 }
-
-} // namespace
 
 TEST(SceneTextures, PngFileReplacesAlphaAndTransmission) {
     TempDir dir;
@@ -774,3 +767,6 @@ TEST(BuiltinScenes, Seed001ScenesHaveTheirTranslucentCasters) {
     const Scene teapot = loadScene("teapot-glass");
     EXPECT_GT(teapot.meshes[teapot.objects[1].mesh].indices.size() / 3, 1000u);
 }
+
+} // namespace
+} // namespace shadowlab

@@ -457,7 +457,7 @@ Repeat readRepeat(const json& node, const std::string& path, const ParseContext&
         }
     } else {
         // No grid given: as square as the count allows.
-        repeat.columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(repeat.count))));
+        repeat.columns = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(repeat.count)))));
         repeat.rows = (repeat.count + repeat.columns - 1) / repeat.columns;
     }
     repeat.spacing = fields.vec("spacing", repeat.spacing, Range::NonNegative);
