@@ -298,6 +298,12 @@ void Ui::draw(App& app, UiState& state, float frameSeconds) {
         const char* modes[] = {"hard reference", "soft reference"};
         ImGui::Combo("against", &state.referenceMode, modes, 2);
         if (state.referenceMode == 1) ImGui::SliderInt("rays per pixel", &state.referenceSamples, 4, 256);
+        // Translucent casters: the physical model (1 - a) + a t, or the one the technique declares.
+        const TechniqueInfo* judged = app.techniques().find(state.technique);
+        const TranslucencyModel ownModel = judged ? judged->translucencyModel : TranslucencyModel::Opaque;
+        const std::string ownLabel = std::string("technique's own (") + translucencyModelName(ownModel) + ")";
+        const char* models[] = {"physical", ownLabel.c_str()};
+        ImGui::Combo("translucency model", &state.referenceModel, models, 2);
         helpMarker("Traces the ray-traced reference (Embree, CPU) from the G-buffer of the frame on screen and "
                    "compares the technique's shadow term per pixel. The heatmap shows false shadow (acne, "
                    "over-darkening) in magenta and false light (leaks, peter panning) in green.");
@@ -307,6 +313,7 @@ void Ui::draw(App& app, UiState& state, float frameSeconds) {
             ReferenceOptions options;
             options.mode = state.referenceMode == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
             options.samplesPerPixel = state.referenceSamples;
+            options.model = state.referenceModel == 1 ? ownModel : TranslucencyModel::Physical;
             Evaluation evaluation;
             std::string error;
             if (app.evaluate(options, evaluation, error)) {

@@ -28,6 +28,7 @@ struct UiState {
     // the error-against-milliseconds plot.
     int referenceMode = 0;            // 0 hard, 1 soft
     int referenceSamples = 64;
+    int referenceModel = 0;           // 0 physical, 1 the technique's own translucency model
     std::string accuracyText;
     Image heatmap;                    // shown by the ErrorHeatmap view while the size matches
     bool heatmapUploaded = false;     // in the display texture already (uploaded once, not per frame)
