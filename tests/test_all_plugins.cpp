@@ -39,6 +39,30 @@ TEST(AllPlugins, TheBuildHasThemAll) {
 
 class EveryPlugin : public ::testing::TestWithParam<std::string> {};
 
+// A technique declares what translucent casters do to its shadows (TechniqueDesc::translucencyModel)
+// and eval judges it by that model as well as the physical one, so the declaration must be true:
+// on `teapot-glass` (opaque teapot and pot, translucent squares) its hard shadow is close to the
+// reference of its own model, and, where that model is not the physical one, further from the
+// physical reference (the difference is the model's error, which the reader is shown separately).
+TEST_P(EveryPlugin, IsJudgedByTheTranslucencyModelItDeclares) {
+    const std::string id = GetParam();
+    if (id == "none") GTEST_SKIP() << "casts no shadow at all";
+    TranslucencyModel declared = TranslucencyModel::Opaque;
+    for (const auto& info : scanPlugins(pluginDir()).techniques)
+        if (info.id == id) declared = info.translucencyModel;
+    auto app = test::makeHeadlessApp("teapot-glass", {200, 150});
+    ASSERT_TRUE(app);
+    using Mode = ReferenceOptions::Mode;
+    const double own = test::measureAccuracy(*app, id, {}, Mode::Hard, 1, declared).mae;
+    const double physical = test::measureAccuracy(*app, id, {}, Mode::Hard, 1, TranslucencyModel::Physical).mae;
+    std::printf("%s (%s) on teapot-glass: hard MAE %.4f against its own model, %.4f against the physical one\n",
+                id.c_str(), translucencyModelName(declared), own, physical);
+    EXPECT_LT(own, 0.05);
+    if (declared != TranslucencyModel::Physical) {
+        EXPECT_GT(physical, own + 0.01);   // measured: the glass changes 0.026 of the image on average
+    }
+}
+
 TEST_P(EveryPlugin, ShadowsWhereTheAnalyticShadowIsAndSurvivesEveryParameterRange) {
     auto app = test::makeHeadlessApp("cube", {320, 240});
     ASSERT_TRUE(app);

@@ -126,13 +126,15 @@ inline GroundClassification classifyGround(App& app) {
 // reference and the accuracy. Tests that compare two techniques' shadow terms use this rather
 // than the visibility target.
 inline Evaluation evaluateTechnique(App& app, const std::string& technique, const std::vector<std::string>& sets,
-                                    ReferenceOptions::Mode mode, int samples = 32) {
+                                    ReferenceOptions::Mode mode, int samples = 32,
+                                    TranslucencyModel model = TranslucencyModel::Opaque) {
     std::string error;
     EXPECT_TRUE(app.applyAssignments(sets, technique, error)) << error;
     for (int frame = 0; frame < 2; ++frame) EXPECT_TRUE(app.renderFrame(technique, error)) << error;
     ReferenceOptions options;
     options.mode = mode;
     options.samplesPerPixel = samples;
+    options.model = model;
     Evaluation evaluation;
     EXPECT_TRUE(app.evaluate(options, evaluation, error)) << error;
     return evaluation;
@@ -140,8 +142,9 @@ inline Evaluation evaluateTechnique(App& app, const std::string& technique, cons
 
 // Accuracy of `technique` (after `sets`) against the reference of the given mode, on one frame.
 inline AccuracyMetrics measureAccuracy(App& app, const std::string& technique, const std::vector<std::string>& sets,
-                                       ReferenceOptions::Mode mode, int samples = 32) {
-    return evaluateTechnique(app, technique, sets, mode, samples).metrics;
+                                       ReferenceOptions::Mode mode, int samples = 32,
+                                       TranslucencyModel model = TranslucencyModel::Opaque) {
+    return evaluateTechnique(app, technique, sets, mode, samples, model).metrics;
 }
 
 } // namespace shadowlab::test

@@ -77,7 +77,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "all agree the pixel is fully lit or fully shadowed and the rest is skipped, so only penumbra pixels "
                    "pay for the whole kernel (count early outs to see the rate). The radius sets the penumbra width, the same "
                    "everywhere: filtering, not a physically soft shadow.",
-     .shadowGlsl = "adaptive-pcf.glsl"},
+     .shadowGlsl = "adaptive-pcf.glsl",
+     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
 
 // Counts of the main pass (shadowTerm calls, early outs) in a ring of small atomic-counter buffers,

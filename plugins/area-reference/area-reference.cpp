@@ -57,7 +57,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "overlapping casters combine correctly. Slow by design (N shadow passes per frame): it is the target "
                    "that single-map techniques such as PCSS approximate. Few samples show banding.",
      .shadowGlsl = "area-reference.glsl",
-     .flags = kTechniqueNeedsCameraPrepass},
+     .flags = kTechniqueNeedsCameraPrepass,
+     .translucencyModel = TranslucencyModel::Ignore},   // its maps hold opaque casters only
     kParams);
 
 // Van der Corput radical inverse in base 2: the second Hammersley coordinate.

@@ -44,7 +44,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "with one channel. Cheaper than VSM and free of its overlap light bleeding, but shadows leak light "
                    "where receiver and occluder nearly touch (contact shadows fade in; raise c) and the clamp makes "
                    "penumbrae one-sided.",
-     .shadowGlsl = "esm.glsl"},
+     .shadowGlsl = "esm.glsl",
+     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
 
 class ExponentialShadowMaps final : public kit::MomentTechnique<shared::esm::EsmUniforms> {

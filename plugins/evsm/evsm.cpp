@@ -58,7 +58,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "the depth differences behind an occluder, so the light that bleeds through overlapping occluders "
                    "in VSM mostly disappears while the map still blurs and mipmaps like a texture. Costs four 32-bit "
                    "channels per texel; exponents are capped by float range.",
-     .shadowGlsl = "evsm.glsl"},
+     .shadowGlsl = "evsm.glsl",
+     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
 
 class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<shared::evsm::EvsmUniforms> {

@@ -60,7 +60,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "4MSM): its share in front of the point is the shadow. Four moments describe overlapping occluders "
                    "far better than VSM's two, so light bleeding mostly disappears, and an optimised quantisation "
                    "lets all four fit in 64 bits per texel. Compare with vsm on the 'overlap' scene.",
-     .shadowGlsl = "msm.glsl"},
+     .shadowGlsl = "msm.glsl",
+     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
 
 class MomentShadowMapping final : public kit::MomentTechnique<shared::msm::MsmUniforms> {

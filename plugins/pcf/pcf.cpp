@@ -69,7 +69,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "banding. Sampling by gather reads the same texels four at a time (Castano 2013) for the "
                     "same result (with the cone bias, a little lighter at contacts) at about a quarter of the lookups. The ramp has the same width everywhere: this is anti-aliasing, not a physically soft "
                     "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause.",
-     .shadowGlsl = "pcf.glsl"},
+     .shadowGlsl = "pcf.glsl",
+     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
 
 class PercentageCloserFiltering final : public kit::TechniqueBase {

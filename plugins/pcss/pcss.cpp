@@ -83,7 +83,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "and then filters with a kernel of that width (PCF). Shadows are hard where a caster touches the "
                    "receiver and soften with distance (contact hardening). The light size comes from the scene "
                    "(--light-size). Plausible rather than correct: overlapping blockers at different depths are averaged.",
-     .shadowGlsl = "pcss.glsl"},
+     .shadowGlsl = "pcss.glsl",
+     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
 
 class PercentageCloserSoftShadows final : public kit::TechniqueBase {

@@ -42,7 +42,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "one extra pass, and shows the classic artefacts: acne (self-shadowing from depth quantisation; "
                     "cured by bias), peter panning (too much bias) and blocky edges (limited resolution). Try a low "
                     "light and zero bias.",
-     .shadowGlsl = "shadowmap.glsl"},
+     .shadowGlsl = "shadowmap.glsl",
+     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
 
 class ShadowMapping final : public kit::TechniqueBase {

@@ -55,7 +55,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "depths behind it as its visibility (seed 000 eq. 3.13-3.15). Smooth, antialiased edges for one "
                    "lookup and a cheap separable blur, but where occluders overlap at different depths the bound is "
                    "loose and light bleeds through (try the 'overlap' scene, then raise the light-bleeding reduction).",
-     .shadowGlsl = "vsm.glsl"},
+     .shadowGlsl = "vsm.glsl",
+     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
 
 class VarianceShadowMaps final : public kit::MomentTechnique<shared::vsm::VsmUniforms> {
