@@ -33,6 +33,7 @@ except ImportError:
 ROOT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
 TOOLS = os.path.join(ROOT, "tools")
 RESULTS = os.path.join(ROOT, "docs", "results", "h100-2026-11-25")
+H200 = os.path.join(ROOT, "docs", "results", "h200-2026-12-01")   # the honest-measurement run (issue 10)
 sys.path.insert(0, TOOLS)
 import results  # noqa: E402
 import charts  # noqa: E402
@@ -478,6 +479,21 @@ class Fixture(unittest.TestCase):
             self.assertEqual(f.read().strip(), committed)
         for name in ("table41.md", "ratios.md"):
             self.assertGreater(os.path.getsize(os.path.join(out, "all", name)), 1000)
+
+    def test_fast_pass_sections_reproduce_the_committed_ratios(self):
+        # ratios.md of the H200 run is this tool's output on its three files, fast-pass tables included.
+        inputs = [os.path.join(H200, name) for name in ("default.json", "seed000.json", "fast-passes.json")]
+        rc, text = call(ratios, *inputs)
+        self.assertEqual(rc, 0)
+        for heading in ("## Moment techniques: their passes against the depth-only floor",
+                        "## PCF: the gather against the tap loop", "## Host depth pre-pass on forest",
+                        "PCSS's sample grids on forest"):
+            self.assertIn(heading, text)
+        self.assertNotIn("| depth-floor |", text.split("## Moment techniques")[1].split("## PCF")[0])
+        self.assertIn("| pcf | 10.140 | 5.188 | 1.63x | 1.549 | 1.182 |", text)   # the pre-pass on forest
+        self.assertIn("| cube | 11 | false | true | 6.392 | 5.559 | 0.87x |", text)  # gather against taps
+        with open(os.path.join(H200, "ratios.md")) as f:
+            self.assertEqual(f.read(), text)
 
 
 if __name__ == "__main__":

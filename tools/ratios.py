@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The ratios the project reports from GPU runs (issues 5, 6 and 10), as Markdown.
 
-    python3 tools/ratios.py default.json seed000.json [--out DIR]
+    python3 tools/ratios.py default.json seed000.json fast-passes.json [--out DIR]
 
 Inputs: results of `shadowlab bench` (JSON or CSV), typically `--spec assets/bench/default.json`
 and `--spec assets/bench/seed000.json`. Each file is one run: every ratio compares rows of one
@@ -12,7 +12,9 @@ to a table, the table gains a `file` column.
 Sections (each appears when its rows exist): the shadow pass against the depth-only floor; the
 frame-time overhead of shadowmap over none; host CPU time per frame; time against triangle count
 (every sweep of one scene's `scene.*` parameter with none and shadowmap rows); adaptive PCF and
-VSM against PCF; every technique at the Fig. 4.15 settings; PCSS against light size.
+VSM against PCF; every technique at the Fig. 4.15 settings; PCSS against light size; issue 10's
+fast passes (fast-passes.json: moment passes against the depth floor, PCF gather against taps,
+the host depth pre-pass on forest, PCSS's sample grids).
 
 Columns beyond frame time: `technique passes ms` (technique_passes_ms, the technique's own passes
 summed), `shadow term ms` (shadow_term_ms: the main pass with the technique minus the main pass
@@ -267,6 +269,77 @@ def section_light_size(runs):
     return out + t.lines(), [t]
 
 
+def section_fast_passes(runs):
+    """Issue 10's targets (assets/bench/fast-passes.json), each a ratio within one run: moment
+    techniques' passes against the depth floor (target at most 3x), PCF's gather against its taps
+    (shadow term at 11x11, target at most 0.4x), the host depth pre-pass on forest (every filtered
+    technique's frame at most 2x shadowmap's) and what PCSS's sample counts cost there."""
+    out, tables = [], []
+    moments = Table(["technique", "scene", "resolution", "blur", "technique passes ms", "depth floor ms",
+                     "passes / floor", "soft MAE"], ["---", "---", "---:", "---", "---:", "---:", "---:", "---:"])
+    for source, s in runs.items():
+        for r in results.techniques(results.where(s, spec="moment-blur"), exclude=("depth-floor",)):
+            moments.add(source, [r["technique"], r["scene"], results.canonical(r.get("param.resolution")),
+                                 r.get("param.blur", ""), ms(r, "technique_passes_ms"), ms(r, "floor_depth_ms"),
+                                 ratio(r, "technique_passes_ms", "floor_depth_ms"), f"{r.get('soft_mae', NAN):.5f}"])
+    if moments.rows:
+        out += ["\n## Moment techniques: their passes against the depth-only floor (5-tap blur; target at most 3x)\n"]
+        out += moments.lines()
+    tables.append(moments)
+
+    gather = Table(["scene", "kernel", "bilinear taps", "cone bias", "taps term ms", "gather term ms", "gather / taps",
+                    "taps soft MAE", "gather soft MAE"],
+                   ["---", "---:", "---", "---", "---:", "---:", "---:", "---:", "---:"])
+    for source, s in runs.items():
+        rows = results.where(s, spec="pcf-gather") + results.where(s, spec="pcf-gather-bilinear")
+        for r in rows:
+            if results.canonical(r.get("param.sampling")) != "taps":
+                continue
+            keys = {k: r.get(k) for k in ("scene", "param.kernel", "param.cone_bias", "param.hardware_filter")}
+            g = results.first([x for x in rows if results.canonical(x.get("param.sampling")) == "gather"], **keys)
+            if g is None:
+                continue
+            term_ratio = NAN
+            if results.number(r.get("shadow_term_ms")) and results.number(g.get("shadow_term_ms")) is not None:
+                term_ratio = g["shadow_term_ms"] / r["shadow_term_ms"]
+            gather.add(source, [r["scene"], results.canonical(r.get("param.kernel")),
+                                results.canonical(r.get("param.hardware_filter")), results.canonical(r.get("param.cone_bias")),
+                                ms(r, "shadow_term_ms"), ms(g, "shadow_term_ms"), f"{term_ratio:.2f}x",
+                                f"{r.get('soft_mae', NAN):.5f}", f"{g.get('soft_mae', NAN):.5f}"])
+    if gather.rows:
+        out += ["\n## PCF: the gather against the tap loop, shadow term (2048 map, 1920x1080; target at most 0.4x at 11x11)\n"]
+        out += gather.lines()
+    tables.append(gather)
+
+    prepass = Table(["technique", "frame ms without", "frame ms with", "with / shadowmap with", "shadow term ms with",
+                     "pre-pass ms"], ["---", "---:", "---:", "---:", "---:", "---:"])
+    samples = Table(["search grid", "filter grid", "frame ms", "shadow term ms", "frame / shadowmap with pre-pass"],
+                    ["---:", "---:", "---:", "---:", "---:"])
+    for source, s in runs.items():
+        rows = results.where(s, spec="depth-prepass")
+        base = results.first(rows, technique="shadowmap", depth_prepass=1)
+        for technique in dict.fromkeys(r["technique"] for r in rows):
+            without = results.first(rows, technique=technique, depth_prepass=0)
+            with_ = results.first(rows, technique=technique, depth_prepass=1)
+            if without is None or with_ is None:
+                continue
+            relative = f"{with_['frame_ms'] / base['frame_ms']:.2f}x" if base else "n/a"
+            prepass.add(source, [technique, ms(without, "frame_ms"), ms(with_, "frame_ms"), relative,
+                                 ms(with_, "shadow_term_ms"), ms(with_, "depth_prepass_ms")])
+        for r in results.where(s, spec="pcss-samples"):
+            relative = f"{r['frame_ms'] / base['frame_ms']:.2f}x" if base else "n/a"
+            samples.add(source, [results.canonical(r.get("param.search_grid")), results.canonical(r.get("param.filter_grid")),
+                                 ms(r, "frame_ms"), ms(r, "shadow_term_ms"), relative])
+    if prepass.rows:
+        out += ["\n## Host depth pre-pass on forest (5000 trees, 1920x1080; target: every filtered technique at most 2x shadowmap with it)\n"]
+        out += prepass.lines()
+    if samples.rows:
+        out += ["\nPCSS's sample grids on forest with the pre-pass (its defaults: search 6, filter 8):\n"]
+        out += samples.lines()
+    tables += [prepass, samples]
+    return out, tables
+
+
 def report(rows):
     """The Markdown text of every section for the rows (results.load)."""
     runs = results.by_source(rows)
@@ -285,7 +358,7 @@ def report(rows):
                      "frame, so their frame and main-pass times include it.\n")
     body, tables = [], []
     for section in (section_depth_floor, section_overhead, section_cpu, section_triangles, section_kernels,
-                    section_fig415, section_light_size):
+                    section_fig415, section_light_size, section_fast_passes):
         text, made = section(runs)
         if any(t.rows for t in made):
             body += text

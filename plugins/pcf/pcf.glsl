@@ -78,8 +78,9 @@ float pcfTaps(vec3 coord, float slope) {
 // turns away from the light; the block's centroid instead, not conservative, was further from the
 // taps and darker at contacts on llvmpipe: tests/test_soft_filtering.cpp), where an exact
 // per-tap comparison would need raw depths and up to 16 shader comparisons per block. On an H200
-// that exact version was 1.3-1.5x slower than the taps (docs/results/h200-2026-12-01); this one
-// needs four weights and one gather per block.
+// that exact version was 1.3-1.5x slower than the taps (build c84cf6c); this one needs four weights
+// and one gather per block, and measured 0.84-0.88x the taps' shadow term at 11 x 11 and 1.09-1.20x
+// at 5 x 5 (docs/results/h200-2026-12-01): there each gather costs about three taps.
 
 // Weight of texel k of the kernel along one axis (nearest taps: f = 0 and k < n).
 float texelWeight(int k, float f) {
