@@ -8,6 +8,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "../plugins/lispsm/lispsm_warp.h"
 #include "camera.h"
 #include "render/light_space.h"
 #include "shadowlab/kit/focus.h"
@@ -378,4 +379,73 @@ TEST(FocusBody, SpotLightBodyIsCutToItsConeAndCropped) {
         EXPECT_TRUE(kit::contains(focused.body, {5, 0.5f, -5}, 1e-3f));
         EXPECT_TRUE(kit::contains(focused.body, {2, 9.2f, -4.4f}, 1e-3f));   // 0.6 of the way
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// LiSPSM (plugins/lispsm/lispsm_warp.h)
+
+// Eq. 8.13 as re-derived, d / (sqrt(z1 / z0) - 1), is eq. 8.11 for z0 = -z_n, z1 = -(z_n + d sin g)
+// and eq. 8.10 for g = 90 degrees.
+TEST(Lispsm, NOptGeneralFormulaReducesToEquations8_11And8_10) {
+    for (const double zn : {0.1, 0.5, 2.0})
+        for (const double d : {5.0, 70.0, 300.0})
+            for (const double sinGamma : {0.2, 0.7, 1.0}) {
+                const double general = lispsm::nOpt(d, -zn, -(zn + d * sinGamma));
+                EXPECT_NEAR(general, lispsm::nOptDirectional(zn, d, sinGamma), 1e-9 * general);
+                EXPECT_NEAR(general, (zn + std::sqrt(zn * (zn + d * sinGamma))) / sinGamma, 1e-9 * general);
+            }
+    const double zn = 0.1, zf = 70.0;
+    EXPECT_NEAR(lispsm::nOpt(zf - zn, -zn, -zf), zn + std::sqrt(zn * zf), 1e-9);   // eq. 8.10
+}
+
+// The seed's optimal case (sec. 8.2.1): view perpendicular to a directional light, the frustum in
+// the scene. B spans z_n..z_f along the view, so n = z_n + sqrt(z_n z_f) (eq. 8.10); every corner
+// of B lands in the map; light rays stay rays of the map (same texel, growing depth); and the
+// perspective error dp/ds of eq. 8.1 (re-derived eq. 8.9: 1 / (z ds/dz)) is the same at the near
+// and the far plane, which is what n_opt is chosen for, while the uniform map's is z_f / z_n
+// times larger at the near plane.
+TEST(Lispsm, OptimalCaseWarpMatchesEquation8_10AndEqualisesTheError) {
+    const float zn = 1.0f, zf = 8.0f;
+    const CameraInfo camera = cameraLookingDownMinusZ({0, 5, 0}, zn, zf);
+    const LightInfo light = directional({0, -1, 0});
+    const kit::ConvexBody body = kit::focusBody(camera, light, kScene, LightSpace{});
+    const auto warp = lispsm::directionalWarp(body.vertices(), light.direction, camera, zn, 1.0);
+    ASSERT_TRUE(warp);
+    EXPECT_NEAR(warp->sinGamma, 1.0, 1e-6);
+    EXPECT_NEAR(warp->d, zf - zn, 1e-3);
+    EXPECT_NEAR(warp->n, zn + std::sqrt(zn * zf), 1e-3);
+    auto ndc = [&](glm::vec3 p) {
+        const glm::vec4 c = warp->viewProjection * glm::vec4(p, 1.0f);
+        EXPECT_GT(c.w, 0.0f);
+        return glm::vec3(c) / c.w;
+    };
+    for (const glm::vec3& corner : body.vertices()) {
+        const glm::vec3 q = ndc(corner);
+        EXPECT_LE(glm::max(std::abs(q.x), std::max(std::abs(q.y), std::abs(q.z))), 1.0f + 1e-4f);
+    }
+    const glm::vec3 top = ndc({1.0f, 12.0f, -4.0f}), bottom = ndc({1.0f, 2.0f, -4.0f});
+    EXPECT_NEAR(top.x, bottom.x, 1e-5f);
+    EXPECT_NEAR(top.y, bottom.y, 1e-5f);
+    EXPECT_LT(top.z, bottom.z) << "nearer the light, smaller depth";
+    // ds/dz along the view axis on the ground under it (s: the map coordinate along the warp).
+    auto dsdz = [&](float z) {
+        const float h = 1e-3f * z;
+        return (ndc({0, 0, -(z + h)}).y - ndc({0, 0, -(z - h)}).y) / (2.0f * h);
+    };
+    const double nearError = 1.0 / (zn * dsdz(zn)), farError = 1.0 / (zf * dsdz(zf));
+    EXPECT_NEAR(nearError / farError, 1.0, 1e-2) << "n_opt equalises the error at z_n and z_f";
+    EXPECT_LT(nearError, 0.5 * (zf / zn) * farError) << "far below the uniform map's near/far ratio of z_f / z_n";
+    // A smaller n warps harder: the near plane gets more of the map.
+    const auto harder = lispsm::directionalWarp(body.vertices(), light.direction, camera, zn, 0.3);
+    ASSERT_TRUE(harder);
+    EXPECT_NEAR(harder->n, 0.3 * warp->n, 1e-3);
+}
+
+// Duelling frusta (Fig. 8.11): looking along the light there is nothing to warp.
+TEST(Lispsm, NoWarpWhenViewAndLightAreParallel) {
+    const CameraInfo camera = cameraLookingDownMinusZ({0, 5, 0}, 1.0f, 8.0f);
+    const LightInfo light = directional({0.01f, 0.0f, -1.0f});
+    const kit::ConvexBody body = kit::focusBody(camera, light, kScene, LightSpace{});
+    EXPECT_FALSE(lispsm::directionalWarp(body.vertices(), light.direction, camera, 1.0f, 1.0));
+    EXPECT_FALSE(lispsm::directionalWarp({}, glm::vec3(0, -1, 0), camera, 1.0f, 1.0)) << "no body";
 }

@@ -1,7 +1,8 @@
 // The `fit` and `snap` parameters in the techniques that have them (every single-map technique:
 // found by the parameter, so a new one is tested the day it appears): the analytic shadow of
 // `cube` and a spot light still come out right with the map cropped to the view, and on
-// forest-002 (seed 002 Fig. 10.1) focusing lowers the error where the viewer looks closest.
+// forest-002 (seed 002 Fig. 10.1) focusing (and LiSPSM's warp) lowers the error where the viewer
+// looks closest.
 #include <gtest/gtest.h>
 
 #include "plugin/plugin_library.h"
@@ -96,8 +97,12 @@ TEST(Forest002, FocusingLowersTheNearThirdError) {
         return m.maeByViewDepth[0];
     };
     const double scene = nearThird("scene"), frustum = nearThird("frustum"), focus = nearThird("focus-body");
-    std::printf("forest-002 near-third MAE: scene %.4f, frustum %.4f, focus-body %.4f\n", scene, frustum, focus);
+    // LiSPSM (seed 002 ch. 8-9): B warped towards the viewer, same map size, back faces by default.
+    const AccuracyMetrics warped = test::measureAccuracy(*app, "lispsm", {"resolution=2048"}, ReferenceOptions::Mode::Hard);
+    std::printf("forest-002 near-third MAE: scene %.4f, frustum %.4f, focus-body %.4f, lispsm %.4f\n", scene, frustum,
+                focus, warped.maeByViewDepth[0]);
     EXPECT_LT(frustum, 0.8 * scene);
     EXPECT_LT(focus, 0.8 * scene);
     EXPECT_LE(focus, frustum * 1.05) << "B is no larger than the frustum's crop";
+    EXPECT_LT(warped.maeByViewDepth[0], 0.8 * scene);
 }
