@@ -36,6 +36,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace shadowlab::kit {
@@ -165,6 +166,31 @@ inline std::vector<glm::vec3> outwardQuad(glm::vec3 a, glm::vec3 b, glm::vec3 c,
     std::vector<glm::vec3> quad{a, b, c, d};
     if (glm::dot(areaNormal(quad), centroid(quad) - inside) < 0.0f) std::reverse(quad.begin(), quad.end());
     return quad;
+}
+
+// What hull and extrusion share: the faces `facing` marks are dropped, or with `moveBy` moved by it;
+// each of their edges on the outline to the other faces gets the face bridge(a, b).
+template <class Bridge>
+void replaceFacingFaces(ConvexBody& body, const std::vector<bool>& facing, float tolerance, Bridge bridge,
+                        std::optional<glm::vec3> moveBy = std::nullopt) {
+    ConvexBody result;
+    for (size_t f = 0; f < body.faces.size(); ++f) {
+        const auto& face = body.faces[f];
+        if (!facing[f]) {
+            result.faces.push_back(face);
+            continue;
+        }
+        for (size_t i = 0; i < face.size(); ++i) {
+            const glm::vec3 a = face[i], b = face[(i + 1) % face.size()];
+            if (onOutline(body, facing, a, b, tolerance)) result.faces.push_back(bridge(a, b));
+        }
+        if (moveBy) {
+            std::vector<glm::vec3> moved;
+            for (const glm::vec3& p : face) moved.push_back(p + *moveBy);
+            result.faces.push_back(std::move(moved));
+        }
+    }
+    body = std::move(result);
 }
 
 // A hexahedron from its 8 corners in boundsCorners() order (a box, or a frustum's corners).
@@ -316,20 +342,10 @@ inline void hullWithPoint(ConvexBody& body, glm::vec3 point) {
         any = any || facing[f];
     }
     if (!any) return;
-    ConvexBody result;
-    for (size_t f = 0; f < body.faces.size(); ++f) {
-        const auto& face = body.faces[f];
-        if (!facing[f]) {
-            result.faces.push_back(face);
-            continue;
-        }
-        // The neighbour across the outline keeps (b, a); the triangle runs (a, b, point).
-        for (size_t i = 0; i < face.size(); ++i) {
-            const glm::vec3 a = face[i], b = face[(i + 1) % face.size()];
-            if (onOutline(body, facing, a, b, tolerance)) result.faces.push_back({a, b, point});
-        }
-    }
-    body = std::move(result);
+    // The neighbour across the outline keeps (b, a); the triangle runs (a, b, point).
+    replaceFacingFaces(body, facing, tolerance, [&](glm::vec3 a, glm::vec3 b) {
+        return std::vector<glm::vec3>{a, b, point};
+    });
 }
 
 // convexHullWithDirection (seed 002 sec. 9.2.2): the body swept along `direction` (towards the
@@ -344,23 +360,10 @@ inline void extrude(ConvexBody& body, glm::vec3 direction, float distance) {
     std::vector<bool> facing(body.faces.size());
     for (size_t f = 0; f < body.faces.size(); ++f)
         facing[f] = glm::dot(glm::normalize(areaNormal(body.faces[f])), offset) > 1e-6f * distance;
-    ConvexBody result;
-    for (size_t f = 0; f < body.faces.size(); ++f) {
-        const auto& face = body.faces[f];
-        if (!facing[f]) {
-            result.faces.push_back(face);
-            continue;
-        }
-        std::vector<glm::vec3> moved;
-        for (size_t i = 0; i < face.size(); ++i) {
-            const glm::vec3 a = face[i], b = face[(i + 1) % face.size()];
-            moved.push_back(a + offset);
-            // The neighbour keeps (b, a), the moved face has (a', b'): the quad runs a, b, b', a'.
-            if (onOutline(body, facing, a, b, tolerance)) result.faces.push_back({a, b, b + offset, a + offset});
-        }
-        result.faces.push_back(std::move(moved));
-    }
-    body = std::move(result);
+    // The neighbour keeps (b, a), the moved face has (a', b'): the quad runs a, b, b', a'.
+    replaceFacingFaces(
+        body, facing, tolerance,
+        [&](glm::vec3 a, glm::vec3 b) { return std::vector<glm::vec3>{a, b, b + offset, a + offset}; }, offset);
 }
 
 // Whether p lies in the body (within `tolerance` of it).
