@@ -171,3 +171,28 @@ TEST(Metrics, NoiseEnergySeparatesNoiseFromSmoothError) {
     EXPECT_NEAR(m.noiseEnergy, 0.2, 1e-6);
     EXPECT_NEAR(m.techniquePenumbraFraction, 1.0, 1e-12) << "every technique value is between 0.02 and 0.98";
 }
+
+// View-depth thirds of [near, far] = [1, 10]: thirds end at 4 and 7. With the camera at the origin
+// looking down -z (view = identity), pixel i of the small case sits at depth 1.5, 3, 4.5, 6, 7.5, 9,
+// 9.9 and 12 (the last excluded by the mask): pixels 0-1 near, 2-3 mid, 4-6 far.
+TEST(Metrics, ErrorByViewDepthThird) {
+    const SmallCase c;
+    const float depths[8] = {1.5f, 3, 4.5f, 6, 7.5f, 9, 9.9f, 12};
+    std::vector<glm::vec4> positions;
+    for (float d : depths) positions.emplace_back(0.3f, -0.2f, -d, 1.0f);
+    AccuracyMetrics m = compareVisibility(c.technique, c.reference, c.mask, c.width, c.height);
+    addViewDepthThirds(m, c.technique, c.reference, c.mask, positions.data(), c.width, c.height, glm::mat4(1.0f), 1.0f, 10.0f);
+    // Errors: 0, 0.8 | 0.6, 0 | 0, 0, 0 (pixel 7's 1.0 is masked out).
+    EXPECT_EQ(m.pixelsByViewDepth[0], 2u);
+    EXPECT_EQ(m.pixelsByViewDepth[1], 2u);
+    EXPECT_EQ(m.pixelsByViewDepth[2], 3u);
+    EXPECT_NEAR(m.maeByViewDepth[0], 0.4, 1e-6);
+    EXPECT_NEAR(m.maeByViewDepth[1], 0.3, 1e-6);
+    EXPECT_NEAR(m.maeByViewDepth[2], 0.0, 1e-6);
+    const nlohmann::json json = nlohmann::json::parse(metricsToJson(m));
+    EXPECT_NEAR(json["maeByViewDepth"][0].get<double>(), 0.4, 1e-6);
+    EXPECT_EQ(json["comparedPixelsByViewDepth"][2].get<size_t>(), 3u);
+    EXPECT_THROW(addViewDepthThirds(m, c.technique, c.reference, c.mask, positions.data(), c.width, c.height,
+                                    glm::mat4(1.0f), 5.0f, 5.0f),
+                 std::invalid_argument);
+}

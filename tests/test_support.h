@@ -120,6 +120,28 @@ inline GroundClassification classifyGround(App& app) {
     return out;
 }
 
+// `visibility` (a frame of `cube`) against the cube's analytic shadow on the ground, pixels within
+// 3 of its edge left out: at least 95% of those inside it dark, 99% of those outside lit.
+inline void expectAnalyticCubeShadow(App& app, const std::vector<glm::vec4>& visibility) {
+    const GroundClassification ground = classifyGround(app);
+    int inside = 0, insideDark = 0, outside = 0, outsideLit = 0;
+    for (int y = 0; y < ground.size.y; ++y)
+        for (int x = 0; x < ground.size.x; ++x) {
+            const size_t i = size_t(y) * size_t(ground.size.x) + size_t(x);
+            if (ground.analytic[i] < 0 || ground.nearBoundary(x, y, 3)) continue;
+            if (ground.analytic[i] == 1) {
+                ++inside;
+                insideDark += visibility[i].r < 0.5f;
+            } else {
+                ++outside;
+                outsideLit += visibility[i].r > 0.5f;
+            }
+        }
+    ASSERT_GT(inside, 50);
+    EXPECT_GE(insideDark, inside * 95 / 100) << "shadowed inside the cube's analytic shadow";
+    EXPECT_GE(outsideLit, outside * 99 / 100) << "lit well outside it";
+}
+
 
 // One frame of `technique` (after `sets`) evaluated against the reference of the given mode:
 // the technique's shadow term per pixel as App::evaluate reads it (Evaluation::technique), the

@@ -401,6 +401,9 @@ bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string
     if (!traceReference(gbuffer, options, out.reference, error, &out.referenceStats)) return false;
     out.traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out.metrics = compareVisibility(out.technique, out.reference, out.mask, size.x, size.y);
+    const CameraInfo camera = camera_.info(size);
+    addViewDepthThirds(out.metrics, out.technique, out.reference, out.mask, positions.data(), size.x, size.y, camera.view,
+                       camera.nearPlane, camera.farPlane);
     out.referenceFloor = out.referenceStats.sampleError.empty()
                              ? 0.0
                              : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);

@@ -340,6 +340,11 @@ int commandEval(const CommonOptions& common, const std::string& reference, int s
                     100.0 * metrics["falseShadowRate"].get<double>(), 100.0 * metrics["falseLightRate"].get<double>(),
                     metrics["maePenumbra"].get<double>(), metrics["maeOutsidePenumbra"].get<double>(),
                     metrics["noiseEnergy"].get<double>(), 100.0 * metrics["comparedFraction"].get<double>());
+        const auto& thirds = metrics["maeByViewDepth"];
+        const auto& thirdPixels = metrics["comparedPixelsByViewDepth"];
+        std::printf("    MAE by view depth (thirds of near..far): near %.4f (%zu px)  mid %.4f (%zu px)  far %.4f (%zu px)\n",
+                    thirds[0].get<double>(), thirdPixels[0].get<size_t>(), thirds[1].get<double>(),
+                    thirdPixels[1].get<size_t>(), thirds[2].get<double>(), thirdPixels[2].get<size_t>());
         if (metrics.contains("reference_floor"))
             std::printf("    soft reference: %d rays per pixel%s (%.1f%% of pixels refined), traced in %.2f s; its own "
                         "penumbra error (floor) %.4f\n",

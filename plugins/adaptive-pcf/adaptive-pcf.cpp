@@ -54,6 +54,8 @@ constexpr ParamDesc kParams[] = {
     kit::coneBiasParam(),
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
+    kit::fitParam(),
+    kit::snapParam(),
 };
 enum : uint32_t {
     kResolution = kit::paramIndex(kParams, "resolution"),
@@ -66,6 +68,8 @@ enum : uint32_t {
     kConeBias = kit::paramIndex(kParams, "cone_bias"),
     kConstantBias = kit::paramIndex(kParams, "constant_bias"),
     kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
+    kFit = kit::paramIndex(kParams, "fit"),
+    kSnap = kit::paramIndex(kParams, "snap"),
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -164,7 +168,8 @@ class AdaptivePcf final : public kit::TechniqueBase {
         counters_.beginFrame();
         map_.render(frame, {.resolution = params.asInt(kResolution),
                             .constantBias = params.asFloat(kConstantBias),
-                            .slopeBias = params.asFloat(kSlopeBias)});
+                            .slopeBias = params.asFloat(kSlopeBias),
+                            .fit = kit::readFit(params, kFit, kSnap)});
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {

@@ -47,6 +47,8 @@ constexpr ParamDesc kParams[] = {
     kit::coneBiasParam(),
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
+    kit::fitParam(),
+    kit::snapParam(),
 };
 enum : uint32_t {
     kResolution = kit::paramIndex(kParams, "resolution"),
@@ -57,6 +59,8 @@ enum : uint32_t {
     kConeBias = kit::paramIndex(kParams, "cone_bias"),
     kConstantBias = kit::paramIndex(kParams, "constant_bias"),
     kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
+    kFit = kit::paramIndex(kParams, "fit"),
+    kSnap = kit::paramIndex(kParams, "snap"),
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -82,7 +86,8 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         map_.render(frame, {.resolution = params.asInt(kResolution),
                             .constantBias = params.asFloat(kConstantBias),
-                            .slopeBias = params.asFloat(kSlopeBias)});
+                            .slopeBias = params.asFloat(kSlopeBias),
+                            .fit = kit::readFit(params, kFit, kSnap)});
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {

@@ -61,6 +61,8 @@ constexpr ParamDesc kParams[] = {
     kit::coneBiasParam(),
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
+    kit::fitParam(),
+    kit::snapParam(),
 };
 enum : uint32_t {
     kResolution = kit::paramIndex(kParams, "resolution"),
@@ -72,6 +74,8 @@ enum : uint32_t {
     kConeBias = kit::paramIndex(kParams, "cone_bias"),
     kConstantBias = kit::paramIndex(kParams, "constant_bias"),
     kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
+    kFit = kit::paramIndex(kParams, "fit"),
+    kSnap = kit::paramIndex(kParams, "snap"),
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -104,7 +108,8 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
         // Raw depths: the blocker search reads them (sampled without comparison).
         map_.render(frame, {.resolution = params.asInt(kResolution),
                             .constantBias = params.asFloat(kConstantBias),
-                            .slopeBias = params.asFloat(kSlopeBias)});
+                            .slopeBias = params.asFloat(kSlopeBias),
+                            .fit = kit::readFit(params, kFit, kSnap)});
         if (params.asInt(kSearchBound) == 1) {
             ensureMinDepth(map_.resolution());
             buildMinDepthMips();

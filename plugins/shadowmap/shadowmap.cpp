@@ -23,6 +23,8 @@ constexpr ParamDesc kParams[] = {
     kit::slopeBiasParam(),
     kit::cullParam(),
     kit::hardwareFilterParam(),
+    kit::fitParam(),
+    kit::snapParam(),
 };
 enum : uint32_t {
     kResolution = kit::paramIndex(kParams, "resolution"),
@@ -31,6 +33,8 @@ enum : uint32_t {
     kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
     kCull = kit::paramIndex(kParams, "cull"),
     kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
+    kFit = kit::paramIndex(kParams, "fit"),
+    kSnap = kit::paramIndex(kParams, "snap"),
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -54,7 +58,8 @@ class ShadowMapping final : public kit::TechniqueBase {
                             .format = kit::depthFormat(params.asInt(kDepthFormat)),
                             .constantBias = params.asFloat(kConstantBias),
                             .slopeBias = params.asFloat(kSlopeBias),
-                            .cull = kit::Cull(params.asInt(kCull))});
+                            .cull = kit::Cull(params.asInt(kCull)),
+                            .fit = kit::readFit(params, kFit, kSnap)});
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {

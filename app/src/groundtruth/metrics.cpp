@@ -135,6 +135,27 @@ AccuracyMetrics compareVisibility(const std::vector<glm::vec3>& technique, const
     return m;
 }
 
+void addViewDepthThirds(AccuracyMetrics& metrics, const std::vector<glm::vec3>& technique,
+                        const std::vector<glm::vec3>& reference, const std::vector<uint8_t>& mask,
+                        const glm::vec4* positions, int width, int height, const glm::mat4& view, float nearPlane,
+                        float farPlane) {
+    checkSizes(technique.size(), reference.size(), mask.size(), width, height, "addViewDepthThirds");
+    if (!(farPlane > nearPlane)) throw std::invalid_argument("addViewDepthThirds: empty depth range");
+    if (!positions && !mask.empty()) throw std::invalid_argument("addViewDepthThirds: no positions");
+    std::array<double, 3> sums{};
+    metrics.pixelsByViewDepth = {};
+    for (size_t i = 0; i < mask.size(); ++i) {
+        if (!mask[i]) continue;
+        const float depth = -(view * glm::vec4(glm::vec3(positions[i]), 1.0f)).z;
+        const int third = std::clamp(int(3.0f * (depth - nearPlane) / (farPlane - nearPlane)), 0, 2);
+        sums[size_t(third)] +=
+            std::abs(static_cast<double>(scalarVisibility(technique[i])) - static_cast<double>(scalarVisibility(reference[i])));
+        ++metrics.pixelsByViewDepth[size_t(third)];
+    }
+    for (size_t k = 0; k < 3; ++k)
+        metrics.maeByViewDepth[k] = metrics.pixelsByViewDepth[k] ? sums[k] / double(metrics.pixelsByViewDepth[k]) : 0.0;
+}
+
 double penumbraMean(const std::vector<float>& values, const std::vector<glm::vec3>& reference,
                     const std::vector<uint8_t>& mask, int width, int height) {
     checkSizes(values.size(), reference.size(), mask.size(), width, height, "penumbraMean");
@@ -184,6 +205,8 @@ std::string metricsToJson(const AccuracyMetrics& m, int indent) {
         {"penumbraPixels", m.penumbraPixels},
         {"techniquePenumbraFraction", m.techniquePenumbraFraction},
         {"noiseEnergy", m.noiseEnergy},
+        {"maeByViewDepth", m.maeByViewDepth},
+        {"comparedPixelsByViewDepth", m.pixelsByViewDepth},
     };
     return json.dump(indent);
 }

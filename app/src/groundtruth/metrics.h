@@ -6,6 +6,7 @@
 // shadow's error should count every channel alike; per-channel errors are reported separately).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -41,6 +42,11 @@ struct AccuracyMetrics {
     double noiseEnergy = 0.0;
     size_t comparedPixels = 0;
     size_t penumbraPixels = 0;
+    // By view depth (addViewDepthThirds): mean |error| and compared pixels in the near, mid and far
+    // thirds of the camera's depth range [near, far]. Perspective aliasing (seed 002 sec. 3.1) shows
+    // as a large near-third error; focusing and warping the map should lower it. Zero until added.
+    std::array<double, 3> maeByViewDepth{};
+    std::array<size_t, 3> pixelsByViewDepth{};
 };
 
 // Penumbra (reference side only): compared pixels with 0.02 < reference < 0.98, plus compared
@@ -49,6 +55,15 @@ struct AccuracyMetrics {
 // Throws std::invalid_argument when an image or the mask is not width * height.
 AccuracyMetrics compareVisibility(const std::vector<glm::vec3>& technique, const std::vector<glm::vec3>& reference,
                                   const std::vector<uint8_t>& mask, int width, int height);
+
+// Fills maeByViewDepth and pixelsByViewDepth: each compared pixel's world position (`positions`,
+// width * height, as the G-buffer holds them) goes to the third of [nearPlane, farPlane] its view
+// depth -(view * p).z falls in (clamped into the first or last). Throws std::invalid_argument when
+// a size is not width * height, or the range is empty.
+void addViewDepthThirds(AccuracyMetrics& metrics, const std::vector<glm::vec3>& technique,
+                        const std::vector<glm::vec3>& reference, const std::vector<uint8_t>& mask,
+                        const glm::vec4* positions, int width, int height, const glm::mat4& view, float nearPlane,
+                        float farPlane);
 
 // Mean of `values` (one per pixel) over the penumbra pixels of `reference`, the same pixels
 // maePenumbra averages over; 0 when there are none. With ReferenceStats::sampleError: the soft

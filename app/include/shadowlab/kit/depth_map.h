@@ -1,16 +1,19 @@
 // A shadow map of depth from the light: the plumbing of shadowmap, pcf, adaptive-pcf and pcss (and
 // of area-reference's per-sample maps). It owns the texture (reallocated only when resolution or
 // format change), the framebuffer, the depth pass (glPolygonOffset bias, face culling) and the
-// block of uniforms its main-pass GLSL reads (depth_map_shared.h). The light space is fitted by the
-// host around the whole scene unless the technique passes its own.
+// block of uniforms its main-pass GLSL reads (depth_map_shared.h). The light space is the host's
+// fit around the whole scene, cropped to the view when the config's fit asks (kit/focus.h), unless
+// the technique passes its own.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <glad/gl.h>
 #include <shadowlab/technique.h>
 
 #include "shadowlab/kit/depth_map_shared.h"
+#include "shadowlab/kit/focus.h"
 #include "shadowlab/kit/handles.h"
 
 namespace shadowlab::kit {
@@ -26,6 +29,7 @@ struct DepthMapConfig {
     float constantBias = 2.0f;     // glPolygonOffset units
     float slopeBias = 2.0f;        // glPolygonOffset factor
     Cull cull = Cull::None;        // none: open and single-sided casters (plates, planes) cast too
+    FitConfig fit{};               // the `fit` and `snap` parameters (kit::readFit); default: the scene
 };
 
 // depth_format parameter index (kit::depthFormatParam) -> GL format.
@@ -44,16 +48,20 @@ public:
         return true;
     }
 
-    // The usual frame: fit around the scene, one timed "shadow map" pass.
+    // The usual frame: fit (the scene, or cropped to the view), one timed "shadow map" pass with
+    // the casters outside the map's volume culled.
     void render(const FrameContext& frame, const DepthMapConfig& config) {
         ensureTexture(config.resolution, config.format);
         GpuPass pass(*host_, "shadow map");
-        drawDepth(host_->fitLightSpace(frame.light, DrawSet::All), config);
+        const FocusedLightSpace focused = focusLightSpace(*host_, frame, config.fit, config.resolution);
+        drawDepth(focused.light, config, focused.cullPlanes);
     }
 
     // The depth pass alone, from any light space and without a timer scope (area-reference draws
-    // one per light sample inside its own scope). ensureTexture() first.
-    void drawDepth(const LightSpace& lightSpace, const DepthMapConfig& config) {
+    // one per light sample inside its own scope). ensureTexture() first. Casters are culled
+    // against `cullPlanes` (DrawRequest's convention) when there are any.
+    void drawDepth(const LightSpace& lightSpace, const DepthMapConfig& config,
+                   const std::vector<glm::vec4>& cullPlanes = {}) {
         lightSpace_ = lightSpace;
         uniforms_.set(mainPassUniforms());
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
@@ -65,7 +73,11 @@ public:
         }
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(config.slopeBias, config.constantBias);
-        host_->drawScene(DrawSet::OpaqueCasters, program_.use());
+        DrawRequest request;
+        request.set = DrawSet::OpaqueCasters;
+        request.cullPlanes = cullPlanes.data();
+        request.cullPlaneCount = uint32_t(cullPlanes.size());
+        host_->drawScene(request, program_.use());
     }
 
     // Binds the map to its unit with a host sampler (CompareLinear: the texture unit's bilinear

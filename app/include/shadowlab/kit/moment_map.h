@@ -28,9 +28,11 @@
 #include <bit>
 #include <string>
 
+#include "shadowlab/kit/focus.h"
 #include "shadowlab/kit/handles.h"
 #include "shadowlab/kit/moment_light_space.h"
 #include "shadowlab/kit/moment_map_shared.h"
+#include "shadowlab/kit/params.h"
 #include "shadowlab/kit/technique_base.h"
 
 namespace shadowlab::kit {
@@ -55,11 +57,12 @@ struct MomentMapConfig {
     BlurPath blur = BlurPath::Compute;
     bool momentsNeedDerivatives = false;   // momentsFromDepth uses dFdx/dFdy now: the moments are
                                            // rendered as colour on both paths (blurred in compute)
+    FitConfig fit{};             // the `fit` and `snap` parameters; default: the whole scene
 };
 
-// Parameters every filterable map shares: each plugin's descriptor starts with these five (same ids,
+// Parameters every filterable map shares: each plugin's descriptor starts with these seven (same ids,
 // ranges and help in vsm, esm, evsm and msm), then lists its own from index kCommonParamCount.
-enum CommonParam : uint32_t { kResolution, kKernel, kFilter, kMipmaps, kBlur, kCommonParamCount };
+enum CommonParam : uint32_t { kResolution, kKernel, kFilter, kMipmaps, kBlur, kFit, kSnap, kCommonParamCount };
 
 #define SHADOWLAB_MOMENT_MAP_PARAMS(defaultResolution)                                                          \
     {"resolution", "resolution", ParamType::Int, 128, 4096, defaultResolution, "texels",                         \
@@ -82,7 +85,8 @@ enum CommonParam : uint32_t { kResolution, kKernel, kFilter, kMipmaps, kBlur, kC
      "lookup per tap. compute: the light renders depth only, one compute pass turns it into moments and blurs "  \
      "them along x in shared memory, a second blurs along y (vsm's derivative-based M2 still renders its "       \
      "moments, then blurs in compute). Compare the passes' times in the timing panel or with --sweep.",         \
-     "fragment|compute"}
+     "fragment|compute"},                                                                                        \
+    ::shadowlab::kit::fitParam(), ::shadowlab::kit::snapParam()
 
 inline MomentMapConfig readCommonParams(const ParamValues& params) {
     MomentMapConfig config;
@@ -91,6 +95,7 @@ inline MomentMapConfig readCommonParams(const ParamValues& params) {
     config.gaussian = params.asInt(kFilter) == 1;
     config.mipmaps = params.asBool(kMipmaps);
     config.blur = params.asInt(kBlur) == 1 ? BlurPath::Compute : BlurPath::Fragment;
+    config.fit = readFit(params, kFit, kSnap);
     return config;
 }
 
@@ -124,8 +129,10 @@ public:
     // Shadow pass, blur and mipmaps. The technique's own block (binding 2) must be bound already.
     void render(const FrameContext& frame, const MomentMapConfig& config) {
         ensureTextures(config);
-        space_ = fitMomentLightSpace(host_->fitLightSpace(frame.light, DrawSet::All), host_->bounds(DrawSet::Casters),
-                                     host_->bounds(DrawSet::All));
+        // The map's rectangle may be cropped to the view (kit/focus.h); its linear depth still spans
+        // every caster along the light's axis.
+        const FocusedLightSpace focused = focusLightSpace(*host_, frame, config.fit, config.resolution);
+        space_ = fitMomentLightSpace(focused.light, host_->bounds(DrawSet::Casters), host_->bounds(DrawSet::All));
         mapUniforms_.set({{}, space_.light.viewProjection, space_.depthPlane});
         const bool compute = config.blur == BlurPath::Compute;
         const bool depthOnly = compute && !config.momentsNeedDerivatives;
@@ -141,8 +148,12 @@ public:
                 glClearNamedFramebufferfv(momentFramebuffer_, GL_COLOR, 0, glm::value_ptr(config.clearValue));
                 glClearNamedFramebufferfv(momentFramebuffer_, GL_DEPTH, 0, &farDepth);
             }
-            // No culling (the contract's default): thin and open casters need both sides.
-            host_->drawScene(DrawSet::OpaqueCasters, (depthOnly ? depthProgram_ : momentProgram_).use());
+            // No face culling (the contract's default): thin and open casters need both sides.
+            DrawRequest request;
+            request.set = DrawSet::OpaqueCasters;
+            request.cullPlanes = focused.cullPlanes.data();
+            request.cullPlaneCount = uint32_t(focused.cullPlanes.size());
+            host_->drawScene(request, (depthOnly ? depthProgram_ : momentProgram_).use());
         }
         if (compute)
             computeBlur(config, depthOnly);

@@ -77,4 +77,24 @@ constexpr ParamDesc coneBiasParam() {
             nullptr};
 }
 
+// Fitting of a single map (kit/focus.h): the `fit` and `snap` parameters of every single-map technique.
+constexpr ParamDesc fitParam() {
+    return {"fit", "fit", ParamType::Enum, 0, 2, 0, "",
+            "What the map covers. scene: the whole scene, the same map every frame; in a large scene most "
+            "texels land where the camera never looks. frustum: cropped to the camera frustum's corners in "
+            "the light's view, clamped to the scene (seed 000 eq. 3.9-3.10); much sharper near the viewer, "
+            "but the map moves with the camera (edges crawl: see snap) and a long far plane gives little "
+            "gain. focus-body: cropped to B = ((V n S) + l) n S n L, the visible part of the scene swept "
+            "towards the light (seed 002 eq. 4.2), usually the tightest; casters outside it are not drawn.",
+            "scene|frustum|focus-body"};
+}
+constexpr ParamDesc snapParam() {
+    return {"snap", "snap to texels", ParamType::Bool, 0, 1, 0, "",
+            "With fit frustum or focus-body: moves the crop in whole texels and sizes it in whole texels of "
+            "a fixed grid (seed 000 sec. 2.2.5), so shadow edges stay still while the camera moves instead "
+            "of crawling and flickering. Costs up to one texel of coverage per side; the size still changes "
+            "in small steps when the camera turns.",
+            nullptr};
+}
+
 } // namespace shadowlab::kit
