@@ -55,7 +55,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "(try 0.2 and 5); looking along the light the warp fades to a plain focused map (duelling "
                     "frusta). Back faces are stored by default (cull = front), the seed's best bias. snap only "
                     "affects that uniform fallback (spot and point lights, near-parallel view and light).",
-     .shadowGlsl = "lispsm.glsl"},
+     .shadowGlsl = "lispsm.glsl",
+     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
 
 class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
