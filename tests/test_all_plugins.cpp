@@ -33,7 +33,7 @@ bool finiteAndInRange(const std::vector<glm::vec4>& visibility) {
 TEST(AllPlugins, TheBuildHasThemAll) {
     const auto ids = pluginIds();
     for (const char* expected : {"none", "planar", "shadowmap", "pcf", "adaptive-pcf", "vsm", "esm", "evsm", "msm", "pcss",
-                                 "area-reference"})
+                                 "area-reference", "stochastic-sm", "cssm2", "translucent-shadows"})
         EXPECT_NE(std::find(ids.begin(), ids.end(), expected), ids.end()) << expected;
 }
 
