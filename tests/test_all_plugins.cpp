@@ -33,7 +33,7 @@ bool finiteAndInRange(const std::vector<glm::vec4>& visibility) {
 TEST(AllPlugins, TheBuildHasThemAll) {
     const auto ids = pluginIds();
     for (const char* expected : {"none", "planar", "shadowmap", "pcf", "adaptive-pcf", "vsm", "esm", "evsm", "msm", "pcss",
-                                 "area-reference", "lispsm"})
+                                 "area-reference", "lispsm", "stochastic-sm", "cssm2", "translucent-shadows"})
         EXPECT_NE(std::find(ids.begin(), ids.end(), expected), ids.end()) << expected;
 }
 
@@ -53,13 +53,44 @@ TEST_P(EveryPlugin, IsJudgedByTheTranslucencyModelItDeclares) {
     auto app = test::makeHeadlessApp("teapot-glass", {200, 150});
     ASSERT_TRUE(app);
     using Mode = ReferenceOptions::Mode;
-    const double own = test::measureAccuracy(*app, id, {}, Mode::Hard, 1, declared).mae;
-    const double physical = test::measureAccuracy(*app, id, {}, Mode::Hard, 1, TranslucencyModel::Physical).mae;
+    // Both references of the same frame, so a stochastic technique's noise is the same in both.
+    const Evaluation own = test::evaluateTechnique(*app, id, {}, Mode::Hard, 1, declared);
+    Evaluation physical;
+    std::string error;
+    ReferenceOptions options;
+    options.mode = Mode::Hard;
+    options.samplesPerPixel = 1;
+    options.model = TranslucencyModel::Physical;
+    ASSERT_TRUE(app->evaluate(options, physical, error)) << error;
     std::printf("%s (%s) on teapot-glass: hard MAE %.4f against its own model, %.4f against the physical one\n",
-                id.c_str(), translucencyModelName(declared), own, physical);
-    EXPECT_LT(own, 0.05);
+                id.c_str(), translucencyModelName(declared), own.metrics.mae, physical.metrics.mae);
+    EXPECT_LT(own.metrics.mae, 0.05);
     if (declared != TranslucencyModel::Physical) {
-        EXPECT_GT(physical, own + 0.01);   // measured: the glass changes 0.026 of the image on average
+        // Where the two models disagree (under the glass), the technique is nearer its own: there
+        // its error against the physical reference exceeds the one against its own by at least a
+        // quarter of the models' difference. Over the whole image the margin would depend on the
+        // model: ignore differs from physical by 0.026 of the image on average, coverage (1 - a,
+        // which misses only the a t the glass lets through) by about 0.005, less than a stochastic map's
+        // noise there.
+        auto scalar = [](glm::vec3 v) { return (double(v.r) + double(v.g) + double(v.b)) / 3.0; };
+        double againstOwn = 0.0, againstPhysical = 0.0, separation = 0.0;
+        size_t disagreeing = 0;
+        for (size_t i = 0; i < own.mask.size(); ++i) {
+            const double modelsApart = std::abs(scalar(own.reference[i]) - scalar(physical.reference[i]));
+            if (!own.mask[i] || modelsApart < 0.02) continue;
+            ++disagreeing;
+            separation += modelsApart;
+            againstOwn += std::abs(scalar(own.technique[i]) - scalar(own.reference[i]));
+            againstPhysical += std::abs(scalar(own.technique[i]) - scalar(physical.reference[i]));
+        }
+        ASSERT_GT(disagreeing, 100u) << "the glass's shadows are in view";
+        againstOwn /= double(disagreeing);
+        againstPhysical /= double(disagreeing);
+        separation /= double(disagreeing);
+        std::printf("  under the glass (%zu pixels): MAE %.4f against its own model, %.4f against the physical one, "
+                    "models %.4f apart\n",
+                    disagreeing, againstOwn, againstPhysical, separation);
+        EXPECT_GT(againstPhysical, againstOwn + 0.25 * separation);
     }
 }
 

@@ -277,8 +277,8 @@ class Fixture(unittest.TestCase):
 
     def test_styles_fixed(self):
         ids = ["none", "planar", "shadowmap", "pcf", "adaptive-pcf", "vsm", "esm", "evsm", "msm", "pcss",
-               "area-reference", "reference", "depth-floor", "csm", "psm", "lispsm", "tsm", "stochastic", "cssm",
-               "translucent"]
+               "area-reference", "reference", "depth-floor", "csm", "psm", "lispsm", "tsm", "stochastic-sm",
+               "cssm2", "translucent-shadows", "composited-translucent"]
         for technique in ids:
             self.assertIn(technique, results.STYLE)
         self.assertEqual(len(set(results.STYLE.values())), len(results.STYLE), "two techniques share a style")

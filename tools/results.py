@@ -72,9 +72,10 @@ STYLE = OrderedDict([
     ("psm", ("#ffbb78", "H")),
     ("lispsm", ("#98df8a", "8")),
     ("tsm", ("#ff9896", "d")),
-    ("stochastic", ("#c5b0d5", "o")),
-    ("cssm", ("#c49c94", "s")),
-    ("translucent", ("#f7b6d2", "^")),
+    ("stochastic-sm", ("#c5b0d5", "o")),
+    ("cssm2", ("#c49c94", "s")),
+    ("translucent-shadows", ("#f7b6d2", "^")),
+    ("composited-translucent", ("#9edae5", "p")),
 ])
 FALLBACK_COLOURS = ("#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
                     "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac")
