@@ -340,6 +340,46 @@ def section_fast_passes(runs):
     return out, tables
 
 
+def section_seed001(runs):
+    """Seed 001 Figs. 5.3.A-D (assets/bench/seed001.json): GPU time of the translucent techniques
+    against the number of translucent quads on glass-field, and the seed's three claims as ratios
+    within the run: translucent shadows cost about Williams + 1 ms at every count; CSSM2 9x9 is
+    above 7 ms near 2000 quads and 3x3 just above 5 ms (RTX 3070)."""
+    out = ["\n## Seed 001: translucent casters on glass-field (1920x1080, 2048 map), against the quad count\n"]
+    t = Table(["technique", "quads", "frame ms", "technique passes ms", "main ms", "shadow term ms"],
+              ["---", "---:", "---:", "---:", "---:", "---:"])
+    deltas, tables = [], [t]
+    for source, s in runs.items():
+        rows = results.where(s, spec="seed001-timing")
+        def name(r):
+            kernel = results.canonical(r.get("param.kernel"))
+            return f"{r['technique']} {kernel}x{kernel}" if r["technique"] in ("cssm2", "stochastic-sm") else r["technique"]
+        counts = sorted({int(results.number(r.get("scene.quads")) or 0) for r in rows})
+        shown = [c for c in counts if c % 500 == 0]
+        for technique in dict.fromkeys(name(r) for r in rows):
+            for count in shown:
+                r = next((x for x in rows if name(x) == technique and results.number(x.get("scene.quads")) == count), None)
+                if r:
+                    t.add(source, [technique, count, ms(r, "frame_ms"), ms(r, "technique_passes_ms"), ms(r, "main_ms"),
+                                   ms(r, "shadow_term_ms")])
+        williams = {results.number(r.get("scene.quads")): r for r in rows if r["technique"] == "shadowmap"}
+        extra = [r["frame_ms"] - williams[results.number(r.get("scene.quads"))]["frame_ms"]
+                 for r in rows if r["technique"] == "translucent-shadows" and results.number(r.get("scene.quads")) in williams]
+        if extra:
+            deltas.append(f"translucent-shadows costs shadowmap + {min(extra):.2f} to {max(extra):.2f} ms over the "
+                          f"{len(extra)} counts (seed 001: about + 1 ms at every count)")
+        last = max(counts) if counts else None
+        for technique in ("cssm2 9x9", "cssm2 3x3"):
+            r = next((x for x in rows if name(x) == technique and results.number(x.get("scene.quads")) == last), None)
+            if r:
+                deltas.append(f"{technique} at {last} quads: {r['frame_ms']:.3f} ms a frame, "
+                              f"{r['frame_ms'] / williams[last]['frame_ms']:.2f}x shadowmap's "
+                              f"(seed 001: above 7 ms for 9x9, just above 5 ms for 3x3, on an RTX 3070)")
+    if deltas:
+        out += t.lines() + [""] + [f"- {line}" for line in deltas]
+    return out, tables
+
+
 def report(rows):
     """The Markdown text of every section for the rows (results.load)."""
     runs = results.by_source(rows)
@@ -358,7 +398,7 @@ def report(rows):
                      "frame, so their frame and main-pass times include it.\n")
     body, tables = [], []
     for section in (section_depth_floor, section_overhead, section_cpu, section_triangles, section_kernels,
-                    section_fig415, section_light_size, section_fast_passes):
+                    section_fig415, section_light_size, section_fast_passes, section_seed001):
         text, made = section(runs)
         if any(t.rows for t in made):
             body += text
