@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The window's keys under Xvfb (issue 14), driven by xdotool: F12 twice saves two screenshots
+# named by scene, technique and time under screenshots/ (never out/, never overwriting: they used
+# to be out/screenshot-000.png again every session), H hides the panel (the third screenshot
+# shows the view across the whole window), Escape quits with 0.
+set -euo pipefail
+xvfb_run=$1 shadowlab=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cd "$tmp"
+mkdir -p screenshots
+# A screenshot of an earlier session with the name this one would pick must survive.
+touch -d '2020-01-01' screenshots/keep.png
+"$xvfb_run" -a -s "-screen 0 1280x800x24" bash -c '
+  set -euo pipefail
+  "$1" --backend glfw --size 960x540 -t shadowmap --scene contact --quiet &
+  app=$!
+  window=""
+  for _ in $(seq 150); do
+    window=$(xdotool search --name "^shadowlab$" 2>/dev/null | head -1 || true)
+    [ -n "$window" ] && break
+    sleep 0.2
+  done
+  [ -n "$window" ] || { echo "FAIL: no window"; kill $app; exit 1; }
+  sleep 3
+  xdotool windowfocus --sync "$window" 2>/dev/null || true
+  xdotool mousemove 900 300   # over the view, not the panel
+  for key in F12 F12 h F12 Escape; do xdotool key "$key"; sleep 1.5; done
+  for _ in $(seq 50); do kill -0 $app 2>/dev/null || break; sleep 0.2; done
+  if kill -0 $app 2>/dev/null; then echo "FAIL: Escape did not quit"; kill $app; exit 1; fi
+  wait $app
+' bash "$shadowlab"
+[ ! -e out ] || { echo "FAIL: screenshots went to out/"; exit 1; }
+[ -f screenshots/keep.png ] || { echo "FAIL: an earlier screenshot was removed"; exit 1; }
+/usr/bin/python3 - <<'PY'
+import glob, os
+import numpy as np
+from PIL import Image
+shots = sorted(glob.glob('screenshots/contact-shadowmap-*.png'), key=os.path.getmtime)
+assert len(shots) == 3, f'expected 3 screenshots, found {shots}'
+assert len(set(shots)) == 3
+images = [np.asarray(Image.open(s).convert('RGB')).astype(int) for s in shots]
+for image in images:
+    assert image.shape == (540, 960, 3), image.shape
+panel = slice(0, 300)
+# With the panel: its left part is ImGui's window (dark, with text); hidden: the scene is there.
+with_panel, hidden = images[1][:, panel], images[2][:, panel]
+assert np.abs(with_panel - hidden).mean() > 5, 'H did not hide the panel'
+assert len({tuple(p) for p in hidden[::6, ::6].reshape(-1, 3)}) > 30, 'the view does not fill the window with the panel hidden'
+print('ok:', ', '.join(os.path.basename(s) for s in shots))
+PY
