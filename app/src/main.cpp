@@ -165,6 +165,7 @@ struct WindowOptions {
     double wipe = 0.5;
     double uiScale = 1.0;
     bool hideUi = false;
+    bool measure = false;
     std::string screenshotDir = "screenshots";
     // Flags given that only the window reads (for the message when there is no window).
     std::vector<std::string> given;
@@ -184,6 +185,7 @@ int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& te
     out.wipe = float(w.wipe);
     out.uiScale = float(w.uiScale);
     out.showUi = !w.hideUi;
+    out.measure = w.measure;
     out.screenshotFolder = w.screenshotDir;
     out.screenshot = w.screenshot;
     out.cycle = w.smokeFrames > 0;
@@ -302,7 +304,7 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         w.hideUi = true;   // a slide: the view and the two labels
         InteractiveOptions options;
         if (int code = windowOptionsProblem(app, w, technique, options)) return code;
-        if (view == "visibility") logWarning("--compare: the visibility view is shown by the window's panel only; writing lit");
+        options.view = parseView(view);
         const int code = app.runInteractive(options);
         if (code == 0) logInfo("wrote " + out);
         return code;
@@ -525,6 +527,9 @@ int run(int argc, char** argv) {
     windowOption(cli.add_option("--ui-scale", window.uiScale, "window: size of the panel's text and widgets (1.5-2 for a projector)"))
         ->check(CLI::Range(0.5, 4.0));
     windowOption(cli.add_flag("--hide-ui", window.hideUi, "window: start with the panel hidden (F1 or H toggles it)"));
+    windowOption(cli.add_flag("--measure", window.measure,
+                              "window: measure accuracy after the first frame, each side of a comparison for its own "
+                              "technique, and show the heatmap (with --frames: a slide of it)"));
     windowOption(cli.add_option("--screenshot-dir", window.screenshotDir, "window: folder of F12 screenshots (default screenshots)"));
     cli.add_option("--out-dir", outDir, "headless main job: folder of the report (default out)");
 

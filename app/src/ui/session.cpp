@@ -133,6 +133,7 @@ int App::runInteractive(const InteractiveOptions& options) {
     state.compareLayout = options.compareLayout;
     state.wipe = options.wipe;
     state.showUi = options.showUi;
+    state.view = options.view;
     state.uiScale = options.uiScale;
     state.msaaSamples = renderer_->msaaSamples();
     camera_.setFramingAspect(kSceneFramingAspect);
@@ -189,6 +190,8 @@ int App::runInteractive(const InteractiveOptions& options) {
                 state.commands.push_back({UiCommand::Kind::Measure, ""});
             }
         }
+
+        if (options.measure && frame == 1) state.commands.push_back({UiCommand::Kind::Measure, ""});
 
         // The surface: the window's framebuffer, or the offscreen one (created once).
         const glm::ivec2 surfaceSize = window ? backend_->framebufferSize() : options_.size;

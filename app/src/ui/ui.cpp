@@ -26,6 +26,13 @@ void scrollCallback(GLFWwindow* window, double, double dy) {
     if (auto* state = static_cast<UiState*>(glfwGetWindowUserPointer(window))) state->scroll += float(dy);
 }
 
+// Key presses are queued here: ImGui 1.86 keeps only "is down" per frame, so a key pressed and
+// released between two frames (a quick tap at 10 frames per second) would be lost.
+void keyCallback(GLFWwindow* window, int key, int, int action, int) {
+    if (action != GLFW_PRESS) return;
+    if (auto* state = static_cast<UiState*>(glfwGetWindowUserPointer(window))) state->pressedKeys.push_back(key);
+}
+
 void helpMarker(const std::string& text) {
     if (text.empty()) return;
     ImGui::SameLine();
@@ -183,7 +190,8 @@ bool Ui::init(GLFWwindow* window, float uiScale) {
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;   // no imgui.ini litter in the working folder
     if (window) {
-        glfwSetScrollCallback(window, scrollCallback);   // the ImGui backend chains to it
+        glfwSetScrollCallback(window, scrollCallback);   // the ImGui backend chains to both
+        glfwSetKeyCallback(window, keyCallback);
         if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) return false;
     } else {
         ImGui::GetIO().BackendPlatformName = "shadowlab offscreen";
@@ -250,12 +258,16 @@ void Ui::draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, 
     ImGui::NewFrame();
     smoothedFrameMs_ = smoothedFrameMs_ == 0.0f ? frameSeconds * 1000.0f : 0.95f * smoothedFrameMs_ + 0.05f * frameSeconds * 1000.0f;
 
-    if (window_ && !ImGui::GetIO().WantCaptureKeyboard) {
-        if (ImGui::IsKeyPressed(GLFW_KEY_F12)) state.commands.push_back({UiCommand::Kind::Screenshot, ""});
-        if (ImGui::IsKeyPressed(GLFW_KEY_F1) || ImGui::IsKeyPressed(GLFW_KEY_H)) state.showUi = !state.showUi;
-        if (ImGui::IsKeyPressed(GLFW_KEY_M)) state.commands.push_back({UiCommand::Kind::Measure, ""});
-        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) state.quitRequested = true;
+    // Keys typed into a text field are the field's.
+    if (!ImGui::GetIO().WantCaptureKeyboard) {
+        for (const int key : state.pressedKeys) {
+            if (key == GLFW_KEY_F12) state.commands.push_back({UiCommand::Kind::Screenshot, ""});
+            if (key == GLFW_KEY_F1 || key == GLFW_KEY_H) state.showUi = !state.showUi;
+            if (key == GLFW_KEY_M) state.commands.push_back({UiCommand::Kind::Measure, ""});
+            if (key == GLFW_KEY_ESCAPE) state.quitRequested = true;
+        }
     }
+    state.pressedKeys.clear();
 
     // The latest hot-reload line of the log (plugin or shader), for the status line.
     const auto log = recentLog();

@@ -33,6 +33,7 @@ struct UiState {
     ViewSelection view;
     int msaaSamples = 0;
     float scroll = 0.0f;              // mouse wheel since last frame
+    std::vector<int> pressedKeys;     // GLFW keys pressed since last frame
     bool quitRequested = false;
     bool showUi = true;               // F1 or H toggles; false: nothing over the view but labels
     float uiScale = 1.0f;             // fonts and sizes (a projector wants 1.5 to 2)
