@@ -2,7 +2,8 @@
 # The window's keys under Xvfb (issue 14), driven by xdotool: F12 twice saves two screenshots
 # named by scene, technique and time under screenshots/ (never out/, never overwriting: they used
 # to be out/screenshot-000.png again every session), H hides the panel (the third screenshot
-# shows the view across the whole window), Escape quits with 0.
+# shows the view across the whole window), Escape quits with 0. Then a wipe comparison: the
+# divider's handle dragged from the middle of the view to the right moves the divider there.
 set -euo pipefail
 xvfb_run=$1 shadowlab=$2
 tmp=$(mktemp -d)
@@ -48,4 +49,47 @@ with_panel, hidden = images[1][:, panel], images[2][:, panel]
 assert np.abs(with_panel - hidden).mean() > 5, 'H did not hide the panel'
 assert len({tuple(p) for p in hidden[::6, ::6].reshape(-1, 3)}) > 30, 'the view does not fill the window with the panel hidden'
 print('ok:', ', '.join(os.path.basename(s) for s in shots))
+PY
+
+# The wipe: 960x540 window, 360 px panel, so the view spans x 360..960 and the divider starts at
+# 660 with its handle at mid-height; drag it to x 860.
+rm -rf screenshots
+"$xvfb_run" -a -s "-screen 0 1280x800x24" bash -c '
+  set -euo pipefail
+  "$1" --backend glfw --size 960x540 -t shadowmap --compare pcss --compare-layout wipe --scene dragon-like --quiet &
+  app=$!
+  window=""
+  for _ in $(seq 150); do
+    window=$(xdotool search --name "^shadowlab$" 2>/dev/null | head -1 || true)
+    [ -n "$window" ] && break
+    sleep 0.2
+  done
+  [ -n "$window" ] || { echo "FAIL: no window"; kill $app; exit 1; }
+  sleep 3
+  xdotool windowfocus --sync "$window" 2>/dev/null || true
+  xdotool mousemove --window "$window" 660 270; sleep 1
+  xdotool mousedown 1; sleep 1
+  for x in 700 760 820 860; do xdotool mousemove --window "$window" $x 270; sleep 0.5; done
+  sleep 1; xdotool mouseup 1; sleep 1
+  xdotool mousemove --window "$window" 500 500; sleep 1
+  xdotool key F12; sleep 2
+  xdotool key Escape
+  for _ in $(seq 50); do kill -0 $app 2>/dev/null || break; sleep 0.2; done
+  if kill -0 $app 2>/dev/null; then kill $app; exit 1; fi
+  wait $app
+' bash "$shadowlab"
+/usr/bin/python3 - <<'PY'
+import glob
+import numpy as np
+from PIL import Image
+shots = glob.glob('screenshots/dragon-like-shadowmap-vs-pcss-*.png')
+assert len(shots) == 1, shots
+image = np.asarray(Image.open(shots[0]).convert('RGB')).astype(int)
+# The divider: a white line down the sky, the column with the most near-white pixels in the view.
+sky = image[20:120, 360:960]
+white = (sky.min(axis=2) > 220).sum(axis=0)
+column = 360 + int(white.argmax())
+assert white.max() > 80, 'no divider line found'
+assert abs(column - 860) <= 12, f'divider at x={column}, expected about 860 after the drag (it started at 660)'
+print(f'ok: wipe divider dragged to x={column}')
 PY
