@@ -9,28 +9,37 @@ xvfb_run=$1 shadowlab=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp"
+
+# drive ACTIONS APP-ARGS...: under its own Xvfb, starts the window, waits for it, runs the
+# xdotool ACTIONS (with $window set; they end by quitting it) and checks that it exits with 0.
+cat >drive.sh <<'SH'
+set -euo pipefail
+actions=$1 shadowlab=$2
+shift 2
+"$shadowlab" --backend glfw --size 960x540 --quiet "$@" &
+app=$!
+window=""
+for _ in $(seq 150); do
+  window=$(xdotool search --name "^shadowlab$" 2>/dev/null | head -1 || true)
+  [ -n "$window" ] && break
+  sleep 0.2
+done
+[ -n "$window" ] || { echo "FAIL: no window"; kill $app; exit 1; }
+sleep 3
+xdotool windowfocus --sync "$window" 2>/dev/null || true
+eval "$actions"
+for _ in $(seq 50); do kill -0 $app 2>/dev/null || break; sleep 0.2; done
+if kill -0 $app 2>/dev/null; then echo "FAIL: Escape did not quit"; kill $app; exit 1; fi
+wait $app
+SH
+drive() { "$xvfb_run" -a -s "-screen 0 1280x800x24" bash drive.sh "$@"; }
+
 mkdir -p screenshots
-# A screenshot of an earlier session with the name this one would pick must survive.
+# A screenshot of an earlier session must survive.
 touch -d '2020-01-01' screenshots/keep.png
-"$xvfb_run" -a -s "-screen 0 1280x800x24" bash -c '
-  set -euo pipefail
-  "$1" --backend glfw --size 960x540 -t shadowmap --scene contact --quiet &
-  app=$!
-  window=""
-  for _ in $(seq 150); do
-    window=$(xdotool search --name "^shadowlab$" 2>/dev/null | head -1 || true)
-    [ -n "$window" ] && break
-    sleep 0.2
-  done
-  [ -n "$window" ] || { echo "FAIL: no window"; kill $app; exit 1; }
-  sleep 3
-  xdotool windowfocus --sync "$window" 2>/dev/null || true
-  xdotool mousemove 900 300   # over the view, not the panel
-  for key in F12 F12 h F12 Escape; do xdotool key "$key"; sleep 1.5; done
-  for _ in $(seq 50); do kill -0 $app 2>/dev/null || break; sleep 0.2; done
-  if kill -0 $app 2>/dev/null; then echo "FAIL: Escape did not quit"; kill $app; exit 1; fi
-  wait $app
-' bash "$shadowlab"
+drive 'xdotool mousemove 900 300   # over the view, not the panel
+       for key in F12 F12 h F12 Escape; do xdotool key "$key"; sleep 1.5; done' \
+  "$shadowlab" -t shadowmap --scene contact
 [ ! -e out ] || { echo "FAIL: screenshots went to out/"; exit 1; }
 [ -f screenshots/keep.png ] || { echo "FAIL: an earlier screenshot was removed"; exit 1; }
 /usr/bin/python3 - <<'PY'
@@ -54,30 +63,14 @@ PY
 # The wipe: 960x540 window, 360 px panel, so the view spans x 360..960 and the divider starts at
 # 660 with its handle at mid-height; drag it to x 860.
 rm -rf screenshots
-"$xvfb_run" -a -s "-screen 0 1280x800x24" bash -c '
-  set -euo pipefail
-  "$1" --backend glfw --size 960x540 -t shadowmap --compare pcss --compare-layout wipe --scene dragon-like --quiet &
-  app=$!
-  window=""
-  for _ in $(seq 150); do
-    window=$(xdotool search --name "^shadowlab$" 2>/dev/null | head -1 || true)
-    [ -n "$window" ] && break
-    sleep 0.2
-  done
-  [ -n "$window" ] || { echo "FAIL: no window"; kill $app; exit 1; }
-  sleep 3
-  xdotool windowfocus --sync "$window" 2>/dev/null || true
-  xdotool mousemove --window "$window" 660 270; sleep 1
-  xdotool mousedown 1; sleep 1
-  for x in 700 760 820 860; do xdotool mousemove --window "$window" $x 270; sleep 0.5; done
-  sleep 1; xdotool mouseup 1; sleep 1
-  xdotool mousemove --window "$window" 500 500; sleep 1
-  xdotool key F12; sleep 2
-  xdotool key Escape
-  for _ in $(seq 50); do kill -0 $app 2>/dev/null || break; sleep 0.2; done
-  if kill -0 $app 2>/dev/null; then kill $app; exit 1; fi
-  wait $app
-' bash "$shadowlab"
+drive 'xdotool mousemove --window "$window" 660 270; sleep 1
+       xdotool mousedown 1; sleep 1
+       for x in 700 760 820 860; do xdotool mousemove --window "$window" $x 270; sleep 0.5; done
+       sleep 1; xdotool mouseup 1; sleep 1
+       xdotool mousemove --window "$window" 500 500; sleep 1
+       xdotool key F12; sleep 2
+       xdotool key Escape' \
+  "$shadowlab" -t shadowmap --compare pcss --compare-layout wipe --scene dragon-like
 /usr/bin/python3 - <<'PY'
 import glob
 import numpy as np

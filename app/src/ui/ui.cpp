@@ -351,7 +351,7 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
             }
         }
     }
-    if (state.view.kind == ViewSelection::Kind::ErrorHeatmap && !state.measurement.empty()) {
+    if (state.showUi && state.view.kind == ViewSelection::Kind::ErrorHeatmap && !state.measurement.empty()) {
         // Say so when the heatmap no longer shows what is on screen, and offer to measure again.
         const std::string text = state.staleReason.empty()
                                      ? "error heatmap: magenta false shadow, green false light, dimmed scene where exact"
