@@ -54,7 +54,7 @@ PY
 # Side by side with --measure (the "Measure accuracy" button): each side measured for its own
 # technique. `none` has no shadows, so its error is far larger than shadowmap's; the old code
 # measured the right-hand technique and labelled it with the left-hand one.
-"$shadowlab" --backend osmesa -t none --compare shadowmap --scene contact --size 640x360 --frames 4 --measure \
+"$shadowlab" --backend osmesa -t none --compare shadowmap --scene contact --size 640x360 --frames 10 --measure \
   --screenshot measured.png 2>measure.log
 grep -q "accuracy of none" measure.log || { cat measure.log; fail "no measurement of none"; }
 grep -q "accuracy of shadowmap" measure.log || { cat measure.log; fail "no measurement of shadowmap"; }
@@ -62,6 +62,9 @@ none_mae=$(sed -n 's/.*accuracy of none.*: MAE \([0-9.]*\).*/\1/p' measure.log)
 shadowmap_mae=$(sed -n 's/.*accuracy of shadowmap.*: MAE \([0-9.]*\).*/\1/p' measure.log)
 "$python" -c "import sys; n, s = float('$none_mae'), float('$shadowmap_mae'); sys.exit(0 if n > 0.002 and n > 5 * s else 1)" ||
   fail "none MAE $none_mae should be well above shadowmap MAE $shadowmap_mae"
+# And each side's memory is its own: none has none, a shadow map has some.
+grep -q "accuracy of none: .* 0.00 MiB" measure.log || { cat measure.log; fail "none's memory is not 0"; }
+grep "accuracy of shadowmap" measure.log | grep -qv " 0.00 MiB" || { cat measure.log; fail "shadowmap's memory is 0"; }
 
 # Options the window alone reads, with neither a display nor --frames: exit 2, naming them.
 expect 2 "--compare: no display" -- --backend osmesa --compare pcf

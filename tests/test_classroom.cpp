@@ -80,6 +80,14 @@ TEST(ClassroomLayout, ThePanelNeverHidesTheScene) {
     }
 }
 
+// UI scale for a projector: the panel grows with it, but the view always keeps 55% of the window.
+TEST(ClassroomLayout, UiScaleWidensThePanelUpToAShareOfTheWindow) {
+    EXPECT_EQ(panelWidthFor(1.0f, 1920), 360);
+    EXPECT_EQ(panelWidthFor(1.5f, 1920), 540);
+    EXPECT_EQ(panelWidthFor(2.0f, 1280), 576) << "45% of 1280";
+    EXPECT_EQ(panelWidthFor(1.0f, 640), 288) << "45% of 640";
+}
+
 TEST(ClassroomLayout, HiddenUiGivesTheWholeWindowToTheView) {
     const ViewLayout layout = computeViewLayout({800, 450}, false, panelWidthFor(1.0f, 800), false, CompareLayout::SideBySide, 0.5f);
     EXPECT_EQ(layout.view.origin, glm::ivec2(0));

@@ -528,7 +528,7 @@ int run(int argc, char** argv) {
         ->check(CLI::Range(0.5, 4.0));
     windowOption(cli.add_flag("--hide-ui", window.hideUi, "window: start with the panel hidden (F1 or H toggles it)"));
     windowOption(cli.add_flag("--measure", window.measure,
-                              "window: measure accuracy after the first frame, each side of a comparison for its own "
+                              "window: measure accuracy after a few frames, each side of a comparison for its own "
                               "technique, and show the heatmap (with --frames: a slide of it)"));
     windowOption(cli.add_option("--screenshot-dir", window.screenshotDir, "window: folder of F12 screenshots (default screenshots)"));
     cli.add_option("--out-dir", outDir, "headless main job: folder of the report (default out)");

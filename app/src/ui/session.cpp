@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include <GLFW/glfw3.h>
 
@@ -191,7 +192,11 @@ int App::runInteractive(const InteractiveOptions& options) {
             }
         }
 
-        if (options.measure && frame == 1) state.commands.push_back({UiCommand::Kind::Measure, ""});
+        // --measure: late enough for the GPU timings (read kFramesInFlight frames late), early
+        // enough that the last frames show the heatmap.
+        const int measureFrame = options.frames > 0 ? std::max(1, std::min(options.frames - 2, GpuTimer::kFramesInFlight + 2))
+                                                    : GpuTimer::kFramesInFlight + 2;
+        if (options.measure && frame == measureFrame) state.commands.push_back({UiCommand::Kind::Measure, ""});
 
         // The surface: the window's framebuffer, or the offscreen one (created once).
         const glm::ivec2 surfaceSize = window ? backend_->framebufferSize() : options_.size;
@@ -326,7 +331,10 @@ int App::runInteractive(const InteractiveOptions& options) {
                     const auto frameMs = state.sideTimings[s].find("frame");
                     result.gpuMs = frameMs == state.sideTimings[s].end() ? 0.0 : frameMs->second;
                     state.measured.push_back({result.label, result.gpuMs, result.metrics.mae});
-                    logInfo("accuracy of " + result.label + ": MAE " + std::to_string(result.metrics.mae));
+                    char figures[128];
+                    std::snprintf(figures, sizeof(figures), ": MAE %.6f, %.3f ms GPU, %.2f MiB", result.metrics.mae, result.gpuMs,
+                                  double(result.gpuBytes) / (1024.0 * 1024.0));
+                    logInfo("accuracy of " + result.label + figures);
                     // Its texture, for the heatmap view (re-created only when the size changed).
                     const glm::ivec2 size{result.heatmap.width, result.heatmap.height};
                     if (targets.heatmapSizes[s] != size) {

@@ -23,7 +23,7 @@ struct InteractiveOptions {
     int frames = 0;                                // > 0: draw that many, save `screenshot`, return
     std::string screenshot;                        // with frames
     bool cycle = false;                            // smoke test: every technique and view in turn
-    bool measure = false;                          // measure accuracy after the first frame (slides of the heatmap)
+    bool measure = false;                          // measure accuracy after a few frames (slides of the heatmap)
     bool showUi = true;                            // false: the view (and comparison labels) only
     ViewSelection view;                            // the image shown at the start (lit, visibility, ...)
     float uiScale = 1.0f;
