@@ -674,6 +674,10 @@ int run(int argc, char** argv) {
             return fail(windowFlags.front() + ": no display to open the window on; add --frames N --screenshot FILE to "
                         "draw it offscreen, or use `shadowlab render --compare A,B`",
                         kExitBadInput);
+        if (!common.technique.empty() || !common.sets.empty())
+            logWarning(std::string(common.technique.empty() ? "--set" : "--technique") +
+                       ": no display, so the main job is the report of every technique; add --frames N --screenshot "
+                       "FILE to draw the window offscreen instead");
         return commandReport(common, "", outDir);
     }
     App app;
