@@ -23,6 +23,24 @@ layout(location = 0) uniform int uFirstObject;
 layout(location = 2) uniform vec4 uBaseColor;      // rgb, a = alpha
 layout(location = 3) uniform vec4 uTransmission;   // rgb transmission colour
 layout(location = 4) uniform vec4 uSpecular;       // rgb, a = shininess
+// Material textures, bound by the host on units 1 and 2 for every draw (light passes included;
+// a white texel where the material has none). x: transmission texture, y: base colour texture.
+layout(location = 5) uniform ivec4 uMaterialTextures;
+layout(binding = 1) uniform sampler2D uTransmissionTexture;   // rgb = t (linear), a = alpha
+layout(binding = 2) uniform sampler2D uBaseColorTexture;      // sRGB-decoded rgb
+
+// What a translucent surface lets through at `uv`: rgb = transmission colour t, a = alpha
+// (coverage). The texture replaces the material's values where there is one.
+vec4 surfaceTransmission(vec2 uv) {
+    return uMaterialTextures.x != 0 ? texture(uTransmissionTexture, uv) : vec4(uTransmission.rgb, uBaseColor.a);
+}
+
+// Base colour (rgb, linear) and alpha of the surface at `uv`.
+vec4 surfaceBaseColor(vec2 uv) {
+    vec3 rgb = uBaseColor.rgb;
+    if (uMaterialTextures.y != 0) rgb *= texture(uBaseColorTexture, uv).rgb;
+    return vec4(rgb, surfaceTransmission(uv).a);
+}
 
 const int LIGHT_DIRECTIONAL = 0;
 const int LIGHT_SPOT = 1;

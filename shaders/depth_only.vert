@@ -4,7 +4,11 @@
 #include "shadowlab/kit/depth_map_shared.h"
 
 layout(location = 0) in vec3 inPosition;
+layout(location = 2) in vec2 inUv;
+
+out vec2 vUv;   // for fragment stages that sample the material's textures (surfaceTransmission)
 
 void main() {
+    vUv = inUv;
     gl_Position = uShadowMatrix * uModel * vec4(inPosition, 1.0);
 }

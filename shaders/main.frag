@@ -33,13 +33,14 @@ void main() {
     // Called in uniform control flow, so techniques may use derivatives.
     vec3 shadow = shadowTerm(s);
 
+    vec4 albedo = surfaceBaseColor(vIn.uv);
     vec3 H = normalize(L + V);
-    vec3 diffuse = uBaseColor.rgb * max(NdotL, 0.0);
+    vec3 diffuse = albedo.rgb * max(NdotL, 0.0);
     vec3 specular = NdotL > 0.0 ? uSpecular.rgb * pow(max(dot(N, H), 0.0), uSpecular.a) : vec3(0.0);
     vec3 direct = (diffuse + specular) * uLightColor.rgb * spot;
-    vec3 color = uAmbient.rgb * uBaseColor.rgb + direct * shadow;
+    vec3 color = uAmbient.rgb * albedo.rgb + direct * shadow;
 
-    outColor = vec4(color, uBaseColor.a);
+    outColor = vec4(color, albedo.a);
 #ifdef SHADOWLAB_ACCURACY_TARGETS
     bool compared = NdotL > 0.0 && spot > 0.0;
     outVisibility = vec4(shadow, compared ? 1.0 : 0.0);

@@ -6,10 +6,13 @@
 #include "moment_shadows.glsl"
 
 layout(location = 0) in vec3 inPosition;
+layout(location = 2) in vec2 inUv;
 
 out float vLightDepth;
+out vec2 vUv;   // for fragment stages that sample the material's textures (surfaceTransmission)
 
 void main() {
+    vUv = inUv;
     vec4 world = uModel * vec4(inPosition, 1.0);
     gl_Position = uShadowMatrix * world;
     vLightDepth = linearLightDepth(world.xyz);

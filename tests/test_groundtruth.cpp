@@ -516,7 +516,7 @@ TEST(GroundTruth, ColouredTransmissionMultiplies) {
         options.samplesPerPixel = 16;
         options.adaptive = variant == 2;
         options.firstBatch = 8;
-        options.transmission = true;
+        options.model = TranslucencyModel::Physical;
         const std::vector<glm::vec3> v = trace(*groundTruth, g, sun, options);
         EXPECT_EQ(v[0], red);
         EXPECT_EQ(v[1], both);
@@ -525,13 +525,126 @@ TEST(GroundTruth, ColouredTransmissionMultiplies) {
         EXPECT_EQ(v[4], glm::vec3(1.0f)) << "castsShadow = false must not block";
         EXPECT_EQ(v[5], both) << "a ray through a shared edge crosses the surface once";
 
-        // Without transmission every caster blocks, translucent or not.
-        options.transmission = false;
+        // The opaque model: every caster blocks, translucent or not.
+        options.model = TranslucencyModel::Opaque;
         const std::vector<glm::vec3> grey = trace(*groundTruth, g, sun, options);
         EXPECT_EQ(grey[0], glm::vec3(0.0f));
         EXPECT_EQ(grey[1], glm::vec3(0.0f));
         EXPECT_EQ(grey[2], glm::vec3(1.0f));
         EXPECT_EQ(grey[4], glm::vec3(1.0f));
+    }
+}
+
+// The closed form of every translucency model: white light (a sun straight down) through one
+// translucent quad of alpha a and transmission t onto a plane gives exactly the model's factor
+// inside the quad's shadow and 1 outside; two stacked quads give its square.
+TEST(GroundTruth, TranslucencyModelsMatchTheirClosedForm) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    const float a = 0.6f;
+    const glm::vec3 t(0.25f, 0.5f, 1.0f);
+    struct Expected {
+        TranslucencyModel model;
+        glm::vec3 factor;
+    };
+    const Expected expected[] = {
+        {TranslucencyModel::Opaque, glm::vec3(0.0f)},
+        {TranslucencyModel::Coverage, glm::vec3(1.0f - a)},
+        {TranslucencyModel::Physical, (1.0f - a) + a * t},
+        {TranslucencyModel::ModifiedTranslucent, (1.0f - a) * t},
+        {TranslucencyModel::Ignore, glm::vec3(1.0f)},
+    };
+    for (int layers = 1; layers <= 2; ++layers) {
+        Scene scene = planeScene();
+        scene.materials.push_back({.name = "glass", .alpha = a, .transmission = t});
+        scene.meshes.push_back(makePlane(2.0f, 2.0f, 1));
+        for (int k = 0; k < layers; ++k) {
+            SceneObject quad;
+            quad.name = "quad";
+            quad.mesh = 1;
+            quad.material = 1;
+            quad.transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.0f + 0.5f * float(k), 0.0f));
+            scene.objects.push_back(quad);
+        }
+        groundTruth->setScene(scene);
+        // Inside the shadow (the quad spans x, z in [-1, 1]) and outside it.
+        GBuffer g = groundGrid(-0.9f, -0.9f, 0.45f, 5, 5);
+        for (glm::vec3 p : {glm::vec3(1.2f, 0, 0), glm::vec3(-3, 0, 2), glm::vec3(0, 0, -1.1f)}) {
+            g.positions.emplace_back(p, 1.0f);
+            g.normals.emplace_back(0.0f, 1.0f, 0.0f, 0.0f);
+        }
+        g.width = static_cast<int>(g.positions.size());
+        g.height = 1;
+        for (const Expected& e : expected)
+            for (int soft = 0; soft < 2; ++soft) {
+                ReferenceOptions options;
+                options.model = e.model;
+                options.mode = soft ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
+                options.samplesPerPixel = 16;
+                // Inside points lie 0.1 or more inside the quad's edge, further than the soft cone
+                // (0.5 degrees) reaches from 1.5 up (0.013): wholly under it.
+                const std::vector<glm::vec3> v = trace(*groundTruth, g, directional({0.0f, -1.0f, 0.0f}, 0.0087f), options);
+                const glm::vec3 inside = layers == 1 ? e.factor : e.factor * e.factor;
+                for (int i = 0; i < 25; ++i)
+                    for (int c = 0; c < 3; ++c)
+                        EXPECT_NEAR(v[size_t(i)][c], inside[c], 1e-6f)
+                            << translucencyModelName(e.model) << ", " << layers << " layer(s), point " << i << ", channel " << c;
+                for (int i = 25; i < g.width; ++i)
+                    EXPECT_EQ(v[size_t(i)], glm::vec3(1.0f)) << translucencyModelName(e.model) << ": outside the shadow";
+            }
+    }
+}
+
+// A quad textured with two texels (red glass of alpha 0.4, then blue glass of alpha 0.8) over
+// x in [-1, 1]: the reference samples the texel the GPU samples, bilinearly with repeat wrapping.
+// Under u = 0.25 and 0.75 (the texel centres) each texel's own factor, under u = 0.5 and at the
+// wrapped edge u = 0 the factor of their mean, for every model.
+TEST(GroundTruth, TransmissionTextureIsSampledBilinearly) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    Scene scene = planeScene();
+    scene.textures.push_back({"two texels", 2, 1, {255, 0, 0, 102, 0, 0, 255, 204}});
+    Material glass{.name = "glass", .alpha = 0.5f, .transmission = glm::vec3(0.5f)};
+    glass.transmissionTexture = 0;
+    scene.materials.push_back(glass);
+    scene.meshes.push_back(makePlane(2.0f, 2.0f, 1));   // u = (x + 1) / 2
+    SceneObject quad;
+    quad.name = "quad";
+    quad.mesh = 1;
+    quad.material = 1;
+    quad.transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    scene.objects.push_back(quad);
+    groundTruth->setScene(scene);
+
+    const float us[] = {0.25f, 0.75f, 0.5f, 0.001f, 0.125f};
+    GBuffer g;
+    g.width = 5;
+    g.height = 1;
+    for (float u : us) {
+        g.positions.emplace_back(2.0f * u - 1.0f, 0.0f, 0.1f, 1.0f);
+        g.normals.emplace_back(0.0f, 1.0f, 0.0f, 0.0f);
+    }
+    const glm::vec4 red(1.0f, 0.0f, 0.0f, 102.0f / 255.0f), blue(0.0f, 0.0f, 1.0f, 204.0f / 255.0f);
+    auto texelAt = [&](float u) {   // the closed form of the bilinear filter on two texels with repeat
+        const float w = u < 0.25f ? 0.25f - u : u <= 0.75f ? (u - 0.25f) * 2.0f : 1.0f - (u - 0.75f) * 2.0f;
+        return u < 0.25f ? glm::mix(red, blue, 2.0f * w) : glm::mix(red, blue, w);
+    };
+    for (TranslucencyModel model : {TranslucencyModel::Coverage, TranslucencyModel::Physical, TranslucencyModel::ModifiedTranslucent}) {
+        ReferenceOptions options;
+        options.model = model;
+        const std::vector<glm::vec3> v = trace(*groundTruth, g, directional({0.0f, -1.0f, 0.0f}), options);
+        for (size_t i = 0; i < std::size(us); ++i) {
+            const glm::vec4 texel = texelAt(us[i]);
+            const glm::vec3 expected = crossingFactor(model, texel.a, glm::vec3(texel));
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(v[i][c], expected[c], 2e-3f) << translucencyModelName(model) << " at u = " << us[i] << ", channel " << c;
+        }
+        if (model == TranslucencyModel::Physical) {
+            EXPECT_NEAR(v[0].r, 1.0f, 1e-5f) << "red glass lets red through";
+            EXPECT_NEAR(v[0].b, 0.6f, 1e-5f);
+            EXPECT_NEAR(v[1].b, 1.0f, 1e-5f);
+            EXPECT_NEAR(v[1].r, 0.2f, 1e-5f);
+        }
     }
 }
 

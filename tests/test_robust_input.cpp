@@ -552,7 +552,7 @@ TEST(RobustBench, EveryValueIsCheckedBeforeTheRunNamingTheOption) {
     EXPECT_MENTIONS(specError(spec), "--set kernel=abc");
     spec = commandLineSpec({"scene.count=5000000"});
     spec.scenes = {"dense"};
-    EXPECT_MENTIONS(specError(spec), "--scenes 'dense': builtin:dense: objects[1].repeat.count: must be between 1 and 1000000");
+    EXPECT_MENTIONS(specError(spec), "--scenes 'dense': builtin:dense: objects[1].repeat.count: must be between 0 and 1000000");
 
     glm::ivec2 size;
     for (const char* bad : {"64x64junk", "64x", "x64", "64*64", "8x8", "64x99999", " 64x64", "+64x64"}) {

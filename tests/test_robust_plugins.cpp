@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstddef>
 #include <fstream>
 #include <limits>
 
@@ -83,6 +84,24 @@ TEST(RobustDescriptor, ValidatesTheRawDescriptorBeforeCopyingIt) {
     EXPECT_MENTIONS(problem([](SampleDescriptor& b) { b.params[0].type = static_cast<ParamType>(7); }), "unknown type 7");
     static const std::string longId(65, 'a');
     EXPECT_MENTIONS(problem([](SampleDescriptor& b) { b.desc.id = longId.c_str(); }), "longer than 64 bytes");
+}
+
+// The translucency model, added after flags: read only when structSize covers it.
+TEST(RobustDescriptor, TranslucencyModelIsReadOnlyWhereTheDescriptorHasIt) {
+    SampleDescriptor s;
+    EXPECT_EQ(copyDescriptor(s.desc, {}).translucencyModel, TranslucencyModel::Opaque) << "the default";
+    s.desc.translucencyModel = TranslucencyModel::Coverage;
+    EXPECT_EQ(validateDescriptor(s.desc), "");
+    EXPECT_EQ(copyDescriptor(s.desc, {}).translucencyModel, TranslucencyModel::Coverage);
+    // An older plugin's descriptor ends at flags: whatever lies beyond is not its, and not read.
+    s.desc.structSize = offsetof(TechniqueDesc, flags) + sizeof(uint32_t);
+    EXPECT_EQ(validateDescriptor(s.desc), "");
+    EXPECT_EQ(copyDescriptor(s.desc, {}).translucencyModel, TranslucencyModel::Opaque);
+    SampleDescriptor bad;
+    bad.desc.translucencyModel = static_cast<TranslucencyModel>(9);
+    EXPECT_MENTIONS(validateDescriptor(bad.desc), "translucencyModel 9 is not one of 0-4");
+    bad.desc.structSize = offsetof(TechniqueDesc, translucencyModel);
+    EXPECT_EQ(validateDescriptor(bad.desc), "") << "not covered by structSize: not read";
 }
 
 TEST(RobustDescriptor, TheScanRefusesEveryBrokenPluginByNameAndKeepsTheGoodOne) {

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <set>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -175,7 +176,8 @@ TEST(BuiltinScenes, ShadowsFallInsideTheCameraView) {
         };
         int casters = 0, shadowsSeen = 0;
         for (const SceneObject& object : scene.objects) {
-            if (!object.castsShadow || object.isPlane) continue;
+            // The ground (first) receives; other planes (translucent quads, a window) cast.
+            if (!object.castsShadow || &object == &scene.objects.front()) continue;
             const Bounds local = boundsOf(scene.meshes[object.mesh]);
             const glm::vec3 centre{object.transform * glm::vec4(0.5f * (local.min + local.max), 1.0f)};
             glm::vec3 towardsGround = scene.light.direction;
@@ -641,6 +643,129 @@ TEST(Terrain, FollowTerrainNeedsATerrainBeforeIt) {
     EXPECT_NE(message.find("bad.json"), std::string::npos) << message;
     EXPECT_NE(message.find("objects[0].repeat.followTerrain"), std::string::npos) << message;
     EXPECT_NE(message.find("no terrain"), std::string::npos) << message;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Textures (docs/scene-format.md, "Textures")
+
+// A 2 x 1 RGBA PNG: texel 0 red glass of alpha 0.4, texel 1 opaque black.
+fs::path writeTwoTexelPng(const TempDir& dir, const std::string& name, int channels = 4) {
+    Image image{2, 1, channels, {}};
+    if (channels == 4) image.pixels = {255, 0, 0, 102, 0, 0, 0, 255};
+    else image.pixels = {255, 0, 0, 0, 0, 0};
+    std::string error;
+    EXPECT_TRUE(writePng(dir.path() / name, image, error)) << error;
+    return dir.path() / name;
+}
+
+std::string texturedScene(const std::string& texture) {
+    return R"({"materials": {"glass": {"alpha": 0.5, "transmissionTexture": )" + texture +
+           R"(}}, "objects": [{"shape": "plane"}, {"shape": "plane", "size": [2, 2], "translate": [0, 1, 0], "material": "glass"}]})";
+}
+
+TEST(SceneTextures, PngFileReplacesAlphaAndTransmission) {
+    TempDir dir;
+    writeTwoTexelPng(dir, "two.png");
+    const Scene scene = parseScene(texturedScene(R"("two.png")"), "t.json", dir.path());
+    ASSERT_EQ(scene.textures.size(), 1u);
+    const Material& glass = scene.materials[scene.objects[1].material];
+    EXPECT_EQ(glass.transmissionTexture, 0);
+    EXPECT_TRUE(glass.translucent());
+    EXPECT_EQ(scene.textures[0].rgba, (std::vector<uint8_t>{255, 0, 0, 102, 0, 0, 0, 255}));
+    // Bilinear with repeat: texel centres at u = 0.25 and 0.75, their mean at 0.5 and at 0 (wrapped).
+    const glm::vec4 red(1.0f, 0.0f, 0.0f, 0.4f), black(0.0f, 0.0f, 0.0f, 1.0f);
+    for (auto [u, expected] : {std::pair{0.25f, red}, {0.75f, black}, {0.5f, 0.5f * (red + black)}, {0.0f, 0.5f * (red + black)}})
+        for (int c = 0; c < 4; ++c) EXPECT_NEAR(sampleTexture(scene.textures[0], {u, 0.5f})[c], expected[c], 1e-6f) << u;
+    EXPECT_EQ(sceneGeometryBytes(scene) - sceneGeometryBytes([&] { Scene s = scene; s.textures.clear(); return s; }()), 8u)
+        << "textures count in the GPU budget";
+}
+
+TEST(SceneTextures, PlainImageBlackIsOpaqueElseTheMaterialAlpha) {
+    TempDir dir;
+    writeTwoTexelPng(dir, "rgb.png", 3);
+    const Scene scene = parseScene(texturedScene(R"("rgb.png")"), "t.json", dir.path());
+    ASSERT_EQ(scene.textures.size(), 1u);
+    EXPECT_EQ(scene.textures[0].rgba, (std::vector<uint8_t>{255, 0, 0, 128, 0, 0, 0, 255})) << "alpha 0.5 glass, black opaque";
+}
+
+TEST(SceneTextures, BadFilesNameTheFileUnlessOptional) {
+    TempDir dir;
+    dir.write("fake.png", "this is not a png");
+    EXPECT_MENTIONS(sceneErrorOf([&] { parseScene(texturedScene(R"("fake.png")"), "t.json", dir.path()); }),
+                    "t.json: materials.glass.transmissionTexture: " + (dir.path() / "fake.png").string() + ": not a readable PNG");
+    EXPECT_MENTIONS(sceneErrorOf([&] { parseScene(texturedScene(R"("missing.png")"), "t.json", dir.path()); }),
+                    (dir.path() / "missing.png").string() + ": cannot open texture");
+    EXPECT_MENTIONS(sceneErrorOf([&] { parseScene(texturedScene(R"({"file": "x.png", "procedural": "rainbow"})"), "t.json", dir.path()); }),
+                    "give either \"file\" or \"procedural\"");
+    EXPECT_MENTIONS(sceneErrorOf([&] { parseScene(texturedScene(R"({"procedural": "marble"})"), "t.json", dir.path()); }),
+                    "unknown procedural texture 'marble'");
+    EXPECT_MENTIONS(sceneErrorOf([&] { parseScene(texturedScene(R"({"file": "fake.png", "optinal": true})"), "t.json", dir.path()); }),
+                    "did you mean 'optional'");
+    // Optional: the scene loads without it, and the material keeps its plain alpha.
+    const Scene scene = parseScene(texturedScene(R"({"file": "fake.png", "optional": true})"), "t.json", dir.path());
+    EXPECT_TRUE(scene.textures.empty());
+    EXPECT_EQ(scene.materials[scene.objects[1].material].transmissionTexture, -1);
+    EXPECT_FLOAT_EQ(scene.materials[scene.objects[1].material].alpha, 0.5f);
+}
+
+TEST(SceneTextures, RoseWindowHasOpaqueTraceryAndManyColouredCells) {
+    const Texture rose = makeRoseWindowTexture(256, 1, 0.85f);
+    size_t opaque = 0, glass = 0;
+    std::set<uint32_t> colours;
+    for (size_t i = 0; i < rose.rgba.size(); i += 4) {
+        const uint8_t* t = &rose.rgba[i];
+        if (t[3] == 255) {
+            EXPECT_EQ(t[0] | t[1] | t[2], 0) << "opaque texels are black";
+            ++opaque;
+        } else {
+            EXPECT_EQ(t[3], 217);
+            ++glass;
+            colours.insert(uint32_t(t[0]) << 16 | uint32_t(t[1]) << 8 | t[2]);
+        }
+    }
+    EXPECT_GT(glass, opaque / 2) << "mostly glass inside the circle";
+    EXPECT_GT(opaque, rose.rgba.size() / 4 / 5) << "tracery and the corners outside the circle";
+    EXPECT_GE(colours.size(), 8u) << "many colours of glass";
+}
+
+TEST(SceneRepeat, RegionAndRandomRotationAreSeeded) {
+    const std::string json = R"({"objects": [{"shape": "plane"}, {"shape": "box", "translate": [1, 2, 3],
+        "repeat": {"count": 50, "region": [4, 2, 6], "randomRotate": [180, 90, 0], "seed": 7}}]})";
+    const Scene a = parse(json), b = parse(json);
+    ASSERT_EQ(a.objects.size(), 51u);
+    bool turned = false;
+    for (size_t i = 1; i < a.objects.size(); ++i) {
+        EXPECT_EQ(a.objects[i].transform, b.objects[i].transform) << "same seed, same scene";
+        const glm::vec3 at(a.objects[i].transform[3]);
+        EXPECT_LE(std::abs(at.x - 1.0f), 2.0f);
+        EXPECT_LE(std::abs(at.y - 2.0f), 1.0f);
+        EXPECT_LE(std::abs(at.z - 3.0f), 3.0f);
+        turned = turned || std::abs(a.objects[i].transform[0][0] - 1.0f) > 1e-3f;
+    }
+    EXPECT_TRUE(turned);
+    EXPECT_NE(parse(R"({"objects": [{"shape": "plane"}, {"shape": "box", "repeat": {"count": 50, "region": [4, 2, 6], "seed": 8}}]})")
+                  .objects[1].transform,
+              a.objects[1].transform);
+    EXPECT_MENTIONS(parseError(R"({"objects": [{"shape": "box", "repeat": {"grid": [2, 2], "region": [1, 1, 1]}}]})"),
+                    "give either grid or region");
+    EXPECT_EQ(parse(R"({"objects": [{"shape": "plane"}, {"shape": "box", "repeat": {"count": 0}}]})").objects.size(), 1u);
+    EXPECT_MENTIONS(parseError(R"({"objects": [{"shape": "box", "repeat": {"count": 0}}]})"), "no object");
+}
+
+TEST(BuiltinScenes, Seed001ScenesHaveTheirTranslucentCasters) {
+    for (const char* name : {"layered-quads", "rose-window", "teapot-glass", "glass-field"}) {
+        SCOPED_TRACE(name);
+        const Scene scene = loadScene(name);
+        size_t translucent = 0;
+        for (const SceneObject& object : scene.objects)
+            translucent += object.castsShadow && scene.materials[object.material].translucent();
+        EXPECT_GE(translucent, name == std::string("rose-window") ? 1u : 3u);
+    }
+    EXPECT_EQ(loadScene("glass-field", {{"quads", 0}}).objects.size(), 1001u);
+    EXPECT_EQ(loadScene("glass-field", {{"quads", 2000}}).objects.size(), 3001u);
+    // The teapot: the shared model when it is there, the stand-in otherwise (never an error).
+    const Scene teapot = loadScene("teapot-glass");
+    EXPECT_GT(teapot.meshes[teapot.objects[1].mesh].indices.size() / 3, 1000u);
 }
 
 } // namespace

@@ -321,6 +321,7 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         options.mode = modes.front();
         options.samplesPerPixel = samples;
         options.adaptive = true;   // as eval and bench: all the rays only where a penumbra may be
+        options.model = TranslucencyModel::Physical;
         Evaluation evaluation;
         if (!app.evaluate(options, evaluation, error)) return fail(error, kExitFailure);
         image = view == "error" ? evaluation.heatmap()
@@ -364,25 +365,34 @@ int commandEval(const CommonOptions& common, const std::string& reference, int s
     for (const auto& [pass, summary] : m.gpuMs)
         out["gpu_ms"][pass] = {{"median", summary.median}, {"p5", summary.p5}, {"p95", summary.p95}};
     out["cpu_ms"] = {{"median", m.cpuMs.median}, {"p5", m.cpuMs.p5}, {"p95", m.cpuMs.p95}};
+    out["translucency_model"] = translucencyModelName(info->translucencyModel);
+    // Against the physical model ("hard", "soft") and, where it differs, the technique's own
+    // ("hard_own", "soft_own"): docs/benchmarks.md, "Translucency models".
+    const std::vector<TranslucencyModel> models = judgedModels(info->translucencyModel, app.scene());
     for (const auto mode : modes) {
-        ReferenceOptions options;
-        options.mode = mode;
-        options.samplesPerPixel = samples;
-        options.adaptive = adaptive;
-        Evaluation evaluation;
-        if (!app.evaluate(options, evaluation, error)) return fail(error, kExitFailure);
-        const std::string name = mode == ReferenceOptions::Mode::Hard ? "hard" : "soft";
-        out["accuracy"][name] = nlohmann::json::parse(metricsToJson(evaluation.metrics));
-        out["accuracy"][name]["trace_seconds"] = evaluation.traceSeconds;
-        if (mode == ReferenceOptions::Mode::Soft) {
-            // The reference's own penumbra error: soft figures below about 4x it are not resolved.
-            const ReferenceStats& r = evaluation.referenceStats;
-            out["accuracy"][name]["reference_rays"] = r.samplesPerPixel;
-            out["accuracy"][name]["reference_adaptive"] = r.adaptive;
-            out["accuracy"][name]["reference_floor"] = evaluation.referenceFloor;
-            out["accuracy"][name]["reference_refined_fraction"] =
-                r.tracedPixels ? double(r.refinedPixels) / double(r.tracedPixels) : 0.0;
-            out["accuracy"][name]["reference_shadow_rays"] = r.shadowRays;
+        for (const TranslucencyModel model : models) {
+            ReferenceOptions options;
+            options.mode = mode;
+            options.samplesPerPixel = samples;
+            options.adaptive = adaptive;
+            options.model = model;
+            Evaluation evaluation;
+            if (!app.evaluate(options, evaluation, error)) return fail(error, kExitFailure);
+            const std::string name = std::string(mode == ReferenceOptions::Mode::Hard ? "hard" : "soft") +
+                                     (model == TranslucencyModel::Physical ? "" : "_own");
+            out["accuracy"][name] = nlohmann::json::parse(metricsToJson(evaluation.metrics));
+            out["accuracy"][name]["model"] = translucencyModelName(model);
+            out["accuracy"][name]["trace_seconds"] = evaluation.traceSeconds;
+            if (mode == ReferenceOptions::Mode::Soft) {
+                // The reference's own penumbra error: soft figures below about 4x it are not resolved.
+                const ReferenceStats& r = evaluation.referenceStats;
+                out["accuracy"][name]["reference_rays"] = r.samplesPerPixel;
+                out["accuracy"][name]["reference_adaptive"] = r.adaptive;
+                out["accuracy"][name]["reference_floor"] = evaluation.referenceFloor;
+                out["accuracy"][name]["reference_refined_fraction"] =
+                    r.tracedPixels ? double(r.refinedPixels) / double(r.tracedPixels) : 0.0;
+                out["accuracy"][name]["reference_shadow_rays"] = r.shadowRays;
+            }
         }
     }
     if (json) {
@@ -396,9 +406,9 @@ int commandEval(const CommonOptions& common, const std::string& reference, int s
         std::printf("  GPU %-20s median %8.3f ms  (p5 %.3f, p95 %.3f)\n", pass.c_str(), summary.median, summary.p5, summary.p95);
     std::printf("  host CPU per frame   median %8.3f ms;  GPU memory %.2f MiB\n", m.cpuMs.median, double(m.gpuBytes) / 1048576.0);
     for (const auto& [name, metrics] : out["accuracy"].items()) {
-        std::printf("  vs %s reference: MAE %.4f  RMSE %.4f  false shadow %.3f%%  false light %.3f%%  "
+        std::printf("  vs %s reference (%s model): MAE %.4f  RMSE %.4f  false shadow %.3f%%  false light %.3f%%  "
                     "MAE penumbra %.4f  MAE elsewhere %.4f  noise %.4f  compared %.1f%% of pixels\n",
-                    name.c_str(), metrics["mae"].get<double>(), metrics["rmse"].get<double>(),
+                    name.c_str(), metrics["model"].get<std::string>().c_str(), metrics["mae"].get<double>(), metrics["rmse"].get<double>(),
                     100.0 * metrics["falseShadowRate"].get<double>(), 100.0 * metrics["falseLightRate"].get<double>(),
                     metrics["maePenumbra"].get<double>(), metrics["maeOutsidePenumbra"].get<double>(),
                     metrics["noiseEnergy"].get<double>(), 100.0 * metrics["comparedFraction"].get<double>());

@@ -5,7 +5,7 @@
 // tap (seed 000 Fig. 3.11b without, 3.11c with). The taps are either looked up one by one or their
 // texels fetched four at a time with textureGather and weighted as the taps weight them (Castano
 // 2013, "Shadow Mapping Summary - Part 1"; derived in pcf.glsl): the same filter for about a
-// quarter of the lookups.
+// quarter of the lookups (with the cone bias, per 2 x 2 block of texels).
 // Known artefacts: banding (only n^2 + 1 shades without bilinear taps), visible texel steps, the
 // same penumbra width everywhere (not a soft shadow: the light's size plays no part), cost growing
 // with n^2, and acne that grows with the kernel: far taps see the receiver's own tilted surface
@@ -38,11 +38,11 @@ constexpr ParamDesc kParams[] = {
      "at almost no cost (seed 000 figure 3.11c against 3.11b). Off shows the n^2 + 1 discrete shades and "
      "the texel steps.", nullptr},
     {"sampling", "sampling", ParamType::Enum, 0, 1, 0, "",
-     "How the n x n taps are evaluated; both give the same shadow. taps: n^2 texture lookups. gather: the "
-     "texels the taps read, fetched four at a time with textureGather and weighted as the taps weight them "
-     "(Castano 2013), about (n + 1)^2 / 4 lookups (36 instead of 121 at 11 x 11); with the cone bias the "
-     "comparisons move from the texture unit into the shader, and on an H200 that made gather 1.3-1.5x "
-     "slower than the taps (docs/results/h200-2026-12-01), hence taps by default. Needs offset scale 1 "
+     "How the n x n taps are evaluated. taps: n^2 texture lookups. gather: the texels the taps read, "
+     "fetched and compared four at a time with textureGather and weighted as the taps weight them "
+     "(Castano 2013), (n + 1)^2 / 4 lookups rounded up (36 instead of 121 at 11 x 11). The same shadow "
+     "without the cone bias; with it each 2 x 2 block compares against its farthest tap's reference, "
+     "so contacts may be a little lighter (never darker) than with the taps. Needs offset scale 1 "
      "(neighbouring taps sharing texels); at other spacings the taps are used.", "taps|gather"},
     kit::coneBiasParam(),
     kit::constantBiasParam(),
@@ -67,7 +67,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "averaged, so edges become ramps instead of staircases. The kernel size sets the number of "
                     "tests (cost grows with n^2), the offset scale their spacing; bilinear taps remove the "
                     "banding. Sampling by gather reads the same texels four at a time (Castano 2013) for the "
-                    "same result at about a quarter of the lookups. The ramp has the same width everywhere: this is anti-aliasing, not a physically soft "
+                    "same result (with the cone bias, a little lighter at contacts) at about a quarter of the lookups. The ramp has the same width everywhere: this is anti-aliasing, not a physically soft "
                     "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause.",
      .shadowGlsl = "pcf.glsl"},
     kParams);
@@ -90,9 +90,6 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
         // The gather fetches the texels of taps one texel apart; other spacings use the taps.
         const bool gather = params.asInt(kSampling) == 1 && params.asFloat(kOffsetScale) == 1.0f;
         const bool coneBias = params.asBool(kConeBias);
-        // Raw depths for the gather with the cone bias, compared in the shader against each tap's reference.
-        glBindTextureUnit(shared::pcf::kRawDepthUnit, map_.texture());
-        glBindSampler(shared::pcf::kRawDepthUnit, host().sampler(SamplerKind::Nearest));
         uniforms_.set({{}, params.asInt(kKernel), params.asFloat(kOffsetScale), coneBias ? 1.0f : 0.0f, gather ? 1 : 0,
                        bilinear ? 1 : 0, 0, 0, 0});
     }

@@ -3,14 +3,15 @@
 // point's map position, keeping its depth z (optionally minus the cone bias). With GL_LINEAR
 // each tap is itself the texture unit's 2x2 bilinear comparison (Fig. 3.11c).
 //
-// Two ways to evaluate the same filter (the `sampling` parameter):
+// Two ways to evaluate the filter (the `sampling` parameter; the same filter without the cone
+// bias, and with it the same up to a cone at most one texel diagonal wider, see pcfGather):
 //   taps    the loop of n^2 lookups below (pcfTaps), one texture() per tap;
 //   gather  the texels the taps read, four at a time with textureGather (pcfGather), each weighted
 //           by how much of it the taps take. The idea is Castano's ("Shadow Mapping Summary -
 //           Part 1", 2013: the optimised PCF of The Witness, also in MJP's Shadows sample), which
 //           folds the bilinear taps of a kernel onto its texels and fetches them with the fewest
 //           lookups; here the weights are chosen to reproduce this box of taps exactly rather than
-//           a wider tent.
+//           a wider tent, and the comparisons stay in the texture unit.
 #include "light_space.glsl"
 #include "disc_sampling.glsl"
 
@@ -18,7 +19,6 @@
 #include "pcf_shared.h"
 
 layout(binding = kDepthMapUnit) uniform sampler2DShadow uShadowMap;   // comparison: hardware PCF
-layout(binding = kRawDepthUnit) uniform sampler2D uShadowDepth;       // the same map, raw depths
 
 float discTap(vec2 uv, float ref) { return texture(uShadowMap, vec3(uv, ref)); }
 
@@ -67,11 +67,19 @@ float pcfTaps(vec3 coord, float slope) {
 // textureGather at the corner the block's four texels share: ceil(m / 2)^2 lookups instead of n^2
 // (36 instead of 121 at 11 x 11). textureGather returns the block's texels in the order (0, 1),
 // (1, 1), (1, 0), (0, 0) (x right, y up) and clamps to the edge as the taps do.
-// Without the cone bias every tap compares with the same depth, and the gather compares in the
-// texture unit (textureGather on the sampler2DShadow). With it each tap has its own reference and
-// a texel of a bilinear kernel meets up to four of them, so the raw depths are gathered and
-// compared here, each texel against the reference of every tap that reads it, with that tap's
-// bilinear weight (the texture unit's own comparison is the same `ref <= depth` on a float map).
+// Every block is one comparing gather (textureGather on the sampler2DShadow: four `ref <= depth`
+// tests in the texture unit) against one reference depth. Without the cone bias that reference is
+// every tap's, and the gather is the taps' filter exactly. With it each tap has its own reference,
+// z - slope * r (r: the tap's distance from the centre), and a block's texels are read by up to
+// 2 x 2 (nearest) or 3 x 3 (bilinear) taps; the block compares against the smallest of their
+// references, the one of the farthest tap. That keeps the cone conservative (a texel is never
+// darker than in the taps: every pixel's gather term is >= its taps term) and moves it outwards by
+// at most one texel diagonal (slope * sqrt 2 of extra bias, seen at contacts and where a receiver
+// turns away from the light; the block's centroid instead, not conservative, was further from the
+// taps and darker at contacts on llvmpipe: tests/test_soft_filtering.cpp), where an exact
+// per-tap comparison would need raw depths and up to 16 shader comparisons per block. On an H200
+// that exact version was 1.3-1.5x slower than the taps (docs/results/h200-2026-12-01); this one
+// needs four weights and one gather per block.
 
 // Weight of texel k of the kernel along one axis (nearest taps: f = 0 and k < n).
 float texelWeight(int k, float f) {
@@ -95,40 +103,14 @@ float pcfGather(vec3 coord, float slope) {
             // Texel weights, 0 past the kernel (the last block of an odd m).
             vec2 wx = vec2(texelWeight(k0.x, f.x), k0.x + 1 < texels ? texelWeight(k0.x + 1, f.x) : 0.0);
             vec2 wy = vec2(texelWeight(k0.y, f.y), k0.y + 1 < texels ? texelWeight(k0.y + 1, f.y) : 0.0);
-            if (uConeBias == 0.0) {
-                vec4 visible = textureGather(uShadowMap, corner, coord.z);
-                lit += dot(visible, vec4(wx.x * wy.y, wx.y * wy.y, wx.y * wy.x, wx.x * wy.x));
-                continue;
-            }
-            vec4 gathered = textureGather(uShadowDepth, corner);
-            float depth[4] = float[4](gathered.w, gathered.z, gathered.x, gathered.y);   // (0,0) (1,0) (0,1) (1,1)
-            if (!bilinear) {   // texel k is tap k
-                for (int t = 0; t < 4; ++t) {
-                    ivec2 k = k0 + ivec2(t & 1, t >> 1);
-                    if (k.x < uKernel && k.y < uKernel)
-                        lit += tapReference(coord, slope, centre, k) <= depth[t] ? 1.0 : 0.0;
-                }
-                continue;
-            }
-            // Bilinear: texel k is read by taps k - (1, 1) .. k, as their right (weight f) or left
-            // (1 - f) texel along x and their upper (f) or lower (1 - f) one along y. The block's
-            // four texels meet the 3 x 3 taps k0 - (1, 1) .. k0 + (1, 1); each reference once.
-            float reference[9];
-            for (int j = 0; j < 3; ++j)
-                for (int i = 0; i < 3; ++i) {
-                    ivec2 tap = k0 - 1 + ivec2(i, j);
-                    bool inKernel = all(greaterThanEqual(tap, ivec2(0))) && all(lessThan(tap, ivec2(uKernel)));
-                    // Outside the kernel: a reference no depth in [0, 1] reaches, so the tap adds nothing.
-                    reference[3 * j + i] = inKernel ? tapReference(coord, slope, centre, tap) : 2.0;
-                }
-            for (int t = 0; t < 4; ++t) {
-                ivec2 texel = ivec2(t & 1, t >> 1);   // in the block; its taps are texel + (0..1, 0..1) of the 3 x 3
-                for (int dy = 0; dy < 2; ++dy)
-                    for (int dx = 0; dx < 2; ++dx) {
-                        float w = (dx == 0 ? f.x : 1.0 - f.x) * (dy == 0 ? f.y : 1.0 - f.y);
-                        lit += reference[3 * (texel.y + dy) + texel.x + dx] <= depth[t] ? w : 0.0;
-                    }
-            }
+            // Taps reading the block: k0 .. k0 + 1 (nearest: texel k is tap k) or k0 - 1 .. k0 + 1
+            // (bilinear: texel k is read by taps k - 1 and k), within the kernel; the farthest of
+            // them from the centre, per axis, is at one end of that range.
+            ivec2 first = max(k0 - (bilinear ? 1 : 0), ivec2(0));
+            ivec2 last = min(k0 + 1, ivec2(uKernel - 1));
+            vec2 reach = max(abs(vec2(first) - centre), abs(vec2(last) - centre)) * uOffsetScale;
+            vec4 visible = textureGather(uShadowMap, corner, coord.z - slope * length(reach));
+            lit += dot(visible, vec4(wx.x * wy.y, wx.y * wy.y, wx.y * wy.x, wx.x * wy.x));
         }
     return lit;
 }

@@ -1,10 +1,9 @@
-// pcf's main-pass block and its second texture unit, shared by pcf.cpp and pcf.glsl (see
+// pcf's main-pass block, shared by pcf.cpp and pcf.glsl (see
 // shadowlab/kit/shared.h).
 #ifndef PCF_SHARED_H
 #define PCF_SHARED_H
 #include "shadowlab/kit/shared.h"
 SHADOWLAB_SHARED_BEGIN(pcf)
-SHADOWLAB_TEXTURE_UNIT(kRawDepthUnit, 5)   // the shadow map again, without comparison (gather + cone bias)
 SHADOWLAB_UNIFORM_BLOCK(PcfUniforms, 2) {
     int uKernel;           // n: n x n taps
     float uOffsetScale;    // texels between neighbouring taps

@@ -119,6 +119,8 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
         glBindTextureUnit(kSearchOffsetsUnit, searchOffsets_.texture());
         glBindTextureUnit(kFilterOffsetsUnit, filterOffsets_.texture());
         glBindTextureUnit(kMinDepthUnit, minDepth_);
+        glBindTextureUnit(kCompareUnit, map_.texture());
+        glBindSampler(kCompareUnit, host().sampler(SamplerKind::CompareLinear));
         uniforms_.set({{}, searchOffsets_.n(), filterOffsets_.n(), params.asBool(kConeBias) ? 1.0f : 0.0f,
                        lightSizeInLightSpace(frame.light), params.asBool(kBilinear) ? 1 : 0, params.asInt(kSearchBound),
                        0, 0});

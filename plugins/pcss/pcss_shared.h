@@ -7,6 +7,7 @@ SHADOWLAB_TEXTURE_UNIT(kSearchOffsetsUnit, 5)
 SHADOWLAB_TEXTURE_UNIT(kFilterOffsetsUnit, 6)
 SHADOWLAB_TEXTURE_UNIT(kMinDepthUnit, 7)
 SHADOWLAB_TEXTURE_UNIT(kMinDepthSourceUnit, 4)
+SHADOWLAB_TEXTURE_UNIT(kCompareUnit, 8)        // the shadow map again, with the bilinear comparison sampler
 SHADOWLAB_UNIFORM_BLOCK(PcssUniforms, 2) {
     int uSearchGrid;       // n_s: n_s x n_s blocker-search samples
     int uFilterGrid;       // n_f: n_f x n_f filter samples

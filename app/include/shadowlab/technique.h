@@ -82,6 +82,20 @@ enum TechniqueFlag : uint32_t {
     kTechniqueNeedsCameraPrepass = 1u << 0,
 };
 
+// How a technique means translucent casters to shadow (seed 001): the factor each translucent
+// surface of alpha a and transmission colour t contributes, multiplied over every translucent
+// surface a shadow ray crosses before the first opaque one (0 from there on). The host judges a
+// technique against the reference of its own model as well as the physical one (Physical), so an
+// opaque-only technique is not scored for what it never tried to draw (docs/benchmarks.md).
+enum class TranslucencyModel : uint32_t {
+    Opaque = 0,              // M0: translucent casters block like opaque ones (factor 0)
+    Coverage = 1,            // M1: 1 - a, uncoloured (stochastic shadow maps, seed 001 sec. 2.1.2)
+    Physical = 2,            // M2: (1 - a) + a t, coloured (CSSM, seed 001 sec. 2.1.3: p = a (1 - t))
+    ModifiedTranslucent = 3, // M3: (1 - a) t (seed 001 sec. 4.2.1, "modified" translucent shadows)
+    Ignore = 4,              // translucent casters cast nothing (factor 1): a map of OpaqueCasters only
+};
+constexpr uint32_t kTranslucencyModelCount = 5;
+
 struct TechniqueDesc {
     uint32_t structSize = sizeof(TechniqueDesc);
     const char* id = nullptr;          // matches the folder name under plugins/
@@ -92,6 +106,8 @@ struct TechniqueDesc {
     const ParamDesc* params = nullptr;
     uint32_t paramCount = 0;
     uint32_t flags = 0;                // TechniqueFlag bits
+    // Added in ABI 3 after flags: read only when structSize covers it (older plugins: Opaque).
+    TranslucencyModel translucencyModel = TranslucencyModel::Opaque;
 };
 
 // ---------------------------------------------------------------------------------------------

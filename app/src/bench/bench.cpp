@@ -294,35 +294,45 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                 const bool hardOnly = spec.reference == "hard" ||
                                       (spec.reference == "auto" && (info->category == "hard" || info->category == "baseline"));
                 const bool softOnly = spec.reference == "soft";
+                // Physical in the plain columns (hard_mae, ...), the technique's own model where it
+                // differs in hard_own_* / soft_own_* (docs/benchmarks.md, "Translucency models").
+                row["translucency_model"] = translucencyModelName(info->translucencyModel);
+                const std::vector<TranslucencyModel> models = judgedModels(info->translucencyModel, app.scene());
                 for (const auto mode : modes) {
                     if ((mode == ReferenceOptions::Mode::Soft && hardOnly) || (mode == ReferenceOptions::Mode::Hard && softOnly))
                         continue;
-                    ReferenceOptions options;
-                    options.mode = mode;
-                    options.samplesPerPixel = spec.referenceSamples;
-                    options.adaptive = spec.referenceAdaptive;
-                    Evaluation evaluation;
-                    if (!app.evaluate(options, evaluation, error)) return false;
-                    const std::string prefix = mode == ReferenceOptions::Mode::Hard ? "hard_" : "soft_";
-                    const AccuracyMetrics& a = evaluation.metrics;
-                    row[prefix + "mae"] = a.mae;
-                    row[prefix + "rmse"] = a.rmse;
-                    row[prefix + "false_shadow"] = a.falseShadowRate;
-                    row[prefix + "false_light"] = a.falseLightRate;
-                    row[prefix + "mae_penumbra"] = a.maePenumbra;
-                    row[prefix + "mae_outside_penumbra"] = a.maeOutsidePenumbra;
-                    row[prefix + "compared_fraction"] = a.comparedFraction;
-                    row[prefix + "noise"] = a.noiseEnergy;
-                    row["technique_penumbra_fraction"] = a.techniquePenumbraFraction;
-                    if (mode == ReferenceOptions::Mode::Soft) {
-                        // The soft reference's own error: soft figures (and differences between
-                        // them) below about 4x the floor are not resolved.
-                        const ReferenceStats& r = evaluation.referenceStats;
-                        row["soft_reference_rays"] = r.samplesPerPixel;
-                        row["soft_reference_adaptive"] = r.adaptive;
-                        row["soft_reference_floor"] = evaluation.referenceFloor;
-                        row["soft_reference_refined_fraction"] =
-                            r.tracedPixels ? double(r.refinedPixels) / double(r.tracedPixels) : 0.0;
+                    for (const TranslucencyModel model : models) {
+                        const bool own = model != TranslucencyModel::Physical;
+                        ReferenceOptions options;
+                        options.mode = mode;
+                        options.samplesPerPixel = spec.referenceSamples;
+                        options.adaptive = spec.referenceAdaptive;
+                        options.model = model;
+                        Evaluation evaluation;
+                        if (!app.evaluate(options, evaluation, error)) return false;
+                        const std::string prefix =
+                            std::string(mode == ReferenceOptions::Mode::Hard ? "hard_" : "soft_") + (own ? "own_" : "");
+                        const AccuracyMetrics& a = evaluation.metrics;
+                        row[prefix + "mae"] = a.mae;
+                        row[prefix + "rmse"] = a.rmse;
+                        row[prefix + "false_shadow"] = a.falseShadowRate;
+                        row[prefix + "false_light"] = a.falseLightRate;
+                        row[prefix + "mae_penumbra"] = a.maePenumbra;
+                        row[prefix + "mae_outside_penumbra"] = a.maeOutsidePenumbra;
+                        row[prefix + "compared_fraction"] = a.comparedFraction;
+                        row[prefix + "noise"] = a.noiseEnergy;
+                        if (own) continue;
+                        row["technique_penumbra_fraction"] = a.techniquePenumbraFraction;
+                        if (mode == ReferenceOptions::Mode::Soft) {
+                            // The soft reference's own error: soft figures (and differences between
+                            // them) below about 4x the floor are not resolved.
+                            const ReferenceStats& r = evaluation.referenceStats;
+                            row["soft_reference_rays"] = r.samplesPerPixel;
+                            row["soft_reference_adaptive"] = r.adaptive;
+                            row["soft_reference_floor"] = evaluation.referenceFloor;
+                            row["soft_reference_refined_fraction"] =
+                                r.tracedPixels ? double(r.refinedPixels) / double(r.tracedPixels) : 0.0;
+                        }
                     }
                 }
             }

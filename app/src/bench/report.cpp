@@ -47,6 +47,7 @@ bool writeImages(App& app, const BenchSpec& spec, const std::filesystem::path& d
                                                                                      : ReferenceOptions::Mode::Soft;
             options.samplesPerPixel = spec.referenceSamples;
             options.adaptive = spec.referenceAdaptive;
+            options.model = TranslucencyModel::Physical;   // the heatmap shows the error against the physical model
             Evaluation evaluation;
             if (!app.evaluate(options, evaluation, error)) return false;
             if (!writePng(dir / (name + "-error.png"), evaluation.heatmap(), error)) return false;

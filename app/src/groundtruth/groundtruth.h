@@ -21,7 +21,7 @@
 
 #include "scene/scene.h"
 
-#define SHADOWLAB_GROUNDTRUTH_ABI_VERSION 2u
+#define SHADOWLAB_GROUNDTRUTH_ABI_VERSION 3u
 #define SHADOWLAB_GROUNDTRUTH_ENTRY_SYMBOL "shadowlab_create_groundtruth"
 #define SHADOWLAB_GROUNDTRUTH_MODULE "libshadowlab_groundtruth.so"
 
@@ -48,9 +48,11 @@ struct ReferenceOptions {
     enum class Mode { Hard, Soft } mode = Mode::Hard;
     int samplesPerPixel = 64;
     uint32_t seed = 1;         // with the pixel index, fixes every sample: same image for any thread count
-    bool transmission = false; // coloured: product over the caster surfaces crossed of
-                               // (1 - alpha) + alpha * transmission colour, 0 at the first opaque
-                               // one; otherwise every caster, translucent or not, blocks
+    // What translucent casters do to a shadow ray (TranslucencyModel in technique.h): the product
+    // over the translucent caster surfaces crossed of crossingFactor(model, alpha, t), 0 at the
+    // first opaque one. Opaque: every caster, translucent or not, blocks. eval and bench trace
+    // Physical always, and the technique's own model where it differs (docs/benchmarks.md).
+    TranslucencyModel model = TranslucencyModel::Opaque;
     int threads = 0;           // 0 = std::thread::hardware_concurrency()
 
     // Soft, adaptive: every pixel first traces `firstBatch` of the N strata (half on the emitter's
@@ -91,7 +93,7 @@ public:
     virtual void setScene(const Scene& scene) = 0;
 
     // Visibility of `light` for every texel of `gbuffer`, resized to width * height: grey
-    // (v, v, v) in [0, 1], or the rgb transmittance with options.transmission. Texels outside
+    // (v, v, v) in [0, 1], or the rgb transmittance of options.model. Texels outside
     // compareMask() (background, N.L <= 0, outside a spot cone) are 0.
     // With `stats`, also what was traced and the per-pixel sampling error (ReferenceStats).
     virtual void trace(const GBufferView& gbuffer, const LightInfo& light, const ReferenceOptions& options,
@@ -120,6 +122,56 @@ using GroundTruthPtr = std::unique_ptr<IGroundTruth, GroundTruthDeleter>;
 // (pluginDir()/..), then by plain name (LD_LIBRARY_PATH). Null with `error` set when it is
 // missing, fails to load or was built for another ABI version.
 GroundTruthPtr loadGroundTruth(std::string& error);
+
+// ---------------------------------------------------------------------------------------------
+// Translucency models (TranslucencyModel, technique.h), shared by the module and the host.
+
+// "opaque", "coverage", "physical", "modified", "ignore": names in bench columns, eval and the UI.
+inline const char* translucencyModelName(TranslucencyModel model) {
+    switch (model) {
+    case TranslucencyModel::Opaque: return "opaque";
+    case TranslucencyModel::Coverage: return "coverage";
+    case TranslucencyModel::Physical: return "physical";
+    case TranslucencyModel::ModifiedTranslucent: return "modified";
+    case TranslucencyModel::Ignore: return "ignore";
+    }
+    return "opaque";
+}
+
+// What one translucent surface of coverage `alpha` and transmission colour `t` lets through
+// (both clamped to [0, 1]), per model. Seed 001: stochastic shadow maps keep a caster's fragment
+// with probability alpha (sec. 2.1.2), so 1 - a of the light passes; CSSM2 stops a photon of
+// channel c with probability p = a (1 - t) (sec. 2.1.3), so 1 - p = (1 - a) + a t passes; the
+// modified translucent shadows write (1 - a) t (sec. 4.2.1), which is not 1 as a -> 0.
+inline glm::vec3 crossingFactor(TranslucencyModel model, float alpha, glm::vec3 t) {
+    const float a = alpha < 0.0f ? 0.0f : (alpha > 1.0f ? 1.0f : alpha);
+    t = glm::clamp(t, 0.0f, 1.0f);
+    switch (model) {
+    case TranslucencyModel::Opaque: return glm::vec3(0.0f);
+    case TranslucencyModel::Coverage: return glm::vec3(1.0f - a);
+    case TranslucencyModel::Physical: return (1.0f - a) + a * t;
+    case TranslucencyModel::ModifiedTranslucent: return (1.0f - a) * t;
+    case TranslucencyModel::Ignore: return glm::vec3(1.0f);
+    }
+    return glm::vec3(0.0f);
+}
+
+// True when some shadow caster of `scene` is translucent: only then do the models differ.
+inline bool hasTranslucentCaster(const Scene& scene) {
+    for (const SceneObject& object : scene.objects)
+        if (object.castsShadow && object.material < scene.materials.size() && scene.materials[object.material].translucent())
+            return true;
+    return false;
+}
+
+// The references a technique declaring `own` is judged against, first the one reported in the
+// plain columns: Physical always, then `own` where it differs and the scene has a translucent
+// caster (without one, every model traces the same image).
+inline std::vector<TranslucencyModel> judgedModels(TranslucencyModel own, const Scene& scene) {
+    std::vector<TranslucencyModel> models{TranslucencyModel::Physical};
+    if (own != TranslucencyModel::Physical && hasTranslucentCaster(scene)) models.push_back(own);
+    return models;
+}
 
 // ---------------------------------------------------------------------------------------------
 // Which pixels have a defined answer, shared by the module (which traces only these) and the

@@ -1,6 +1,7 @@
 // The reference as a technique (see reference_technique.h). It traces the host's camera pre-pass.
 #include "groundtruth/reference_technique.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "gl/gl.h"
@@ -9,7 +10,7 @@
 namespace shadowlab {
 namespace {
 
-enum Param : uint32_t { kMode, kSamples, kTransmission, kParamCount };
+enum Param : uint32_t { kMode, kSamples, kModel, kParamCount };
 
 const ParamDesc kParams[] = {
     {"mode", "mode", ParamType::Enum, 0, 1, 0, "",
@@ -18,9 +19,12 @@ const ParamDesc kParams[] = {
     {"samples", "samples per pixel", ParamType::Int, 1, 4096, 1024, "",
      "Soft mode: rays per pixel over the light's area, traced adaptively (a first batch everywhere, all "
      "of them only where a penumbra may be; docs/benchmarks.md). Fewer is faster and noisier.", nullptr},
-    {"transmission", "coloured transmission", ParamType::Bool, 0, 1, 0, "",
-     "Multiply the transmission of every translucent surface a shadow ray crosses (coloured shadows); "
-     "off, every caster blocks.", nullptr},
+    {"model", "translucency model", ParamType::Enum, 0, 4, 2, "",
+     "What a translucent caster of alpha a and transmission t lets through, multiplied over every one a "
+     "shadow ray crosses before the first opaque caster: opaque 0 (every caster blocks), coverage 1 - a "
+     "(stochastic shadow maps), physical (1 - a) + a t (coloured), modified (1 - a) t (seed 001's "
+     "modified translucent shadows), ignore 1 (translucent casters cast nothing).",
+     "opaque|coverage|physical|modified|ignore"},
 };
 
 const TechniqueDesc kDescriptor{
@@ -36,6 +40,7 @@ const TechniqueDesc kDescriptor{
     kParams,
     kParamCount,
     kTechniqueNeedsCameraPrepass,
+    TranslucencyModel::Physical,
 };
 
 } // namespace
@@ -47,7 +52,7 @@ ReferenceOptions referenceOptions(const ParamValues& params) {
     options.mode = params.asInt(kMode) == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
     options.samplesPerPixel = std::max(params.asInt(kSamples), 1);
     options.adaptive = true;
-    options.transmission = params.asBool(kTransmission);
+    options.model = static_cast<TranslucencyModel>(std::clamp(params.asInt(kModel), 0, int(kTranslucencyModelCount) - 1));
     return options;
 }
 
@@ -74,7 +79,7 @@ void ReferenceTechnique::renderShadows(const FrameContext& frame, const ParamVal
     std::vector<float> key(&camera.viewProjection[0][0], &camera.viewProjection[0][0] + 16);
     key.insert(key.end(), {light.position.x, light.position.y, light.position.z, light.direction.x, light.direction.y,
                            light.direction.z, light.size, light.spotOuterAngle, float(light.type),
-                           float(params[kMode]), float(params[kSamples]), float(params[kTransmission]),
+                           float(params[kMode]), float(params[kSamples]), float(params[kModel]),
                            float(*sceneGeneration_), float(size_.x), float(size_.y)});
     if (key == cacheKey_) return;
 

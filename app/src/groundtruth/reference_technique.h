@@ -20,7 +20,7 @@ using ReferenceTracer =
                        std::string& error)>;
 
 const TechniqueDesc& referenceDescriptor();
-// Reads the descriptor's parameters (mode, samples, transmission) into ReferenceOptions.
+// Reads the descriptor's parameters (mode, samples, model) into ReferenceOptions.
 ReferenceOptions referenceOptions(const ParamValues& params);
 
 class ReferenceTechnique final : public IShadowTechnique {

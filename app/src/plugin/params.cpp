@@ -79,6 +79,8 @@ TechniqueInfo copyDescriptor(const TechniqueDesc& desc, const std::filesystem::p
     info.shadowGlsl = text(desc.shadowGlsl);
     info.library = library;
     info.flags = has(offsetof(TechniqueDesc, flags), sizeof(desc.flags)) ? desc.flags : 0u;
+    if (has(offsetof(TechniqueDesc, translucencyModel), sizeof(desc.translucencyModel)))
+        info.translucencyModel = desc.translucencyModel;
     for (uint32_t i = 0; i < desc.paramCount && desc.params; ++i) {
         const ParamDesc& p = desc.params[i];
         info.params.push_back({text(p.id), text(p.label), p.type, p.minValue, p.maxValue, p.defaultValue,

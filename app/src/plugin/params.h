@@ -33,6 +33,7 @@ struct TechniqueInfo {
     std::string shadowGlsl;
     std::vector<ParamSpec> params;
     uint32_t flags = 0;               // TechniqueFlag bits
+    TranslucencyModel translucencyModel = TranslucencyModel::Opaque; // Opaque unless the descriptor covers it
     uint32_t descriptorSize = sizeof(TechniqueDesc);
     std::filesystem::path library;    // the .so it came from (empty for host-provided entries)
 

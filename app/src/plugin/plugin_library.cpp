@@ -59,6 +59,10 @@ std::string validateDescriptor(const TechniqueDesc& desc) {
         if (std::string problem = checkText(text, kMaxTextLength, false, false); !problem.empty()) return std::string(name) + " " + problem;
     if (std::string problem = checkText(desc.shadowGlsl, kMaxTextLength, false, true); !problem.empty() || !*desc.shadowGlsl)
         return "shadowGlsl " + (problem.empty() ? std::string("is empty") : problem) + " (it names the GLSL file with shadowTerm)";
+    if (desc.structSize >= offsetof(TechniqueDesc, translucencyModel) + sizeof(desc.translucencyModel) &&
+        static_cast<uint32_t>(desc.translucencyModel) >= kTranslucencyModelCount)
+        return "translucencyModel " + std::to_string(static_cast<uint32_t>(desc.translucencyModel)) +
+               " is not one of 0-" + std::to_string(kTranslucencyModelCount - 1) + " (TranslucencyModel in technique.h)";
     if (desc.paramCount > kMaxParams)
         return "paramCount " + std::to_string(desc.paramCount) + " is more than " + std::to_string(kMaxParams);
     if (desc.paramCount > 0 && !desc.params) return "paramCount is " + std::to_string(desc.paramCount) + " but params is null";

@@ -168,6 +168,34 @@ void Renderer::setScene(const Scene& scene) {
     glVertexArrayAttribFormat(name, 2, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
     for (GLuint attribute = 0; attribute < 3; ++attribute) glVertexArrayAttribBinding(name, attribute, 0);
 
+    // Material textures. The same image may serve as base colour (sRGB-encoded) and as
+    // transmission (linear), so it is uploaded in the format of each use.
+    auto upload = [](const Texture& texture, GLenum format) {
+        GLuint id = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &id);
+        glTextureStorage2D(id, 1, format, texture.width, texture.height);
+        glTextureSubImage2D(id, 0, 0, 0, texture.width, texture.height, GL_RGBA, GL_UNSIGNED_BYTE, texture.rgba.data());
+        glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        glObjectLabel(GL_TEXTURE, id, -1, texture.name.c_str());
+        return GlTexture(id);
+    };
+    transmissionTextures_.clear();
+    baseColorTextures_.clear();
+    transmissionTextures_.resize(scene.textures.size());
+    baseColorTextures_.resize(scene.textures.size());
+    for (const Material& material : scene.materials) {
+        const auto t = size_t(material.transmissionTexture), b = size_t(material.baseColorTexture);
+        if (material.transmissionTexture >= 0 && !transmissionTextures_[t]) transmissionTextures_[t] = upload(scene.textures[t], GL_RGBA8);
+        if (material.baseColorTexture >= 0 && !baseColorTextures_[b]) baseColorTextures_[b] = upload(scene.textures[b], GL_SRGB8_ALPHA8);
+    }
+    if (!whiteTexture_) {
+        const Texture white{"white", 1, 1, {255, 255, 255, 255}};
+        whiteTexture_ = upload(white, GL_RGBA8);
+    }
+
     // Transforms of every object in one buffer (std430 mirror of ObjectTransform in common.glsl).
     struct ObjectTransform {
         glm::mat4 model;
@@ -297,6 +325,10 @@ void Renderer::drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, ui
     glUniform4f(2, m.baseColor.r, m.baseColor.g, m.baseColor.b, m.alpha);
     glUniform4f(3, m.transmission.r, m.transmission.g, m.transmission.b, 1.0f);
     glUniform4f(4, m.specular.r, m.specular.g, m.specular.b, m.shininess);
+    const bool transmissionMap = m.transmissionTexture >= 0, baseColorMap = m.baseColorTexture >= 0;
+    glUniform4i(5, transmissionMap ? 1 : 0, baseColorMap ? 1 : 0, 0, 0);
+    glBindTextureUnit(1, transmissionMap ? transmissionTextures_[size_t(m.transmissionTexture)].get() : whiteTexture_.get());
+    glBindTextureUnit(2, baseColorMap ? baseColorTextures_[size_t(m.baseColorTexture)].get() : whiteTexture_.get());
     const MeshRange& range = meshRanges_[mesh];
     glDrawElementsInstancedBaseVertex(GL_TRIANGLES, GLsizei(range.indexCount), GL_UNSIGNED_INT,
                                       reinterpret_cast<const void*>(uintptr_t(range.firstIndex) * sizeof(uint32_t)),

@@ -124,6 +124,11 @@ private:
     const Scene* scene_ = nullptr;
     GlBuffer vertexBuffer_, indexBuffer_, frameUniforms_, objectTransforms_;
     GlVertexArray sceneVao_, emptyVao_;
+    // Scene::textures on the GPU (GL_LINEAR, GL_REPEAT, no mipmaps: as sampleTexture), and a
+    // white texel bound where a material has none. drawBatch binds a material's textures on the
+    // host's units 1 (transmission) and 2 (base colour) in every pass, light passes included.
+    std::vector<GlTexture> transmissionTextures_, baseColorTextures_;
+    GlTexture whiteTexture_;
     std::vector<MeshRange> meshRanges_;
     std::vector<Batch> batches_;                 // every object, in scene order
     std::vector<uint32_t> batchOfObject_;        // object index -> its batch

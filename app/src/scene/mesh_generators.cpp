@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/scene.h"
 
@@ -288,6 +289,51 @@ MeshSize terrainSize(float sizeX, float sizeZ, int subdivisions, float amplitude
     size.bounds.min.y = -0.75f * amplitude;   // terrainHeight is within +-0.75 amplitude
     size.bounds.max.y = 0.75f * amplitude;
     return size;
+}
+
+// The teapot's stand-in (seed 001's teapot scene when ../shared/assets has no teapot.obj): a body,
+// spout, handle and knob in the proportions of the Utah teapot as teapot.obj has it (x -3 to 3.4,
+// y 0 to 3.15, z -2 to 2 at size 1). One mesh of four closed parts, resting on y = 0.
+namespace {
+void appendTransformed(Mesh& into, const Mesh& part, const glm::mat4& transform) {
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(transform)));
+    const uint32_t base = static_cast<uint32_t>(into.vertices.size());
+    for (const Vertex& v : part.vertices)
+        into.vertices.push_back({glm::vec3(transform * glm::vec4(v.position, 1.0f)), glm::normalize(normalMatrix * v.normal), v.uv});
+    for (uint32_t index : part.indices) into.indices.push_back(base + index);
+}
+struct TeapotParts {
+    int segments, rings;
+};
+TeapotParts teapotParts(int segments) { return {std::max(segments, 8), std::max(segments, 8) / 2}; }
+} // namespace
+
+Mesh makeTeapotStandIn(float size, int segments) {
+    const TeapotParts p = teapotParts(segments);
+    const glm::mat4 scale = glm::scale(glm::mat4(1.0f), glm::vec3(size));
+    Mesh mesh;
+    appendTransformed(mesh, makeSphere(1.0f, p.segments, p.rings),
+                      scale * glm::scale(glm::translate(glm::mat4(1.0f), {0.0f, 1.5f, 0.0f}), {2.0f, 1.5f, 2.0f}));
+    appendTransformed(mesh, makeCylinder(0.25f, 1.8f, p.segments),
+                      scale * glm::rotate(glm::translate(glm::mat4(1.0f), {1.6f, 1.0f, 0.0f}), glm::radians(-50.0f), {0, 0, 1}));
+    appendTransformed(mesh, makeTorus(0.7f, 0.15f, p.segments, p.rings),
+                      scale * glm::rotate(glm::translate(glm::mat4(1.0f), {-2.0f, 1.7f, 0.0f}), glm::radians(90.0f), {1, 0, 0}));
+    appendTransformed(mesh, makeSphere(0.25f, p.segments, p.rings), scale * glm::translate(glm::mat4(1.0f), {0.0f, 3.05f, 0.0f}));
+    return mesh;
+}
+
+MeshSize teapotStandInSize(float size, int segments) {
+    const TeapotParts p = teapotParts(segments);
+    const MeshSize parts[] = {sphereSize(1.0f, p.segments, p.rings), cylinderSize(0.25f, 1.8f, p.segments),
+                              torusSize(0.7f, 0.15f, p.segments, p.rings), sphereSize(0.25f, p.segments, p.rings)};
+    MeshSize total;
+    for (const MeshSize& part : parts) {
+        total.vertices += part.vertices;
+        total.indices += part.indices;
+    }
+    // Loose but never too small: the parts above lie within it.
+    total.bounds = {glm::vec3(-3.0f, 0.0f, -2.0f) * size, glm::vec3(3.4f, 3.4f, 2.0f) * size};
+    return total;
 }
 
 MeshSize sizeOf(const Mesh& mesh) {

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <charconv>
 #include <cstdio>
+#include <cstdlib>
 #include <climits>
 #include <cmath>
 #include <fstream>
@@ -22,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene.h"
+#include "util/log.h"
 #include "util/strings.h"
 #include "util/text_file.h"
 
@@ -40,7 +42,7 @@ constexpr int kMaxInstances = 1'000'000;   // a typo like count=5000000 should f
 constexpr int kMaxSegments = 4096;
 constexpr size_t kMaxNameLength = 100;    // object and scene names (shown in lists and copied per instance)
 constexpr size_t kMaxTextLength = 4096;   // descriptions and other strings
-constexpr const char* kShapes = "plane, terrain, box, sphere, cylinder, torus, tree, bumpy, obj";
+constexpr const char* kShapes = "plane, terrain, box, sphere, cylinder, torus, tree, bumpy, teapot, obj";
 // Per object, the renderer's transform buffer holds a model and a normal matrix.
 constexpr uint64_t kGpuBytesPerObject = 2 * sizeof(glm::mat4);
 constexpr const char* kBudgetHelp = "docs/scene-format.md, \"Limits\"";
@@ -108,6 +110,20 @@ std::string likelyMeant(const std::string& name, const std::vector<std::string>&
         }
     }
     return best;
+}
+
+// A file named in a scene: relative to the scene's folder, or under the shared test-model folder
+// when it starts with "@assets/" ($SHADOWLAB_ASSETS_DIR, else ../shared/assets beside the source
+// tree), so built-in scenes can use models that are never copied into the repository.
+std::filesystem::path sceneFilePath(const std::filesystem::path& baseDir, const std::string& name) {
+    constexpr std::string_view assets = "@assets/";
+    if (name.starts_with(assets)) {
+        const char* dir = std::getenv("SHADOWLAB_ASSETS_DIR");
+        const std::filesystem::path root = dir && *dir ? std::filesystem::path(dir)
+                                                       : std::filesystem::path(SHADOWLAB_SOURCE_DIR) / ".." / "shared" / "assets";
+        return (root / name.substr(assets.size())).lexically_normal();
+    }
+    return (baseDir / name).lexically_normal();
 }
 
 std::string childPath(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
@@ -361,12 +377,29 @@ MeshRecipe readShape(FieldReader& fields, const std::string& shape, const std::f
                 [=] { return makeBumpySphere(radius, amplitude, frequency, segments); },
                 bumpySphereSize(radius, amplitude, segments)};
     }
+    if (shape == "teapot") {
+        const float size = fields.number("size", 1.0f, Range::Positive);
+        const int segments = fields.integer("segments", 32, 8, kMaxSegments);
+        return {recipeKey(shape, {size, double(segments)}), [=] { return makeTeapotStandIn(size, segments); },
+                teapotStandInSize(size, segments)};
+    }
     if (shape == "obj") {
         const json& value = fields.required("file", "an obj object needs a file, relative to the scene file");
         if (!value.is_string()) fields.fail("file", "expected a string, got " + describe(value));
-        const std::filesystem::path file = (baseDir / value.get<std::string>()).lexically_normal();
+        const std::filesystem::path file = sceneFilePath(baseDir, value.get<std::string>());
         const std::string path = fields.pathOf("file");
         const ParseContext& context = fields.context();
+        // A stand-in shape for when the file is not there (a built-in scene using a shared model).
+        if (const json* fallback = fields.find("fallback")) {
+            FieldReader fallbackFields(*fallback, fields.pathOf("fallback"), context);
+            const json& shape = fallbackFields.required("shape", std::string("one of: ") + kShapes);
+            if (!shape.is_string() || shape.get<std::string>() == "obj")
+                fallbackFields.fail("shape", "expected a procedural shape (not obj), got " + describe(shape));
+            MeshRecipe recipe = readShape(fallbackFields, shape.get<std::string>(), baseDir);
+            fallbackFields.finish("a fallback shape");
+            std::error_code missing;
+            if (!std::filesystem::exists(file, missing)) return recipe;
+        }
         return {"obj " + file.string(), [file, path, &context] {
                     std::error_code error;
                     if (!std::filesystem::exists(file, error)) {
@@ -393,6 +426,11 @@ struct Repeat {
     glm::vec2 scaleRange{1.0f};
     int seed = 1;
     bool followTerrain = false;   // stand each instance on the last terrain defined before it
+    // Seeded random placement and rotation (from a stream of their own, so scenes without them
+    // keep their instances): `region` > 0 places instances uniformly in a box of that size centred
+    // on the object instead of on the grid; `randomRotate` turns each by up to +-degrees per axis.
+    glm::vec3 region{0.0f};
+    glm::vec3 randomRotate{0.0f};
 };
 
 Repeat readRepeat(const json& node, const std::string& path, const ParseContext& context) {
@@ -401,7 +439,8 @@ Repeat readRepeat(const json& node, const std::string& path, const ParseContext&
     const json* count = fields.find("count");
     const json* grid = fields.find("grid");
     if (!count && !grid) context.fail(path, "needs \"count\", \"grid\" or both");
-    if (count) repeat.count = readInteger(*count, fields.pathOf("count"), context, 1, kMaxInstances);
+    // 0 is allowed: a sweep may start with none of an object (glass-field quads=0).
+    if (count) repeat.count = readInteger(*count, fields.pathOf("count"), context, 0, kMaxInstances);
     if (grid) {
         if (!grid->is_array() || grid->size() != 2) {
             fields.fail("grid", "expected an array of 2 numbers (columns, rows), got " + describe(*grid));
@@ -418,7 +457,7 @@ Repeat readRepeat(const json& node, const std::string& path, const ParseContext&
         }
     } else {
         // No grid given: as square as the count allows.
-        repeat.columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(repeat.count))));
+        repeat.columns = std::max(1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(repeat.count)))));
         repeat.rows = (repeat.count + repeat.columns - 1) / repeat.columns;
     }
     repeat.spacing = fields.vec("spacing", repeat.spacing, Range::NonNegative);
@@ -432,6 +471,9 @@ Repeat readRepeat(const json& node, const std::string& path, const ParseContext&
     if (repeat.scaleRange.x > repeat.scaleRange.y) fields.fail("scaleRange", "minimum exceeds maximum");
     repeat.seed = fields.integer("seed", repeat.seed, 0, INT_MAX);
     repeat.followTerrain = fields.boolean("followTerrain", false);
+    repeat.region = fields.vec("region", repeat.region, Range::NonNegative);
+    if (grid && repeat.region != glm::vec3(0.0f)) fields.fail("region", "give either grid or region, not both");
+    repeat.randomRotate = fields.vec("randomRotate", repeat.randomRotate, Range::NonNegative) * kRadiansPerDegree;
     fields.finish("a repeat block");
     return repeat;
 }
@@ -502,10 +544,11 @@ struct SceneBuilder {
     };
     std::optional<Terrain> terrain;               // the last terrain object read, for followTerrain
     // Totals so far, checked against the budget before each allocation.
-    uint64_t objects = 0, triangles = 0, storedVertices = 0, storedIndices = 0;
+    uint64_t objects = 0, triangles = 0, storedVertices = 0, storedIndices = 0, textureBytes = 0;
 
     uint64_t gpuBytes() const {
-        return storedVertices * sizeof(Vertex) + storedIndices * sizeof(uint32_t) + objects * kGpuBytesPerObject;
+        return storedVertices * sizeof(Vertex) + storedIndices * sizeof(uint32_t) + objects * kGpuBytesPerObject +
+               textureBytes;
     }
 
     void checkBudget(const std::string& path) const {
@@ -613,6 +656,70 @@ void readParameters(const json* node, const std::map<std::string, double>& overr
     }
 }
 
+// A material's texture field (docs/scene-format.md, "Textures"): "file.png", {"file": ...,
+// "optional": true} or {"procedural": "rose-window" | "rainbow" | "checker", ...}. Returns the
+// index into Scene::textures, or -1 when an optional file cannot be used (with a warning).
+int readTexture(const json& value, const std::string& path, float plainAlpha, SceneBuilder& builder) {
+    const ParseContext& context = builder.context;
+    std::string file;
+    bool optional = false;
+    std::function<Texture()> make;
+    glm::ivec2 size{1};
+    if (value.is_string()) {
+        file = value.get<std::string>();
+    } else {
+        FieldReader fields(value, path, context);
+        const json* fileValue = fields.find("file");
+        const json* procedural = fields.find("procedural");
+        if (!fileValue == !procedural) context.fail(path, "give either \"file\" or \"procedural\"");
+        if (fileValue) {
+            if (!fileValue->is_string()) fields.fail("file", "expected a string, got " + describe(*fileValue));
+            file = fileValue->get<std::string>();
+            optional = fields.boolean("optional", false);
+        } else {
+            if (!procedural->is_string()) fields.fail("procedural", "expected a string, got " + describe(*procedural));
+            const std::string kind = procedural->get<std::string>();
+            const int side = fields.integer("size", kind == "rainbow" ? 64 : 1024, 1, kMaxTextureSize);
+            if (kind == "rose-window") {
+                const int seed = fields.integer("seed", 1, 0, INT_MAX);
+                make = [=] { return makeRoseWindowTexture(side, static_cast<uint32_t>(seed), plainAlpha); };
+                size = {side, side};
+            } else if (kind == "rainbow") {
+                make = [=] { return makeRainbowTexture(side, plainAlpha); };
+                size = {side, 1};
+            } else if (kind == "checker") {
+                const glm::vec4 a = fields.vec("a", glm::vec4(1.0f), Range::NonNegative);
+                const glm::vec4 b = fields.vec("b", glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), Range::NonNegative);
+                make = [=] { return makeCheckerTexture(side, a, b); };
+                size = {side, side};
+            } else {
+                fields.fail("procedural", "unknown procedural texture '" + kind + "' (expected rose-window, rainbow or checker)");
+            }
+        }
+        fields.finish("a texture");
+    }
+    Texture texture;
+    if (!file.empty() || !make) {
+        if (file.empty()) context.fail(path, "empty file name");
+        const std::filesystem::path resolved = sceneFilePath(builder.baseDir, file);
+        try {
+            texture = loadPngTexture(resolved, plainAlpha, builder.budget.fileBytes);
+        } catch (const SceneError& error) {
+            if (!optional) context.fail(path, error.what());   // the message names the file
+            if (!builder.checkOnly)
+                logWarning(context.source + ": " + path + ": optional texture not used: " + error.what());
+            return -1;
+        }
+        size = {texture.width, texture.height};
+    }
+    builder.textureBytes += uint64_t(size.x) * uint64_t(size.y) * 4;
+    builder.checkBudget(path);
+    if (builder.checkOnly) return 0;
+    if (make) texture = make();
+    builder.scene.textures.push_back(std::move(texture));
+    return static_cast<int>(builder.scene.textures.size() - 1);
+}
+
 void readMaterials(const json& node, SceneBuilder& builder) {
     if (!node.is_object()) {
         builder.context.fail("materials", "expected an object of named materials, got " + describe(node));
@@ -629,6 +736,10 @@ void readMaterials(const json& node, SceneBuilder& builder) {
         material.transmission = fields.vec("transmission", material.transmission, Range::NonNegative);
         material.specular = fields.vec("specular", material.specular, Range::NonNegative);
         material.shininess = fields.number("shininess", material.shininess, Range::Positive);
+        if (const json* texture = fields.find("baseColorTexture"))
+            material.baseColorTexture = readTexture(*texture, fields.pathOf("baseColorTexture"), 1.0f, builder);
+        if (const json* texture = fields.find("transmissionTexture"))
+            material.transmissionTexture = readTexture(*texture, fields.pathOf("transmissionTexture"), material.alpha, builder);
         fields.finish("a material");
         builder.materialIndex[material.name] = static_cast<uint32_t>(builder.scene.materials.size());
         builder.scene.materials.push_back(material);
@@ -674,11 +785,18 @@ void readObject(const json& node, const std::string& path, size_t ordinal, Scene
     // the conversion to [0, 1) is done here to keep scenes identical across standard libraries.
     std::mt19937 random(static_cast<uint32_t>(repeat.seed));
     auto uniform = [&random] { return static_cast<float>(random() >> 8) * (1.0f / 16777216.0f); };
+    std::mt19937 placement(static_cast<uint32_t>(repeat.seed) ^ 0x9e3779b9u);
+    auto uniformPlacement = [&placement] { return static_cast<float>(placement() >> 8) * (1.0f / 16777216.0f); };
+    const bool inRegion = repeat.region != glm::vec3(0.0f);
     for (int i = 0; i < repeat.count; ++i) {
         const int column = i % repeat.columns, row = i / repeat.columns;
         const float gridX = static_cast<float>(column) - 0.5f * static_cast<float>(repeat.columns - 1);
         const float gridZ = static_cast<float>(row) - 0.5f * static_cast<float>(repeat.rows - 1);
         glm::vec3 offset{gridX * repeat.spacing.x, 0.0f, gridZ * repeat.spacing.y};
+        // Six draws per instance from the placement stream, used or not.
+        const glm::vec3 where{uniformPlacement(), uniformPlacement(), uniformPlacement()};
+        const glm::vec3 turn{uniformPlacement(), uniformPlacement(), uniformPlacement()};
+        if (inRegion) offset = (where - 0.5f) * repeat.region;
         // Four draws per instance whatever is used, so changing one range leaves the others alone.
         const glm::vec3 shake{uniform(), uniform(), uniform()};
         const float scaleChoice = uniform();
@@ -691,7 +809,8 @@ void readObject(const json& node, const std::string& path, size_t ordinal, Scene
         }
         const float instanceScale = glm::mix(repeat.scaleRange.x, repeat.scaleRange.y, scaleChoice);
 
-        object.transform = objectToWorld(translate + offset, rotate, scale * instanceScale);
+        object.transform = objectToWorld(translate + offset, rotate + (2.0f * turn - 1.0f) * repeat.randomRotate,
+                                         scale * instanceScale);
         checkTransform(object.transform, local, repeatNode ? path + " (instance " + std::to_string(i) + ")" : path,
                        builder.context);
         if (builder.checkOnly) continue;
@@ -827,6 +946,7 @@ void buildScene(const json& root, SceneBuilder& builder, const std::map<std::str
         fields.fail("objects", "expected a non-empty array of objects, got " + describe(objects));
     }
     for (size_t i = 0; i < objects.size(); ++i) readObject(objects[i], elementPath("objects", i), i, builder);
+    if (builder.objects == 0) fields.fail("objects", "the scene has no object (every repeat count is 0)");
 
     if (const json* light = fields.find("light")) scene.light = readLight(*light, builder.context);
     if (const json* camera = fields.find("camera")) scene.camera = readCamera(*camera, builder.context);
@@ -918,6 +1038,7 @@ void setSceneBudget(const SceneBudget& budget) { processBudget() = budget; }
 uint64_t sceneGeometryBytes(const Scene& scene) {
     uint64_t bytes = scene.objects.size() * kGpuBytesPerObject;
     for (const Mesh& mesh : scene.meshes) bytes += mesh.vertices.size() * sizeof(Vertex) + mesh.indices.size() * sizeof(uint32_t);
+    for (const Texture& texture : scene.textures) bytes += texture.rgba.size();
     return bytes;
 }
 

@@ -28,6 +28,17 @@ struct Mesh {
     std::vector<uint32_t> indices;   // triangles
 };
 
+// An RGBA8 image a material samples (docs/scene-format.md, "Textures"). Rows bottom-up, so texel
+// (0, 0) is at uv (0, 0) as GL stores it. The GPU and the ray-traced reference sample it alike:
+// bilinear between texel centres, repeat wrapping, no mipmaps (sampleTexture below).
+struct Texture {
+    std::string name;                // the file, or "procedural:<kind>"
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> rgba;       // width * height * 4
+};
+constexpr int kMaxTextureSize = 8192;
+
 struct Material {
     std::string name;
     glm::vec3 baseColor{0.8f};       // linear RGB
@@ -35,8 +46,43 @@ struct Material {
     glm::vec3 transmission{0.0f};    // colour of light passing through (coloured shadows)
     glm::vec3 specular{0.04f};
     float shininess = 32.0f;
-    bool translucent() const { return alpha < 1.0f; }
+    // Indices into Scene::textures, -1 for none. The base colour texture's rgb (sRGB-encoded)
+    // multiplies baseColor. The transmission texture replaces alpha and transmission per texel:
+    // rgb = t (linear), a = alpha; with one the object counts as translucent.
+    int baseColorTexture = -1;
+    int transmissionTexture = -1;
+    bool translucent() const { return alpha < 1.0f || transmissionTexture >= 0; }
 };
+
+// Bilinear sample of `texture` at `uv` with repeat wrapping, in [0, 1] per channel: what a GL
+// texture with GL_LINEAR filtering and GL_REPEAT returns (texel centres at (i + 0.5) / width).
+// Inline: the ray-traced reference module samples with it too.
+inline glm::vec4 sampleTexture(const Texture& texture, glm::vec2 uv) {
+    if (texture.width < 1 || texture.height < 1) return glm::vec4(1.0f);
+    const glm::vec2 size(static_cast<float>(texture.width), static_cast<float>(texture.height));
+    const glm::vec2 st = uv * size - 0.5f;
+    const glm::vec2 base = glm::floor(st);
+    const glm::vec2 f = st - base;
+    auto wrap = [](float i, int n) {
+        const long long k = static_cast<long long>(i) % n;
+        return static_cast<size_t>(k < 0 ? k + n : k);
+    };
+    auto texel = [&](float dx, float dy) {
+        const size_t x = wrap(base.x + dx, texture.width), y = wrap(base.y + dy, texture.height);
+        const uint8_t* t = &texture.rgba[(y * static_cast<size_t>(texture.width) + x) * 4];
+        return glm::vec4(t[0], t[1], t[2], t[3]) * (1.0f / 255.0f);
+    };
+    return glm::mix(glm::mix(texel(0, 0), texel(1, 0), f.x), glm::mix(texel(0, 1), texel(1, 1), f.x), f.y);
+}
+
+// PNG via stb_image (SceneError naming the file when it is missing, not a PNG, or larger than
+// kMaxTextureSize). An image without an alpha channel (grey or RGB) gets alpha 1 where it is
+// black and `plainAlpha` elsewhere: black is opaque.
+Texture loadPngTexture(const std::filesystem::path& file, float plainAlpha, uint64_t maxFileBytes);
+// Procedural textures of the built-in scenes (textures.cpp).
+Texture makeRoseWindowTexture(int size, uint32_t seed, float alpha);
+Texture makeRainbowTexture(int size, float alpha);
+Texture makeCheckerTexture(int size, glm::vec4 a, glm::vec4 b);
 
 struct SceneObject {
     std::string name;
@@ -65,6 +111,7 @@ struct Scene {
     std::map<std::string, double> parameters;  // values used, overrides applied (for reports)
     std::vector<Mesh> meshes;
     std::vector<Material> materials;
+    std::vector<Texture> textures;              // Material::baseColorTexture, transmissionTexture
     std::vector<SceneObject> objects;
     LightInfo light;                           // direction normalised
     SceneCamera camera;
@@ -165,6 +212,8 @@ Mesh makeTree(float height, float crownRadius, int segments);       // trunk + c
 // A closed, detailed blob: a sphere displaced radially by ridges of the given frequency, so it
 // shadows itself at small scale (the role of the Chinese Dragon in seed 000's tests).
 Mesh makeBumpySphere(float radius, float amplitude, float frequency, int segments);
+// A stand-in for the Utah teapot (body, spout, handle, knob) at teapot.obj's size times `size`.
+Mesh makeTeapotStandIn(float size, int segments);
 // Rolling hills: a grid in the xz plane (centred, facing +y) lifted by terrainHeight().
 Mesh makeTerrain(float sizeX, float sizeZ, int subdivisions, float amplitude, float wavelength);
 // Height of that terrain at (x, z) in its object space; repeat blocks with "followTerrain" use it
@@ -186,6 +235,7 @@ MeshSize torusSize(float majorRadius, float minorRadius, int segments, int sides
 MeshSize treeSize(float height, float crownRadius, int segments);
 MeshSize bumpySphereSize(float radius, float amplitude, int segments);
 MeshSize terrainSize(float sizeX, float sizeZ, int subdivisions, float amplitude);
+MeshSize teapotStandInSize(float size, int segments);
 MeshSize sizeOf(const Mesh& mesh);
 
 // Wavefront OBJ (v, vt, vn, f; everything else, mtllib included, is ignored and never opened);

@@ -323,6 +323,8 @@ int App::runInteractive(const InteractiveOptions& options) {
                 state.measureError.clear();
                 const std::string sides[2] = {state.technique, state.compareTechnique};
                 for (int s = 0; s < (state.compareTechnique.empty() ? 1 : 2); ++s) {
+                    const TechniqueInfo* info = techniques_->find(sides[s]);
+                    reference.model = state.referenceModel == 1 && info ? info->translucencyModel : TranslucencyModel::Physical;
                     SideMeasurement result;
                     if (!measureSide(*this, sides[s], reference, result, error)) {
                         state.measureError = sides[s] + ": " + error;

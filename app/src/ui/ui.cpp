@@ -536,6 +536,16 @@ void Ui::drawPanel(App& app, UiState& state) {
             fieldLabel("rays per pixel");
             ImGui::SliderInt("##rays", &state.referenceSamples, 4, 256);
         }
+        // Translucent casters: the physical model (1 - a) + a t, or the one the technique declares
+        // (in a comparison, each side's own).
+        const TechniqueInfo* judged = app.techniques().find(state.technique);
+        const TranslucencyModel ownModel = judged ? judged->translucencyModel : TranslucencyModel::Opaque;
+        const std::string ownLabel = state.compareTechnique.empty()
+                                         ? std::string("technique's own (") + translucencyModelName(ownModel) + ")"
+                                         : std::string("each technique's own");
+        const char* models[] = {"physical", ownLabel.c_str()};
+        fieldLabel("translucency model");
+        ImGui::Combo("##translucency-model", &state.referenceModel, models, 2);
         if (ImGui::Button("Measure accuracy (M)")) state.commands.push_back({UiCommand::Kind::Measure, ""});
         if (!state.measureError.empty()) {
             ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));

@@ -47,6 +47,7 @@ struct UiState {
     // every measurement of this session for the error-against-milliseconds plot.
     int referenceMode = 0;            // 0 hard, 1 soft
     int referenceSamples = 64;
+    int referenceModel = 0;           // 0 physical, 1 each side's technique's own translucency model
     std::vector<SideMeasurement> measurement;
     std::string measureError;
     std::string staleReason;          // why the shown measurement no longer matches the view ("" = current)

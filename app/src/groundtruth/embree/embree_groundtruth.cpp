@@ -16,12 +16,13 @@
 //   first batch of the strata everywhere, all N only where needed: traceSoft) gives a refined
 //   pixel exactly the uniform reference's value. Per pixel, the reference also estimates its own
 //   sampling error (standardError), the floor under any soft metric measured against it.
-// - Coloured transmission: hits are walked in order along the ray; a translucent caster of
-//   alpha a and transmission colour t lets through (1 - a) + a * t per channel (a fraction
-//   1 - a of the light misses its coverage, the rest is filtered by t: the "modified
-//   transmission" of stochastic/coloured shadow maps); the first opaque caster gives 0. Every
-//   surface crossing counts, so a closed translucent solid filters twice (entry and exit), as a
-//   rasteriser accumulating all translucent fragments does.
+// - Translucency models (ReferenceOptions::model): with Opaque every caster blocks (one occlusion
+//   query per ray). Otherwise hits are walked in order along the ray; a translucent caster of
+//   alpha a and transmission colour t lets through crossingFactor(model, a, t) per channel
+//   (groundtruth.h: Physical (1 - a) + a t, a fraction 1 - a of the light misses its coverage and
+//   the rest is filtered by t; Coverage 1 - a; ModifiedTranslucent (1 - a) t; Ignore 1); the
+//   first opaque caster gives 0. Every surface crossing counts, so a closed translucent solid
+//   filters twice (entry and exit), as a rasteriser accumulating all translucent fragments does.
 // - Rows are shared between std::threads through an atomic counter; rays of a row (hard) or of
 //   a pixel (soft) go to Embree as one stream, which it traces as packets.
 #include <embree3/rtcore.h>
@@ -286,6 +287,7 @@ private:
 struct MeshData {
     std::vector<glm::vec3> positions; // one element of padding: Embree loads vertices 16 bytes at a time
     std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> uvs;       // transmission textures are sampled at the hit's uv
     std::vector<uint32_t> indices;
     size_t vertexCount = 0;
     RTCScene scene = nullptr;         // instanced meshes only
@@ -297,7 +299,9 @@ struct SurfaceRecord {
     glm::mat4 model{1.0f};            // identity for flattened meshes (already in world space)
     glm::mat3 normalMatrix{1.0f};
     bool opaque = true;
-    glm::vec3 transmittance{0.0f};    // (1 - alpha) + alpha * transmission colour
+    float alpha = 1.0f;               // translucent surfaces: the material's coverage and
+    glm::vec3 transmission{0.0f};     // transmission colour, unclamped
+    int texture = -1;                 // transmission texture (index into textures_): replaces both per texel
 };
 
 void initRay(RTCRay& ray, glm::vec3 origin, const ShadowRay& shadowRay, unsigned mask) {
@@ -436,13 +440,17 @@ public:
             const Material& material = object.material < scene.materials.size() ? scene.materials[object.material] : fallback;
             record.opaque = !material.translucent();
             if (!record.opaque) {
-                const float alpha = std::clamp(material.alpha, 0.0f, 1.0f);
-                record.transmittance = (1.0f - alpha) + alpha * glm::clamp(material.transmission, 0.0f, 1.0f);
+                record.alpha = material.alpha;
+                record.transmission = material.transmission;
+                if (material.transmissionTexture >= 0 && size_t(material.transmissionTexture) < scene.textures.size()) {
+                    record.texture = material.transmissionTexture;
+                }
                 if (object.castsShadow) anyTranslucentCaster_ = true;
             }
             if (surfaces_.size() <= id) surfaces_.resize(id + 1);
             surfaces_[id] = record;
         }
+        textures_ = scene.textures;
         rtcCommitScene(top_);
         if (!deviceError_.empty()) {
             const std::string message = deviceError_;
@@ -539,7 +547,7 @@ private:
     void traceHard(const GBufferView& gbuffer, const LightInfo& light, const ReferenceOptions& options,
                    std::vector<glm::vec3>& visibility) const {
         const int width = gbuffer.width, height = gbuffer.height;
-        const bool coloured = options.transmission && anyTranslucentCaster_;
+        const bool coloured = options.model != TranslucencyModel::Opaque && anyTranslucentCaster_;
         parallelRows(threadCount(options.threads, height), [&](std::atomic<int>& nextRow) {
             std::vector<RTCRay> rays(static_cast<size_t>(std::max(width, 1)));
             std::vector<int> rayPixel(rays.size());
@@ -557,7 +565,7 @@ private:
                     const glm::vec3 origin = shadowOrigin(gbuffer, i, light, n);
                     const EmitterSampler emitter(light, origin, rayOffset_);
                     if (coloured) {
-                        visibility[i] = transmittance(origin, emitter.centre(), context);
+                        visibility[i] = transmittance(origin, emitter.centre(), options.model, context);
                     } else {
                         initRay(rays[static_cast<size_t>(count)], origin, emitter.centre(), kMaskCaster);
                         rayPixel[static_cast<size_t>(count++)] = x;
@@ -592,7 +600,7 @@ private:
     // 0 for a sample below the surface's tangent plane (the surface itself hides that part of the
     // emitter, whether or not the receiver casts shadows). Returns the rays traced.
     uint64_t traceSamples(glm::vec3 origin, glm::vec3 n, const EmitterSampler& emitter, const PixelRandom& random,
-                          const Strata& strata, const int* list, int count, bool coloured,
+                          const Strata& strata, const int* list, int count, bool coloured, TranslucencyModel model,
                           RTCIntersectContext& context, SampleBuffers& b) const {
         std::fill_n(b.results.begin(), count, glm::vec3(0.0f));
         int streamed = 0;
@@ -602,7 +610,7 @@ private:
             if (glm::dot(ray.direction, n) <= 0.0f) continue;
             ++traced;
             if (coloured) {
-                b.results[static_cast<size_t>(j)] = transmittance(origin, ray, context);
+                b.results[static_cast<size_t>(j)] = transmittance(origin, ray, model, context);
             } else {
                 initRay(b.rays[static_cast<size_t>(streamed)], origin, ray, kMaskCaster);
                 b.slot[static_cast<size_t>(streamed++)] = j;
@@ -657,7 +665,7 @@ private:
                    std::vector<glm::vec3>& visibility, ReferenceStats& out, bool wantError) const {
         const int width = gbuffer.width, height = gbuffer.height;
         const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
-        const bool coloured = options.transmission && anyTranslucentCaster_;
+        const bool coloured = options.model != TranslucencyModel::Opaque && anyTranslucentCaster_;
         const Strata strata(options.samplesPerPixel);
         const int batchSize = std::clamp(options.firstBatch, 1, strata.count);
         const bool adaptive = options.adaptive && strata.nx >= 2 && strata.ny >= 2 && batchSize < strata.count;
@@ -697,7 +705,7 @@ private:
                         const PixelRandom random(i, options.seed);
                         chooseFirstBatch(strata, batchSize, random, b.batch, b.used);
                         const int count = static_cast<int>(b.batch.size());
-                        traced += traceSamples(origin, n, emitter, random, strata, b.batch.data(), count, coloured, c, b);
+                        traced += traceSamples(origin, n, emitter, random, strata, b.batch.data(), count, coloured, options.model, c, b);
                         bool unanimous = true;
                         for (int j = 1; j < count && unanimous; ++j)
                             unanimous = b.results[static_cast<size_t>(j)] == b.results[0];
@@ -746,7 +754,7 @@ private:
                     const glm::vec3 origin = shadowOrigin(gbuffer, i, light, n);
                     const EmitterSampler emitter(light, origin, rayOffset_);
                     const PixelRandom random(i, options.seed);
-                    traced += traceSamples(origin, n, emitter, random, strata, everyStratum.data(), strata.count, coloured, c, b);
+                    traced += traceSamples(origin, n, emitter, random, strata, everyStratum.data(), strata.count, coloured, options.model, c, b);
                     glm::vec3 sum(0.0f);
                     for (int k = 0; k < strata.count; ++k) sum += b.results[static_cast<size_t>(k)];
                     visibility[i] = sum / static_cast<float>(strata.count);
@@ -815,6 +823,7 @@ private:
         for (const Vertex& v : mesh.vertices) {
             data->positions.emplace_back(model * glm::vec4(v.position, 1.0f));
             data->normals.push_back(normalMatrix * v.normal);
+            data->uvs.push_back(v.uv);
         }
         data->positions.emplace_back(0.0f); // padding
         data->indices.assign(mesh.indices.begin(), mesh.indices.begin() + static_cast<std::ptrdiff_t>(mesh.indices.size() / 3 * 3));
@@ -850,10 +859,11 @@ private:
         normal = glm::vec4(glm::normalize(surface.normalMatrix * n), 0.0f);
     }
 
-    // Product of the transmittance of every caster the ray crosses, nearest first; 0 at the first
-    // opaque one. Restarting just past each hit (rayOffset) crosses a surface once even where the
-    // ray meets the shared edge of two of its triangles.
-    glm::vec3 transmittance(glm::vec3 origin, const ShadowRay& shadowRay, RTCIntersectContext& context) const {
+    // Product of crossingFactor(model) of every caster the ray crosses, nearest first; 0 at the
+    // first opaque one. Restarting just past each hit (rayOffset) crosses a surface once even where
+    // the ray meets the shared edge of two of its triangles.
+    glm::vec3 transmittance(glm::vec3 origin, const ShadowRay& shadowRay, TranslucencyModel model,
+                            RTCIntersectContext& context) const {
         glm::vec3 throughput(1.0f);
         float tnear = 0.0f;
         for (int hits = 0; hits < kMaxTransmissionHits; ++hits) {
@@ -866,7 +876,18 @@ private:
             if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return throughput;
             const SurfaceRecord& surface = surfaceOf(rayHit.hit);
             if (surface.opaque) return glm::vec3(0.0f);
-            throughput *= surface.transmittance;
+            if (surface.texture >= 0) {
+                // The texel the GPU samples there: bilinear, repeat (sampleTexture, scene.h).
+                const uint32_t* triangle = &surface.mesh->indices[3 * static_cast<size_t>(rayHit.hit.primID)];
+                const std::vector<glm::vec2>& uv = surface.mesh->uvs;
+                const float w = 1.0f - rayHit.hit.u - rayHit.hit.v;
+                const glm::vec4 texel = sampleTexture(textures_[static_cast<size_t>(surface.texture)],
+                                                      w * uv[triangle[0]] + rayHit.hit.u * uv[triangle[1]] +
+                                                          rayHit.hit.v * uv[triangle[2]]);
+                throughput *= crossingFactor(model, texel.a, glm::vec3(texel));
+            } else {
+                throughput *= crossingFactor(model, surface.alpha, surface.transmission);
+            }
             if (throughput.r == 0.0f && throughput.g == 0.0f && throughput.b == 0.0f) return throughput;
             tnear = rayHit.ray.tfar + rayOffset_;
             if (tnear >= shadowRay.length) return throughput;
@@ -881,6 +902,7 @@ private:
             if (mesh->scene) rtcReleaseScene(mesh->scene);
         meshes_.clear();
         surfaces_.clear();
+        textures_.clear();
         anyTranslucentCaster_ = false;
         rayOffset_ = 1e-4f;
     }
@@ -891,6 +913,7 @@ private:
     std::mutex errorMutex_;
     std::vector<std::unique_ptr<MeshData>> meshes_;
     std::vector<SurfaceRecord> surfaces_;
+    std::vector<Texture> textures_;
     bool anyTranslucentCaster_ = false;
     float rayOffset_ = 1e-4f;
 };
