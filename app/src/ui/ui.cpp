@@ -28,6 +28,21 @@ void scrollCallback(GLFWwindow* window, double, double dy) {
 
 // Key presses are queued here: ImGui 1.86 keeps only "is down" per frame, so a key pressed and
 // released between two frames (a quick tap at 10 frames per second) would be lost.
+// Where the cursor was when the left button went down, from the events in their order: at a
+// few frames per second the cursor has moved on by the frame that sees the click, and the wipe
+// handle would be missed.
+void cursorCallback(GLFWwindow* window, double x, double y) {
+    if (auto* state = static_cast<UiState*>(glfwGetWindowUserPointer(window))) state->eventCursor = {float(x), float(y)};
+}
+
+void mouseButtonCallback(GLFWwindow* window, int button, int action, int) {
+    if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+    auto* state = static_cast<UiState*>(glfwGetWindowUserPointer(window));
+    if (!state) return;
+    if (action == GLFW_PRESS) state->leftPresses.push_back(state->eventCursor);
+    if (action == GLFW_RELEASE) state->leftRelease = state->eventCursor;
+}
+
 void keyCallback(GLFWwindow* window, int key, int, int action, int) {
     if (action != GLFW_PRESS) return;
     if (auto* state = static_cast<UiState*>(glfwGetWindowUserPointer(window))) state->pressedKeys.push_back(key);
@@ -192,6 +207,11 @@ bool Ui::init(GLFWwindow* window, float uiScale) {
     if (window) {
         glfwSetScrollCallback(window, scrollCallback);   // the ImGui backend chains to both
         glfwSetKeyCallback(window, keyCallback);
+        glfwSetMouseButtonCallback(window, mouseButtonCallback);
+        glfwSetCursorPosCallback(window, cursorCallback);
+        double x = 0.0, y = 0.0;
+        glfwGetCursorPos(window, &x, &y);
+        initialCursor_ = {float(x), float(y)};
         if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) return false;
     } else {
         ImGui::GetIO().BackendPlatformName = "shadowlab offscreen";
@@ -247,6 +267,7 @@ bool Ui::wantsKeyboard() const { return initialised_ && ImGui::GetIO().WantCaptu
 void Ui::draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, glm::ivec2 display) {
     applyScale(state.uiScale);
     if (window_) {
+        if (glfwGetWindowUserPointer(window_) != &state) state.eventCursor = initialCursor_;
         glfwSetWindowUserPointer(window_, &state);
         ImGui_ImplGlfw_NewFrame();
     } else {
@@ -284,6 +305,8 @@ void Ui::draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, 
     }
 
     drawViewOverlay(app, state);
+    state.leftPresses.clear();
+    state.leftRelease.reset();
     if (state.showUi) drawPanel(app, state);
     else drawStatusLine(app, state, true);
 
@@ -342,12 +365,18 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
                 draw->AddCircleFilled(ImVec2(divider, y), r, IM_COL32(255, 255, 255, 230));
                 draw->AddCircle(ImVec2(divider, y), r, IM_COL32(0, 0, 0, 200), 0, 2.0f);
                 const ImGuiIO& io = ImGui::GetIO();
-                const bool near = std::abs(io.MousePos.x - divider) < r && layout.view.contains({io.MousePos.x, io.MousePos.y});
-                if (near && ImGui::IsMouseClicked(0) && !io.WantCaptureMouse) state.draggingWipe = true;
-                if (!ImGui::IsMouseDown(0)) state.draggingWipe = false;
+                auto onHandle = [&](glm::vec2 p) { return std::abs(p.x - divider) < r && layout.view.contains(p); };
+                const bool near = onHandle({io.MousePos.x, io.MousePos.y});
+                for (const glm::vec2 press : state.leftPresses)
+                    if (onHandle(press) && !io.WantCaptureMouse) state.draggingWipe = true;
+                // Follow the cursor; a release ends the drag where the button went up (a slow
+                // frame may see the release and later moves together).
+                const bool released = state.leftRelease.has_value() || !ImGui::IsMouseDown(0);
+                const float x = state.leftRelease ? state.leftRelease->x : io.MousePos.x;
                 if (state.draggingWipe && layout.view.size.x > 0)
-                    state.wipe = std::clamp((io.MousePos.x - float(layout.view.origin.x)) / float(layout.view.size.x), 0.02f, 0.98f);
+                    state.wipe = std::clamp((x - float(layout.view.origin.x)) / float(layout.view.size.x), 0.02f, 0.98f);
                 if (near || state.draggingWipe) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
+                if (released) state.draggingWipe = false;
             }
         }
     }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ struct UiState {
     int msaaSamples = 0;
     float scroll = 0.0f;              // mouse wheel since last frame
     std::vector<int> pressedKeys;     // GLFW keys pressed since last frame
+    glm::vec2 eventCursor{0.0f};      // the cursor as of the last event read
+    std::vector<glm::vec2> leftPresses;   // where the left button went down since last frame
+    std::optional<glm::vec2> leftRelease; // where it went up since last frame
     bool quitRequested = false;
     bool showUi = true;               // F1 or H toggles; false: nothing over the view but labels
     float uiScale = 1.0f;             // fonts and sizes (a projector wants 1.5 to 2)
@@ -78,6 +82,7 @@ private:
     bool initialised_ = false;
     GLFWwindow* window_ = nullptr;
     ImGuiGlRenderer renderer_;
+    glm::vec2 initialCursor_{0.0f};
     float appliedScale_ = 0.0f;
     float smoothedFrameMs_ = 0.0f;
     std::string sceneInput_;
