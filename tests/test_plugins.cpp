@@ -270,3 +270,92 @@ TEST_F(PluginSandbox, ShaderThatFailsOnReloadLeavesTheOldProgramRunning) {
     ASSERT_TRUE(app->renderFrame("reload_test", error)) << error;
     EXPECT_NEAR(centreVisibility(*app), 0.25f, 0.01f) << "fixed shader took over";
 }
+
+namespace {
+
+std::string readBytes(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void writeBytes(const fs::path& file, const std::string& bytes, int generation) {
+    std::ofstream(file, std::ios::binary | std::ios::trunc).write(bytes.data(), std::streamsize(bytes.size()));
+    fs::last_write_time(file, fs::file_time_type::clock::now() + std::chrono::seconds(generation));
+}
+
+int countLog(const std::string& text) {
+    int n = 0;
+    for (const auto& entry : recentLog()) n += entry.message.find(text) != std::string::npos;
+    return n;
+}
+
+} // namespace
+
+// A rebuild caught mid-write, with the linker pausing longer than two polls: first half the
+// library, then all of it with the ELF header still zero (GNU ld writes it last), then the
+// finished file. The host waits, reports nothing, and loads the finished file. The old poll
+// loaded whatever two polls agreed on and logged "file too short" and "invalid ELF header"
+// before every successful rebuild.
+TEST_F(PluginSandbox, ALibraryStillBeingWrittenIsWaitedForNotReported) {
+    fs::copy_file(kTestPlugins / "reload_v1.so", pluginFile());
+    auto app = test::makeHeadlessApp("cube", {64, 48});
+    ASSERT_TRUE(app);
+    std::string error;
+    ASSERT_TRUE(app->renderFrame("reload_test", error)) << error;
+    const int failuresBefore = countLog("hot reload failed");
+    const std::string v2 = readBytes(kTestPlugins / "reload_v2.so");
+    ASSERT_GT(v2.size(), 4096u);
+    auto renderFor = [&](std::chrono::milliseconds duration) {
+        const auto end = std::chrono::steady_clock::now() + duration;
+        while (std::chrono::steady_clock::now() < end) {
+            ASSERT_TRUE(app->renderFrame("reload_test", error)) << error;
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+    };
+    writeBytes(pluginFile(), v2.substr(0, v2.size() / 2), 2);
+    renderFor(std::chrono::milliseconds(500));
+    EXPECT_EQ(app->techniques().lastReloadError(), "") << "half a library is a build in progress, not a failure";
+    std::string headerless = v2;
+    std::fill(headerless.begin(), headerless.begin() + 64, '\0');
+    writeBytes(pluginFile(), headerless, 3);
+    renderFor(std::chrono::milliseconds(500));
+    EXPECT_EQ(app->techniques().lastReloadError(), "") << "no ELF header yet is a build in progress, not a failure";
+    EXPECT_EQ(app->techniques().find("reload_test")->explanation, "version 1") << "the running version stays meanwhile";
+
+    writeBytes(pluginFile(), v2, 4);
+    ASSERT_TRUE(renderUntil(*app, [&] { return app->techniques().find("reload_test")->explanation == "version 2"; }))
+        << "the finished library was not loaded";
+    EXPECT_EQ(app->techniques().lastReloadError(), "");
+    EXPECT_EQ(countLog("hot reload failed"), failuresBefore) << "no red line before a successful rebuild";
+}
+
+// A library that stays incomplete (a build that died while linking) is reported once it has
+// stayed unchanged for the settle time, naming what is missing; the running version stays.
+TEST_F(PluginSandbox, ALibraryThatStaysIncompleteIsReportedOnceSettled) {
+    fs::copy_file(kTestPlugins / "reload_v1.so", pluginFile());
+    auto app = test::makeHeadlessApp("cube", {64, 48});
+    ASSERT_TRUE(app);
+    std::string error;
+    ASSERT_TRUE(app->renderFrame("reload_test", error)) << error;
+    const std::string v2 = readBytes(kTestPlugins / "reload_v2.so");
+    writeBytes(pluginFile(), v2.substr(0, v2.size() / 3), 2);
+    const auto start = std::chrono::steady_clock::now();
+    ASSERT_TRUE(renderUntil(*app, [&] { return !app->techniques().lastReloadError().empty(); }));
+    EXPECT_GE(std::chrono::steady_clock::now() - start, TechniqueManager::kReloadSettle);
+    EXPECT_NE(app->techniques().lastReloadError().find("incomplete ELF image"), std::string::npos)
+        << app->techniques().lastReloadError();
+    EXPECT_NE(app->techniques().lastReloadError().find("reload_test.so"), std::string::npos) << "names the file";
+    EXPECT_EQ(app->techniques().find("reload_test")->explanation, "version 1");
+}
+
+TEST(PluginLibrary, IncompleteElfImageTellsAFinishedLibraryFromAPartialOne) {
+    const fs::path good = kTestPlugins / "reload_v1.so";
+    EXPECT_EQ(incompleteElfImage(good), "");
+    const fs::path partial = fs::temp_directory_path() / ("shadowlab-partial-" + std::to_string(::getpid()) + ".so");
+    const std::string bytes = readBytes(good);
+    for (const size_t length : {size_t(10), size_t(64), bytes.size() / 2, bytes.size() - 1}) {
+        writeBytes(partial, bytes.substr(0, length), 0);
+        EXPECT_NE(incompleteElfImage(partial).find("incomplete ELF image"), std::string::npos) << length << " bytes";
+    }
+    fs::remove(partial);
+}

@@ -10,13 +10,11 @@
 #include <chrono>
 #include <cmath>
 
-#include <GLFW/glfw3.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "groundtruth/reference_technique.h"
 #include "render/light_space.h"
 #include "shadowlab/kit/depth_map_shared.h"
-#include "ui/ui.h"
 #include "util/gl_limits.h"
 #include "util/log.h"
 #include "util/paths.h"
@@ -416,135 +414,6 @@ Image Evaluation::heatmap() const {
     for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
         for (int c = 0; c < 3; ++c) image.pixels[i * 4 + size_t(c)] = rgb[i * 3 + size_t(c)];
     return image;
-}
-
-int App::runInteractive(const std::string& initialTechnique, int smokeFrames, const std::string& screenshot, bool cycle,
-                        const std::string& compareTechnique) {
-    GLFWwindow* window = backend_->window();
-    Ui ui;
-    if (!ui.init(window)) {
-        logError("could not initialise the user interface");
-        return 1;
-    }
-    UiState state;
-    state.technique = initialTechnique.empty() ? firstTechnique() : initialTechnique;
-    state.compareTechnique = compareTechnique;
-    state.msaaSamples = renderer_->msaaSamples();
-    int frame = 0;
-    auto last = std::chrono::steady_clock::now();
-    glm::dvec2 lastMouse{0.0};
-    glfwGetCursorPos(window, &lastMouse.x, &lastMouse.y);
-    const auto& all = techniques_->techniques();
-    int exitCode = 0;
-
-    while (!backend_->shouldClose()) {
-        backend_->pollEvents();
-        const auto now = std::chrono::steady_clock::now();
-        const float seconds = std::chrono::duration<float>(now - last).count();
-        last = now;
-
-        // Camera input, unless the UI has the mouse or keyboard.
-        glm::dvec2 mouse;
-        glfwGetCursorPos(window, &mouse.x, &mouse.y);
-        const glm::vec2 delta = glm::vec2(mouse - lastMouse);
-        lastMouse = mouse;
-        if (!ui.wantsMouse()) {
-            if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) camera_.look(delta);
-            if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS) camera_.pan(delta);
-            if (state.scroll != 0.0f) camera_.zoom(state.scroll);
-        }
-        state.scroll = 0.0f;
-        if (!ui.wantsKeyboard() && camera_.mode() == CameraController::Mode::Fly) {
-            glm::vec3 move(0.0f);
-            if (glfwGetKey(window, GLFW_KEY_W) == GLFW_PRESS) move.z += 1;
-            if (glfwGetKey(window, GLFW_KEY_S) == GLFW_PRESS) move.z -= 1;
-            if (glfwGetKey(window, GLFW_KEY_D) == GLFW_PRESS) move.x += 1;
-            if (glfwGetKey(window, GLFW_KEY_A) == GLFW_PRESS) move.x -= 1;
-            if (glfwGetKey(window, GLFW_KEY_E) == GLFW_PRESS) move.y += 1;
-            if (glfwGetKey(window, GLFW_KEY_Q) == GLFW_PRESS) move.y -= 1;
-            camera_.fly(move, seconds);
-        }
-
-        if (cycle && smokeFrames > 0 && !all.empty()) {
-            // Smoke test: cycle through every technique and every view while drawing the UI.
-            const int perTechnique = std::max(1, smokeFrames / int(all.size()));
-            state.technique = all[size_t(std::min(frame / perTechnique, int(all.size()) - 1))].id;
-            state.view.kind = (frame / 7) % 2 ? ViewSelection::Kind::Visibility : ViewSelection::Kind::Lit;
-            // Once, the accuracy measurement and its heatmap view, as the button does.
-            if (frame == smokeFrames / 2) state.measureRequested = true;
-            if (frame > smokeFrames / 2 && frame < smokeFrames / 2 + 5) state.view.kind = ViewSelection::Kind::ErrorHeatmap;
-            // And the side-by-side comparison for a while.
-            state.compareTechnique = (frame % 50) >= 40 ? firstTechnique() : std::string();
-        }
-
-        const glm::ivec2 fb = backend_->framebufferSize();
-        std::string error;
-        if (fb.x > 0 && fb.y > 0) {
-            if (!renderer_->resize(fb, state.msaaSamples, error)) logError(error);
-            const FrameOutputs outputs =
-                state.view.kind == ViewSelection::Kind::Visibility ? FrameOutputs::Accuracy : FrameOutputs::Colour;
-            if (!renderFrame(state.technique, error, outputs)) {
-                state.frameError = error;
-            } else if (state.view.kind == ViewSelection::Kind::ErrorHeatmap) {
-                state.frameError.clear();
-                if (state.heatmap.width == renderer_->size().x && state.heatmap.height == renderer_->size().y) {
-                    if (!state.heatmapUploaded) renderer_->uploadDisplay(state.heatmap);
-                    state.heatmapUploaded = true;
-                    renderer_->present(PresentMode::Color, renderer_->displayTexture(), 0, fb);
-                } else {
-                    state.view = {};   // the window changed size since the measurement
-                    state.heatmapUploaded = false;
-                }
-            } else if (!state.compareTechnique.empty()) {
-                // Side by side: the left half of the first technique's frame, the right half of the
-                // second's, same view; the timings shown are the right-hand technique's.
-                state.frameError.clear();
-                glEnable(GL_SCISSOR_TEST);
-                glScissor(0, 0, fb.x / 2, fb.y);
-                if (!presentView(state.technique, state.view, 0, fb, error)) state.view = {};
-                glDisable(GL_SCISSOR_TEST);   // the second frame's clears must cover everything
-                if (renderFrame(state.compareTechnique, error, outputs)) {
-                    glEnable(GL_SCISSOR_TEST);
-                    glScissor(fb.x / 2, 0, fb.x - fb.x / 2, fb.y);
-                    const ViewSelection view = state.view.kind == ViewSelection::Kind::Visibility ? state.view : ViewSelection{};
-                    presentView(state.compareTechnique, view, 0, fb, error);
-                } else {
-                    state.frameError = error;
-                    state.compareTechnique.clear();
-                }
-                glDisable(GL_SCISSOR_TEST);
-            } else {
-                state.frameError.clear();
-                if (!presentView(state.technique, state.view, 0, fb, error)) {
-                    state.view = {};
-                    state.frameError = error;
-                }
-            }
-        }
-        ui.draw(*this, state, seconds);
-        if (state.screenshotRequested || (smokeFrames > 0 && frame + 1 == smokeFrames && !screenshot.empty())) {
-            const std::string file = state.screenshotRequested ? state.nextScreenshotName() : screenshot;
-            Image image{fb.x, fb.y, 4, std::vector<uint8_t>(size_t(fb.x) * size_t(fb.y) * 4)};
-            glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-            glReadBuffer(GL_BACK);
-            glPixelStorei(GL_PACK_ALIGNMENT, 1);
-            glReadPixels(0, 0, fb.x, fb.y, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
-            for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;
-            if (writePng(file, image, error)) {
-                logInfo("screenshot saved: " + file);
-            } else {
-                logError(error);
-                if (smokeFrames > 0) exitCode = 1;
-            }
-            state.screenshotRequested = false;
-        }
-        backend_->swapBuffers();
-        ++frame;
-        if (smokeFrames > 0 && frame >= smokeFrames) break;
-        if (state.quitRequested) break;
-    }
-    ui.shutdown();
-    return exitCode;
 }
 
 } // namespace shadowlab

@@ -24,6 +24,8 @@
 
 namespace shadowlab {
 
+struct InteractiveOptions;   // ui/session.h
+
 struct AppOptions {
     std::string scene;                                  // built-in name or path; empty = default
     std::map<std::string, double> sceneParameters;      // --scene-param count=500
@@ -94,10 +96,10 @@ public:
     Image readDisplay() { return renderer_->readDisplay(); }
     // Warm-up frames, then `frames` timed frames; waits for the GPU only at the end.
     bool measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error);
-    // Interactive window. frames > 0 runs that many frames, then saves `screenshot` (if given) and
-    // returns; with `cycle` (the smoke test) it switches through every technique and view meanwhile.
-    int runInteractive(const std::string& technique, int frames, const std::string& screenshot, bool cycle = true,
-                       const std::string& compareTechnique = "");
+    // The classroom window (ui/session.cpp): in the GLFW window, or with a headless backend in
+    // an offscreen framebuffer of the same layout (then options.frames must be > 0). Returns the
+    // exit code: 0, or 1 when a screenshot asked for could not be written.
+    int runInteractive(const InteractiveOptions& options);
     // Headless: a new size for the main targets (the camera's aspect follows).
     bool setRenderSize(glm::ivec2 size, std::string& error);
     // Ids hot-reloaded during the last renderFrame() (for reload-latency measurement).

@@ -32,11 +32,15 @@ CameraInfo CameraController::info(glm::ivec2 viewport) const {
     const glm::vec3 lookAt = mode_ == Mode::Orbit ? target_ : position_ + forward();
     c.view = glm::lookAt(c.position, lookAt, glm::vec3(0, 1, 0));
     const float aspect = float(std::max(viewport.x, 1)) / float(std::max(viewport.y, 1));
-    c.projection = glm::perspective(fovY_, aspect, near_, far_);
+    // tan(fovY'/2) * aspect = tan(fovY/2) * framingAspect: the same horizontal half-angle.
+    const float fovY = framingAspect_ > aspect
+                           ? 2.0f * std::atan(std::tan(0.5f * fovY_) * framingAspect_ / aspect)
+                           : fovY_;
+    c.projection = glm::perspective(fovY, aspect, near_, far_);
     c.viewProjection = c.projection * c.view;
     c.nearPlane = near_;
     c.farPlane = far_;
-    c.fovY = fovY_;
+    c.fovY = fovY;
     c.aspect = aspect;
     c.viewport = viewport;
     completeCameraInfo(c);

@@ -12,6 +12,10 @@ public:
 
     void reset(const SceneCamera& camera);
     CameraInfo info(glm::ivec2 viewport) const;
+    // The interactive window: a viewport narrower than `aspect` (a side panel, half of a side by
+    // side comparison) widens the vertical field of view so the horizontal extent the scene was
+    // framed for stays in view. 0 (the default, headless renders and benchmarks): fovY as given.
+    void setFramingAspect(float aspect) { framingAspect_ = aspect; }
 
     // Input, in pixels of mouse motion and seconds.
     void orbit(glm::vec2 mouseDelta);
@@ -34,6 +38,7 @@ private:
     float pitch_ = 0.0f;    // radians, positive looks up
     float distance_ = 5.0f;
     float fovY_ = 0.785f, near_ = 0.1f, far_ = 100.0f;
+    float framingAspect_ = 0.0f;
 };
 
 // Fills the derived fields of a camera whose view and projection are set: inverse

@@ -22,6 +22,7 @@
 #include "bench/bench.h"
 #include "bench/report.h"
 #include "groundtruth/reference_technique.h"
+#include "ui/session.h"
 #include "util/gl_limits.h"
 #include "util/log.h"
 #include "util/paths.h"
@@ -154,6 +155,44 @@ int startApp(App& app, const CommonOptions& common, bool windowed) {
     return 0;
 }
 
+// What the classroom window is asked to do (the main job with a display, or offscreen).
+struct WindowOptions {
+    int smokeFrames = 0;
+    int frames = 0;
+    std::string screenshot;
+    std::string compare;
+    std::string compareLayout = "side-by-side";
+    double wipe = 0.5;
+    double uiScale = 1.0;
+    bool hideUi = false;
+    bool measure = false;
+    std::string screenshotDir = "screenshots";
+    // Flags given that only the window reads (for the message when there is no window).
+    std::vector<std::string> given;
+};
+
+// Checks the window options against each other and the techniques; fills `out`.
+int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& technique, InteractiveOptions& out) {
+    out.technique = technique;
+    out.compareTechnique = w.compare;
+    if (!w.compare.empty() && !app.techniques().find(w.compare)) {
+        std::string known;
+        for (const auto& t : app.techniques().techniques()) appendListItem(known, t.id);
+        return fail("--compare '" + w.compare + "': no such technique (available: " + known + ")", kExitBadInput);
+    }
+    if (!parseCompareLayout(w.compareLayout, out.compareLayout))
+        return fail("--compare-layout '" + w.compareLayout + "': expected side-by-side, wipe or difference", kExitBadInput);
+    out.wipe = float(w.wipe);
+    out.uiScale = float(w.uiScale);
+    out.showUi = !w.hideUi;
+    out.measure = w.measure;
+    out.screenshotFolder = w.screenshotDir;
+    out.screenshot = w.screenshot;
+    out.cycle = w.smokeFrames > 0;
+    out.frames = w.smokeFrames > 0 ? w.smokeFrames : w.frames;
+    return 0;
+}
+
 int commandList(bool json) {
     PluginScan scan = scanPlugins(pluginDir());
     for (const auto& error : scan.errors) logWarning("skipped plugin: " + error);
@@ -226,17 +265,50 @@ ViewSelection parseView(const std::string& text) {
 }
 
 int commandRender(const CommonOptions& common, const std::string& out, const std::string& view, int frames,
-                  const std::string& reference, int samples) {
+                  const std::string& reference, int samples, const WindowOptions& compare) {
     App app;
     if (int code = startApp(app, common, false)) return code;
-    const std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;
+    std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;
+    // --compare A,B (or --compare B with --technique A): both techniques in one image, labelled.
+    std::string other;
+    if (!compare.compare.empty()) {
+        const auto comma = compare.compare.find(',');
+        if (comma == std::string::npos) {
+            other = compare.compare;
+        } else {
+            technique = compare.compare.substr(0, comma);
+            other = compare.compare.substr(comma + 1);
+        }
+        if (technique.empty() || other.empty() || other.find(',') != std::string::npos)
+            return fail("--compare '" + compare.compare + "': expected A,B (two technique ids, e.g. pcss,reference) or "
+                        "one id to compare --technique with",
+                        kExitBadInput);
+        if (view != "lit" && view != "visibility")
+            return fail("--view " + view + ": --compare shows lit or visibility", kExitBadInput);
+    }
     std::string error;
-    if (!app.techniques().find(technique)) {
+    for (const std::string& id : {technique, other}) {
+        if (id.empty() || app.techniques().find(id)) continue;
         std::string known;
         for (const auto& t : app.techniques().techniques()) appendListItem(known, t.id);
-        return fail("--technique '" + technique + "': no such technique (available: " + known + ")", kExitBadInput);
+        return fail(std::string(other.empty() ? "--technique '" : "--compare: '") + id + "': no such technique (available: " +
+                        known + ")",
+                    kExitBadInput);
     }
     if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
+    if (!other.empty()) {
+        WindowOptions w = compare;
+        w.compare = other;
+        w.frames = std::max(frames, 1);
+        w.screenshot = out;
+        w.hideUi = true;   // a slide: the view and the two labels
+        InteractiveOptions options;
+        if (int code = windowOptionsProblem(app, w, technique, options)) return code;
+        options.view = parseView(view);
+        const int code = app.runInteractive(options);
+        if (code == 0) logInfo("wrote " + out);
+        return code;
+    }
     for (int i = 0; i < std::max(frames, 1); ++i)
         if (!app.renderFrame(technique, error)) return fail(error, kExitFailure);
     Image image;
@@ -453,14 +525,27 @@ int run(int argc, char** argv) {
     cli.require_subcommand(0, 1);
     CommonOptions common;
     addCommonOptions(cli, common);
-    int smokeFrames = 0;
-    std::string screenshot, outDir = "out";
-    cli.add_option("--smoke-test", smokeFrames, "window: draw N frames cycling every technique, then exit");
-    int windowFrames = 0;
-    std::string compareWith;
-    cli.add_option("--compare", compareWith, "window: show this technique side by side with --technique");
-    cli.add_option("--frames", windowFrames, "window: draw N frames of the technique, save --screenshot, exit (slides)");
-    cli.add_option("--screenshot", screenshot, "window: save a screenshot at the end of --smoke-test or --frames");
+    WindowOptions window;
+    std::string outDir = "out";
+    // Window options: without a display, --frames (or --smoke-test) draws the same window offscreen.
+    auto windowOption = [&](CLI::Option* option) { return option->group("Window"); };
+    windowOption(cli.add_option("--smoke-test", window.smokeFrames, "window: draw N frames cycling every technique, then exit"))
+        ->check(CLI::Range(1, 1000000));
+    windowOption(cli.add_option("--compare", window.compare, "window: compare this technique (B) with --technique (A)"));
+    windowOption(cli.add_option("--compare-layout", window.compareLayout, "side-by-side (default) | wipe | difference"));
+    windowOption(cli.add_option("--wipe", window.wipe, "wipe divider position across the view, 0..1 (default 0.5)"))
+        ->check(CLI::Range(0.0, 1.0));
+    windowOption(cli.add_option("--frames", window.frames,
+                                "window: draw N frames, save --screenshot, exit (slides; offscreen without a display)"))
+        ->check(CLI::Range(1, 1000000));
+    windowOption(cli.add_option("--screenshot", window.screenshot, "window: save a screenshot at the end of --smoke-test or --frames"));
+    windowOption(cli.add_option("--ui-scale", window.uiScale, "window: size of the panel's text and widgets (1.5-2 for a projector)"))
+        ->check(CLI::Range(0.5, 4.0));
+    windowOption(cli.add_flag("--hide-ui", window.hideUi, "window: start with the panel hidden (F1 or H toggles it)"));
+    windowOption(cli.add_flag("--measure", window.measure,
+                              "window: measure accuracy after a few frames, each side of a comparison for its own "
+                              "technique, and show the heatmap (with --frames: a slide of it)"));
+    windowOption(cli.add_option("--screenshot-dir", window.screenshotDir, "window: folder of F12 screenshots (default screenshots)"));
     cli.add_option("--out-dir", outDir, "headless main job: folder of the report (default out)");
 
     auto* list = cli.add_subcommand("list", "list techniques and their parameters");
@@ -478,6 +563,13 @@ int run(int argc, char** argv) {
     int referenceSamples = BenchSpec{}.referenceSamples;
     render->add_option("--reference", reference, "--view error/reference: hard | soft (default hard)");
     render->add_option("--samples", referenceSamples, "soft reference: rays per pixel, traced adaptively (default 1024)")->check(CLI::Range(1, 4096));
+    WindowOptions renderCompare;
+    render->add_option("--compare", renderCompare.compare,
+                       "A,B: both techniques in one image with their labels (B may be 'reference', the ground truth)");
+    render->add_option("--compare-layout", renderCompare.compareLayout, "with --compare: side-by-side (default) | wipe | difference");
+    render->add_option("--wipe", renderCompare.wipe, "with --compare-layout wipe: divider position, 0..1 (default 0.5)")
+        ->check(CLI::Range(0.0, 1.0));
+    render->add_option("--ui-scale", renderCompare.uiScale, "with --compare: size of the labels (default 1)")->check(CLI::Range(0.5, 4.0));
 
     auto* bench = cli.add_subcommand("bench", "measure sweeps of techniques, scenes and parameters into CSV or JSON");
     BenchSpec benchSpec;
@@ -536,7 +628,7 @@ int run(int argc, char** argv) {
     }
 
     if (*list) return commandList(listJson);
-    if (*render) return commandRender(common, renderOut, renderView, renderFrames, reference, referenceSamples);
+    if (*render) return commandRender(common, renderOut, renderView, renderFrames, reference, referenceSamples, renderCompare);
     if (*bench) {
         std::vector<BenchSpec> specs;
         std::string error;
@@ -580,19 +672,39 @@ int run(int argc, char** argv) {
         return commandEval(common, reference, evalSamples, adaptive, evalFrames, evalJson);
     }
 
-    // The main job.
-    const bool windowed = common.backend.empty() ? defaultBackend() == BackendKind::Glfw : common.backend == "glfw";
-    if (!windowed) return commandReport(common, "", outDir);
+    // The main job: the window. Without a display, --frames or --smoke-test draws it offscreen (a
+    // slide from a machine without a screen); with neither, the report, unless a window option
+    // says the window was meant.
+    std::vector<std::string> windowFlags;
+    for (const CLI::Option* option : cli.get_options())
+        if (option->get_group() == "Window" && option->count() > 0) windowFlags.push_back(option->get_name());
+    if (!window.screenshot.empty() && window.frames == 0 && window.smokeFrames == 0)
+        return fail("--screenshot " + window.screenshot + ": needs --frames N (or --smoke-test N) to say when to take it",
+                    kExitBadInput);
+    if (window.frames > 0 && window.smokeFrames > 0) return fail("--frames and --smoke-test: give one of them", kExitBadInput);
+    const bool display = common.backend.empty() ? defaultBackend() == BackendKind::Glfw : common.backend == "glfw";
+    const bool drawnFrames = window.frames > 0 || window.smokeFrames > 0;
+    if (!display && !drawnFrames) {
+        if (!windowFlags.empty())
+            return fail(windowFlags.front() + ": no display to open the window on; add --frames N --screenshot FILE to "
+                        "draw it offscreen, or use `shadowlab render --compare A,B`",
+                        kExitBadInput);
+        if (!common.technique.empty() || !common.sets.empty())
+            logWarning(std::string(common.technique.empty() ? "--set" : "--technique") +
+                       ": no display, so the main job is the report of every technique; add --frames N --screenshot "
+                       "FILE to draw the window offscreen instead");
+        return commandReport(common, "", outDir);
+    }
     App app;
-    if (int code = startApp(app, common, true)) return code;
+    if (int code = startApp(app, common, display)) return code;
     std::string error;
     const std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;
     if (!app.techniques().find(technique)) return fail("--technique '" + technique + "': no such technique", kExitBadInput);
     if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
-    if (!compareWith.empty() && !app.techniques().find(compareWith))
-        return fail("--compare '" + compareWith + "': no such technique", kExitBadInput);
-    if (windowFrames > 0) return app.runInteractive(technique, windowFrames, screenshot, false, compareWith);
-    return app.runInteractive(technique, smokeFrames, screenshot, true, compareWith);
+    InteractiveOptions options;
+    if (int code = windowOptionsProblem(app, window, technique, options)) return code;
+    if (!display) logInfo("no display: drawing the window offscreen (" + std::string(backendName(app.backend().kind())) + ")");
+    return app.runInteractive(options);
 }
 
 } // namespace

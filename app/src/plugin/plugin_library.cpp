@@ -2,6 +2,7 @@
 #include "plugin/plugin_library.h"
 
 #include <dlfcn.h>
+#include <elf.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <set>
 #include <system_error>
@@ -109,6 +111,38 @@ int categoryRank(const std::string& category) {
 
 } // namespace
 
+std::string incompleteElfImage(const std::filesystem::path& file) {
+    std::error_code ec;
+    const uintmax_t size = std::filesystem::file_size(file, ec);
+    if (ec) return "cannot read its size (" + ec.message() + ")";
+    std::ifstream in(file, std::ios::binary);
+    Elf64_Ehdr header{};
+    if (!in.read(reinterpret_cast<char*>(&header), sizeof(header)))
+        return "incomplete ELF image (" + std::to_string(size) + " bytes, shorter than an ELF header)";
+    if (std::memcmp(header.e_ident, ELFMAG, SELFMAG) != 0) return "incomplete ELF image (no ELF header yet)";
+    if (header.e_ident[EI_CLASS] != ELFCLASS64) return "not a 64-bit ELF library";
+    auto beyond = [&](uint64_t offset, uint64_t count, uint64_t entry, const char* what) -> std::string {
+        const uint64_t end = offset + count * entry;
+        if (end <= size && end >= offset) return "";
+        return std::string("incomplete ELF image (") + what + " end at byte " + std::to_string(end) + ", the file has " +
+               std::to_string(size) + ")";
+    };
+    if (auto problem = beyond(header.e_phoff, header.e_phnum, header.e_phentsize, "program headers"); !problem.empty())
+        return problem;
+    if (auto problem = beyond(header.e_shoff, header.e_shnum, header.e_shentsize, "section headers"); !problem.empty())
+        return problem;
+    if (header.e_phentsize != sizeof(Elf64_Phdr)) return "";   // unusual layout: left to the loader
+    for (uint16_t i = 0; i < header.e_phnum; ++i) {
+        Elf64_Phdr segment{};
+        in.seekg(std::streamoff(header.e_phoff + uint64_t(i) * sizeof(Elf64_Phdr)));
+        if (!in.read(reinterpret_cast<char*>(&segment), sizeof(segment))) return "incomplete ELF image (program headers)";
+        if (segment.p_type != PT_LOAD) continue;
+        if (auto problem = beyond(segment.p_offset, 1, segment.p_filesz, "a loadable segment's bytes"); !problem.empty())
+            return problem;
+    }
+    return "";
+}
+
 std::unique_ptr<PluginLibrary> PluginLibrary::open(const std::filesystem::path& file, std::string& error) {
     static std::atomic<int> loadCounter{0};
     std::error_code ec;
@@ -130,6 +164,11 @@ std::unique_ptr<PluginLibrary> PluginLibrary::open(const std::filesystem::path& 
     std::filesystem::copy_file(file, library->loadedCopy_, std::filesystem::copy_options::overwrite_existing, ec);
     if (ec) {
         error = file.string() + ": cannot copy plugin for loading (" + ec.message() + ")";
+        return nullptr;
+    }
+    // The copy is what gets loaded: checked itself, since the original may change while copied.
+    if (const std::string problem = incompleteElfImage(library->loadedCopy_); !problem.empty()) {
+        error = file.string() + ": cannot load plugin (" + problem + ")";
         return nullptr;
     }
     library->handle_ = dlopen(library->loadedCopy_.c_str(), RTLD_NOW | RTLD_LOCAL);

@@ -40,6 +40,13 @@ private:
     uintmax_t fileSize_ = 0;
 };
 
+// "" when `file` is a complete 64-bit ELF image: its header, program headers, every loadable
+// segment and the section header table lie inside the file. Otherwise what is missing, e.g.
+// "incomplete ELF image (section headers end at byte 61234, the file has 40960)". A linker that
+// is still writing leaves exactly this (GNU ld writes the ELF header last), so hot reload waits
+// on it instead of reporting dlopen's "file too short" or "invalid ELF header".
+std::string incompleteElfImage(const std::filesystem::path& file);
+
 // Most parameters a descriptor may declare (the largest plugin has about twenty).
 constexpr uint32_t kMaxParams = 256;
 

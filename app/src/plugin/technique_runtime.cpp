@@ -359,18 +359,37 @@ std::vector<std::string> TechniqueManager::pollForChanges(ParamStore& params, st
         // The linker may still be writing: reload only once two polls agree on time and size.
         auto pending = pending_.find(id);
         if (pending == pending_.end() || pending->second.time != time || pending->second.size != size) {
-            pending_[id] = {time, size};
+            pending_[id] = {time, size, now};
             continue;
         }
-        pending_.erase(id);
+        // A linker that pauses longer than a poll leaves an unchanged but incomplete file: wait
+        // for a complete ELF image, and call it a failure only once the file has stayed as it is
+        // for kReloadSettle (a build that really produced a broken file).
+        const bool settled = now - pending->second.since >= kReloadSettle;
         std::string error;
-        auto fresh = LoadedTechnique::load(file, context_, error);
+        if (const std::string incomplete = incompleteElfImage(file); !incomplete.empty()) {
+            if (!settled) continue;
+            error = file.string() + ": " + incomplete + ", unchanged for " +
+                    std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(kReloadSettle).count()) + " ms";
+        }
+        std::unique_ptr<LoadedTechnique> fresh;
+        if (error.empty()) fresh = LoadedTechnique::load(file, context_, error);
         if (!fresh) {
-            failed_[id] = {time, size};
+            // Rewritten while it was read: a new version, not a failure.
+            std::error_code after;
+            if (std::filesystem::last_write_time(file, after) != time || std::filesystem::file_size(file, after) != size) {
+                pending_.erase(id);
+                continue;
+            }
+            // The dynamic loader refused a file still settling: try again at the next poll.
+            if (!settled && error.find("cannot load plugin (") != std::string::npos) continue;
+            pending_.erase(id);
+            failed_[id] = {time, size, now};
             lastReloadError_ = error;
             logError("hot reload failed, keeping the running version: " + error);
             continue;
         }
+        pending_.erase(id);
         failed_.erase(id);
         lastReloadError_.clear();
         params.remap(loaded->info(), fresh->info());

@@ -142,6 +142,9 @@ public:
     std::vector<std::string> pollForChanges(ParamStore& params,
                                             std::chrono::milliseconds interval = std::chrono::milliseconds(50));
     const std::string& lastReloadError() const { return lastReloadError_; }
+    // How long an incomplete or unloadable library must stay unchanged before it is a failure
+    // (until then it is a build in progress: the linker may pause between writes).
+    static constexpr std::chrono::milliseconds kReloadSettle{1500};
     void unloadAll() { loaded_.clear(); }
     using BuiltinFactory = std::function<std::unique_ptr<IShadowTechnique>()>;
     void registerBuiltin(const TechniqueInfo& info, BuiltinFactory factory);
@@ -150,7 +153,9 @@ private:
     struct Pending {
         std::filesystem::file_time_type time;
         uintmax_t size;
+        std::chrono::steady_clock::time_point since;   // first poll that saw this time and size
     };
+
     HostContext context_;
     std::filesystem::path pluginDir_;
     std::vector<TechniqueInfo> techniques_;

@@ -2,13 +2,14 @@
 #include "ui/ui.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
-#include <backends/imgui_impl_opengl3.h>
 #include <imgui_stdlib.h>
 
 #include "util/log.h"
@@ -16,8 +17,35 @@
 namespace shadowlab {
 namespace {
 
+// A TrueType font where Debian has one (fonts-dejavu-core): sharp at any UI scale, unlike
+// ImGui's built-in 13 px bitmap font scaled up.
+constexpr const char* kFontFile = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+constexpr float kFontPixels = 15.0f;
+
 void scrollCallback(GLFWwindow* window, double, double dy) {
     if (auto* state = static_cast<UiState*>(glfwGetWindowUserPointer(window))) state->scroll += float(dy);
+}
+
+// Key presses are queued here: ImGui 1.86 keeps only "is down" per frame, so a key pressed and
+// released between two frames (a quick tap at 10 frames per second) would be lost.
+// Where the cursor was when the left button went down, from the events in their order: at a
+// few frames per second the cursor has moved on by the frame that sees the click, and the wipe
+// handle would be missed.
+void cursorCallback(GLFWwindow* window, double x, double y) {
+    if (auto* state = static_cast<UiState*>(glfwGetWindowUserPointer(window))) state->eventCursor = {float(x), float(y)};
+}
+
+void mouseButtonCallback(GLFWwindow* window, int button, int action, int) {
+    if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+    auto* state = static_cast<UiState*>(glfwGetWindowUserPointer(window));
+    if (!state) return;
+    if (action == GLFW_PRESS) state->leftPresses.push_back(state->eventCursor);
+    if (action == GLFW_RELEASE) state->leftRelease = state->eventCursor;
+}
+
+void keyCallback(GLFWwindow* window, int key, int, int action, int) {
+    if (action != GLFW_PRESS) return;
+    if (auto* state = static_cast<UiState*>(glfwGetWindowUserPointer(window))) state->pressedKeys.push_back(key);
 }
 
 void helpMarker(const std::string& text) {
@@ -33,20 +61,47 @@ void helpMarker(const std::string& text) {
     }
 }
 
+// A label on its own line, wrapped rather than cut ("slope-scaled bias" whole at any width), and
+// the widget under it across the panel.
+void fieldLabel(const std::string& label, const std::string& help = "") {
+    const float helpWidth = help.empty() ? 0.0f : ImGui::CalcTextSize("(?)").x + 2.0f * ImGui::GetStyle().ItemSpacing.x;
+    ImGui::PushTextWrapPos(ImGui::GetContentRegionMax().x - helpWidth);
+    ImGui::TextUnformatted(label.c_str());
+    ImGui::PopTextWrapPos();
+    helpMarker(help);
+    ImGui::SetNextItemWidth(-FLT_MIN);
+}
+
+// A checkbox with its label wrapped beside it.
+bool checkbox(const std::string& label, bool* value, const std::string& help = "") {
+    const bool changed = ImGui::Checkbox(("##" + label).c_str(), value);
+    ImGui::SameLine();
+    const float helpWidth = help.empty() ? 0.0f : ImGui::CalcTextSize("(?)").x + 2.0f * ImGui::GetStyle().ItemSpacing.x;
+    ImGui::PushTextWrapPos(ImGui::GetContentRegionMax().x - helpWidth);
+    ImGui::TextUnformatted(label.c_str());
+    ImGui::PopTextWrapPos();
+    helpMarker(help);
+    return changed;
+}
+
 // One widget per declared parameter; the descriptor decides the kind of widget.
 bool parameterWidget(const ParamSpec& spec, double& value) {
     const std::string label = spec.label.empty() ? spec.id : spec.label;
+    const std::string help = spec.help + "\nid: " + spec.id + "  range: [" + formatParamValue(spec, spec.minValue) + ", " +
+                             formatParamValue(spec, spec.maxValue) + "]  default: " + formatParamValue(spec, spec.defaultValue);
+    const std::string id = "##param-" + spec.id;
     bool changed = false;
     switch (spec.type) {
     case ParamType::Bool: {
         bool b = value != 0.0;
-        if ((changed = ImGui::Checkbox(label.c_str(), &b))) value = b ? 1.0 : 0.0;
+        if ((changed = checkbox(label, &b, help))) value = b ? 1.0 : 0.0;
         break;
     }
     case ParamType::Enum: {
+        fieldLabel(label, help);
         int index = int(value);
         const std::string preview = index >= 0 && index < int(spec.enumLabels.size()) ? spec.enumLabels[size_t(index)] : "?";
-        if (ImGui::BeginCombo(label.c_str(), preview.c_str())) {
+        if (ImGui::BeginCombo(id.c_str(), preview.c_str())) {
             for (int i = 0; i < int(spec.enumLabels.size()); ++i)
                 if (ImGui::Selectable(spec.enumLabels[size_t(i)].c_str(), i == index)) {
                     value = i;
@@ -57,25 +112,25 @@ bool parameterWidget(const ParamSpec& spec, double& value) {
         break;
     }
     case ParamType::Int: {
+        fieldLabel(label, help);
         int i = int(std::lround(value));
         const bool wide = spec.maxValue / std::max(spec.minValue, 1.0) >= 16.0;
-        if ((changed = ImGui::SliderInt(label.c_str(), &i, int(spec.minValue), int(spec.maxValue), "%d",
+        if ((changed = ImGui::SliderInt(id.c_str(), &i, int(spec.minValue), int(spec.maxValue), "%d",
                                         wide ? ImGuiSliderFlags_Logarithmic : 0)))
             value = i;
         break;
     }
     case ParamType::Float: {
+        fieldLabel(label, help);
         float f = float(value);
         const std::string format = "%.4g" + (spec.unit.empty() ? "" : " " + spec.unit);
         const bool wide = spec.maxValue - spec.minValue >= 1000.0;
-        if ((changed = ImGui::SliderFloat(label.c_str(), &f, float(spec.minValue), float(spec.maxValue), format.c_str(),
+        if ((changed = ImGui::SliderFloat(id.c_str(), &f, float(spec.minValue), float(spec.maxValue), format.c_str(),
                                           wide ? ImGuiSliderFlags_Logarithmic : 0)))
             value = f;
         break;
     }
     }
-    helpMarker(spec.help + "\nid: " + spec.id + "  range: [" + formatParamValue(spec, spec.minValue) + ", " +
-               formatParamValue(spec, spec.maxValue) + "]  default: " + formatParamValue(spec, spec.defaultValue));
     value = std::clamp(value, spec.minValue, spec.maxValue);
     return changed;
 }
@@ -84,7 +139,7 @@ bool parameterWidget(const ParamSpec& spec, double& value) {
 // speed-versus-accuracy chart. Lower left is better.
 void drawSpeedAccuracyPlot(const std::vector<UiState::MeasuredPoint>& points) {
     if (points.empty()) return;
-    const ImVec2 size(ImGui::GetContentRegionAvail().x, 160.0f);
+    const ImVec2 size(ImGui::GetContentRegionAvail().x, 10.0f * ImGui::GetFontSize());
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     ImDrawList* draw = ImGui::GetWindowDrawList();
     draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(25, 25, 30, 255));
@@ -103,7 +158,7 @@ void drawSpeedAccuracyPlot(const std::vector<UiState::MeasuredPoint>& points) {
         if (std::abs(mouse.x - x) < 5 && std::abs(mouse.y - y) < 5) hovered = int(i);
     }
     ImGui::Dummy(size);
-    ImGui::TextDisabled("x: GPU ms per frame (max %.3f)   y: MAE (max %.4f)", maxMs, maxError);
+    ImGui::TextWrapped("x: GPU ms per frame (max %.3f)   y: MAE (max %.4f)", maxMs, maxError);
     if (hovered >= 0) {
         ImGui::BeginTooltip();
         ImGui::Text("%s\n%.3f ms, MAE %.4f", points[size_t(hovered)].label.c_str(), points[size_t(hovered)].gpuMs,
@@ -112,58 +167,254 @@ void drawSpeedAccuracyPlot(const std::vector<UiState::MeasuredPoint>& points) {
     }
 }
 
-} // namespace
-
-std::string UiState::nextScreenshotName() {
-    char name[64];
-    std::snprintf(name, sizeof(name), "out/screenshot-%03d.png", screenshotCounter++);
-    return name;
+// Text with a dark box behind it: legible on a white wall or a black shadow alike. The box is
+// kept inside [minX, maxX] (a wipe divider near the edge moves its label inward, not off screen).
+void labelBox(ImDrawList* draw, ImVec2 anchor, const std::string& text, bool alignRight,
+              ImU32 colour = IM_COL32(255, 255, 255, 255), float minX = -FLT_MAX, float maxX = FLT_MAX) {
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+    const float pad = 0.4f * ImGui::GetFontSize();
+    float x = alignRight ? anchor.x - size.x - 2 * pad : anchor.x;
+    x = std::max(std::min(x, maxX - size.x - 2 * pad), minX);
+    const ImVec2 min(x, anchor.y - size.y - 2 * pad);
+    draw->AddRectFilled(min, ImVec2(min.x + size.x + 2 * pad, min.y + size.y + 2 * pad), IM_COL32(0, 0, 0, 190), pad);
+    draw->AddText(ImVec2(min.x + pad, min.y + pad), colour, text.c_str());
 }
 
-bool Ui::init(GLFWwindow* window) {
+std::string techniqueTitle(App& app, const std::string& id) {
+    const TechniqueInfo* info = app.techniques().find(id);
+    return info ? info->displayName + " (" + id + ")" : id;
+}
+
+void timingsTable(const char* id, const std::map<std::string, double>& timings) {
+    if (!ImGui::BeginTable(id, 2, ImGuiTableFlags_BordersInnerH)) return;
+    for (const auto& [pass, ms] : timings) {
+        ImGui::TableNextRow();
+        ImGui::TableSetColumnIndex(0);
+        ImGui::TextWrapped("%s", pass == "frame" ? "GPU total" : pass.c_str());
+        ImGui::TableSetColumnIndex(1);
+        ImGui::Text("%.3f ms", ms);
+    }
+    ImGui::EndTable();
+}
+
+} // namespace
+
+bool Ui::init(GLFWwindow* window, float uiScale) {
     window_ = window;
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;   // no imgui.ini litter in the working folder
-    ImGui::StyleColorsDark();
-    glfwSetScrollCallback(window, scrollCallback);   // the ImGui backend chains to it
-    if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) return false;
-    if (!ImGui_ImplOpenGL3_Init("#version 450")) return false;
+    if (window) {
+        glfwSetScrollCallback(window, scrollCallback);   // the ImGui backend chains to both
+        glfwSetKeyCallback(window, keyCallback);
+        glfwSetMouseButtonCallback(window, mouseButtonCallback);
+        glfwSetCursorPosCallback(window, cursorCallback);
+        double x = 0.0, y = 0.0;
+        glfwGetCursorPos(window, &x, &y);
+        initialCursor_ = {float(x), float(y)};
+        if (!ImGui_ImplGlfw_InitForOpenGL(window, true)) return false;
+    } else {
+        ImGui::GetIO().BackendPlatformName = "shadowlab offscreen";
+    }
     initialised_ = true;
+    applyScale(uiScale);   // builds the font atlas the renderer uploads
+    std::string error;
+    if (!renderer_.init(error)) {
+        logError(error);
+        return false;
+    }
     return true;
+}
+
+void Ui::applyScale(float scale) {
+    scale = std::clamp(scale, 0.5f, 4.0f);
+    if (scale == appliedScale_) return;
+    ImGuiIO& io = ImGui::GetIO();
+    // Fonts rasterised at the scaled size (outside NewFrame/Render, on a change only).
+    const bool uploaded = appliedScale_ > 0.0f && io.Fonts->IsBuilt();
+    io.Fonts->Clear();
+    std::error_code ec;
+    if (std::filesystem::exists(kFontFile, ec)) {
+        io.Fonts->AddFontFromFileTTF(kFontFile, std::round(kFontPixels * scale));
+        io.FontGlobalScale = 1.0f;
+    } else {
+        io.Fonts->AddFontDefault();
+        io.FontGlobalScale = scale;
+    }
+    io.Fonts->Build();
+    if (uploaded) renderer_.createFontTexture();
+    ImGuiStyle style;
+    ImGui::StyleColorsDark(&style);
+    style.ScaleAllSizes(scale);
+    ImGui::GetStyle() = style;
+    appliedScale_ = scale;
 }
 
 void Ui::shutdown() {
     if (!initialised_) return;
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
+    renderer_ = {};
+    if (window_) {
+        ImGui_ImplGlfw_Shutdown();
+        glfwSetWindowUserPointer(window_, nullptr);
+    }
     ImGui::DestroyContext();
-    glfwSetWindowUserPointer(window_, nullptr);
     initialised_ = false;
 }
 
 bool Ui::wantsMouse() const { return initialised_ && ImGui::GetIO().WantCaptureMouse; }
 bool Ui::wantsKeyboard() const { return initialised_ && ImGui::GetIO().WantCaptureKeyboard; }
 
-void Ui::draw(App& app, UiState& state, float frameSeconds) {
-    glfwSetWindowUserPointer(window_, &state);
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
+void Ui::draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, glm::ivec2 display) {
+    applyScale(state.uiScale);
+    if (window_) {
+        if (glfwGetWindowUserPointer(window_) != &state) state.eventCursor = initialCursor_;
+        glfwSetWindowUserPointer(window_, &state);
+        ImGui_ImplGlfw_NewFrame();
+    } else {
+        ImGuiIO& io = ImGui::GetIO();
+        io.DisplaySize = ImVec2(float(display.x), float(display.y));
+        io.DeltaTime = 1.0f / 60.0f;
+        io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+    }
     ImGui::NewFrame();
     smoothedFrameMs_ = smoothedFrameMs_ == 0.0f ? frameSeconds * 1000.0f : 0.95f * smoothedFrameMs_ + 0.05f * frameSeconds * 1000.0f;
 
+    // Keys typed into a text field are the field's.
     if (!ImGui::GetIO().WantCaptureKeyboard) {
-        if (ImGui::IsKeyPressed(GLFW_KEY_F12)) state.screenshotRequested = true;
-        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) state.quitRequested = true;
+        for (const int key : state.pressedKeys) {
+            if (key == GLFW_KEY_F12) state.commands.push_back({UiCommand::Kind::Screenshot, ""});
+            if (key == GLFW_KEY_F1 || key == GLFW_KEY_H) state.showUi = !state.showUi;
+            if (key == GLFW_KEY_M) state.commands.push_back({UiCommand::Kind::Measure, ""});
+            if (key == GLFW_KEY_ESCAPE) state.quitRequested = true;
+        }
+    }
+    state.pressedKeys.clear();
+
+    // The latest hot-reload line of the log (plugin or shader), for the status line.
+    const auto log = recentLog();
+    for (auto entry = log.rbegin(); entry != log.rend(); ++entry) {
+        const std::string& m = entry->message;
+        if (m.rfind("hot reload", 0) == 0 || m.rfind("shader reload", 0) == 0) {
+            if (m != reloadStatus_) {
+                reloadStatus_ = m;
+                reloadStatusIsError_ = entry->level == LogLevel::Error;
+                reloadStatusSeconds_ = ImGui::GetTime();
+            }
+            break;
+        }
     }
 
-    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(400, 640), ImGuiCond_FirstUseEver);
-    ImGui::Begin("shadowlab");
+    drawViewOverlay(app, state);
+    state.leftPresses.clear();
+    state.leftRelease.reset();
+    if (state.showUi) drawPanel(app, state);
+    else drawStatusLine(app, state, true);
+
+    ImGui::Render();
+    renderer_.render(ImGui::GetDrawData(), framebuffer);
+}
+
+void Ui::drawStatusLine(App& app, const UiState& state, bool overlay) {
+    (void)app;
+    const bool recent = ImGui::GetTime() - reloadStatusSeconds_ < 6.0;
+    if (overlay) {
+        // UI hidden: only a fresh reload result (or a failure, which stays) shows, over the view.
+        if (reloadStatus_.empty() || (!recent && !reloadStatusIsError_)) return;
+        labelBox(ImGui::GetForegroundDrawList(),
+                 ImVec2(float(state.layout.view.origin.x) + 8.0f, float(state.layout.view.size.y) - 8.0f), reloadStatus_, false,
+                 reloadStatusIsError_ ? IM_COL32(255, 110, 110, 255) : IM_COL32(150, 255, 150, 255));
+        return;
+    }
+    const ImVec4 colour = reloadStatus_.empty()     ? ImVec4(0.6f, 0.6f, 0.6f, 1)
+                          : reloadStatusIsError_    ? ImVec4(1, 0.45f, 0.45f, 1)
+                          : recent                  ? ImVec4(0.55f, 1, 0.55f, 1)
+                                                    : ImVec4(0.75f, 0.75f, 0.75f, 1);
+    ImGui::PushStyleColor(ImGuiCol_Text, colour);
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextUnformatted(reloadStatus_.empty() ? "hot reload: watching plugins and shaders" : reloadStatus_.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::PopStyleColor();
+}
+
+void Ui::drawViewOverlay(App& app, UiState& state) {
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    const ViewLayout& layout = state.layout;
+    const float bottom = float(layout.view.origin.y + layout.view.size.y) - 8.0f;
+    if (layout.comparing) {
+        const std::string a = "A: " + techniqueTitle(app, state.technique);
+        const std::string b = "B: " + techniqueTitle(app, state.compareTechnique);
+        const float left = float(layout.view.origin.x) + 8.0f, right = float(layout.view.origin.x + layout.view.size.x) - 8.0f;
+        if (state.compareLayout == CompareLayout::Difference) {
+            labelBox(draw, ImVec2(left, bottom),
+                     "difference of the shadow terms\n" + a + "\n" + b + "\norange: A darker, blue: B darker", false,
+                     IM_COL32(255, 255, 255, 255), left, right);
+        } else {
+            const float divider = state.compareLayout == CompareLayout::Wipe ? float(layout.wipeX)
+                                                                             : float(layout.halves[1].origin.x);
+            draw->AddLine(ImVec2(divider, float(layout.view.origin.y)), ImVec2(divider, bottom + 8.0f), IM_COL32(0, 0, 0, 160), 4.0f);
+            draw->AddLine(ImVec2(divider, float(layout.view.origin.y)), ImVec2(divider, bottom + 8.0f), IM_COL32(255, 255, 255, 230), 2.0f);
+            // Side by side: beside the divider. Wipe: in the view's corners, so they never cover
+            // each other wherever the divider is.
+            const bool wipe = state.compareLayout == CompareLayout::Wipe;
+            labelBox(draw, ImVec2(wipe ? left : divider - 8.0f, bottom), a, !wipe, IM_COL32(255, 255, 255, 255), left, right);
+            labelBox(draw, ImVec2(wipe ? right : divider + 8.0f, bottom), b, wipe, IM_COL32(255, 255, 255, 255), left, right);
+            if (state.compareLayout == CompareLayout::Wipe) {
+                // The handle: drag it (anywhere on the divider line) to move the wipe.
+                const float y = float(layout.view.origin.y) + 0.5f * float(layout.view.size.y);
+                const float r = 0.7f * ImGui::GetFontSize();
+                draw->AddCircleFilled(ImVec2(divider, y), r, IM_COL32(255, 255, 255, 230));
+                draw->AddCircle(ImVec2(divider, y), r, IM_COL32(0, 0, 0, 200), 0, 2.0f);
+                const ImGuiIO& io = ImGui::GetIO();
+                auto onHandle = [&](glm::vec2 p) { return std::abs(p.x - divider) < r && layout.view.contains(p); };
+                const bool near = onHandle({io.MousePos.x, io.MousePos.y});
+                for (const glm::vec2 press : state.leftPresses)
+                    if (onHandle(press) && !io.WantCaptureMouse) state.draggingWipe = true;
+                // Follow the cursor; a release ends the drag where the button went up (a slow
+                // frame may see the release and later moves together).
+                const bool released = state.leftRelease.has_value() || !ImGui::IsMouseDown(0);
+                const float x = state.leftRelease ? state.leftRelease->x : io.MousePos.x;
+                if (state.draggingWipe && layout.view.size.x > 0)
+                    state.wipe = std::clamp((x - float(layout.view.origin.x)) / float(layout.view.size.x), 0.02f, 0.98f);
+                if (near || state.draggingWipe) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
+                if (released) state.draggingWipe = false;
+            }
+        }
+    }
+    if (state.showUi && state.view.kind == ViewSelection::Kind::ErrorHeatmap && !state.measurement.empty()) {
+        // Say so when the heatmap no longer shows what is on screen, and offer to measure again.
+        const std::string text = state.staleReason.empty()
+                                     ? "error heatmap: magenta false shadow, green false light, dimmed scene where exact"
+                                     : "STALE heatmap: " + state.staleReason + " since it was measured (M or Re-measure)";
+        ImGui::SetNextWindowPos(ImVec2(float(layout.view.origin.x) + 8.0f, float(layout.view.origin.y) + 8.0f));
+        ImGui::SetNextWindowBgAlpha(0.75f);
+        ImGui::Begin("##heatmap-banner", nullptr,
+                     ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
+                         ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoMove);
+        if (!state.staleReason.empty()) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
+        ImGui::TextUnformatted(text.c_str());
+        if (!state.staleReason.empty()) ImGui::PopStyleColor();
+        if (!state.staleReason.empty() && ImGui::Button("Re-measure")) state.commands.push_back({UiCommand::Kind::Measure, ""});
+        ImGui::SameLine();
+        if (ImGui::Button("Back to lit")) state.view = {};
+        ImGui::End();
+    }
+}
+
+void Ui::drawPanel(App& app, UiState& state) {
+    const PixelRect& panel = state.layout.panel;
+    ImGui::SetNextWindowPos(ImVec2(float(panel.origin.x), float(panel.origin.y)), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(float(panel.size.x), float(panel.size.y)), ImGuiCond_Always);
+    ImGui::Begin("shadowlab", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    drawStatusLine(app, state, false);
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("F1 or H hides this panel, F12 saves a screenshot, M measures accuracy");
+    ImGui::PopStyleColor();
+    ImGui::Separator();
 
     // Technique picker, grouped by category.
     const TechniqueInfo* info = app.techniques().find(state.technique);
-    if (ImGui::BeginCombo("technique", info ? info->displayName.c_str() : state.technique.c_str())) {
+    fieldLabel(state.compareTechnique.empty() ? "technique" : "technique A (left)");
+    if (ImGui::BeginCombo("##technique", info ? info->displayName.c_str() : state.technique.c_str())) {
         std::string category;
         for (const auto& t : app.techniques().techniques()) {
             if (t.category != category) {
@@ -177,24 +428,25 @@ void Ui::draw(App& app, UiState& state, float frameSeconds) {
         }
         ImGui::EndCombo();
     }
-    if (ImGui::BeginCombo("compare with", state.compareTechnique.empty() ? "(nothing)" : state.compareTechnique.c_str())) {
+    fieldLabel("compare with (B)",
+               "Side by side: the view split in two, both halves with the whole camera framing. Wipe: one framing, A left "
+               "of a divider you drag, B right of it. Difference: where the two shadow terms differ.");
+    const TechniqueInfo* compareInfo = app.techniques().find(state.compareTechnique);
+    if (ImGui::BeginCombo("##compare", compareInfo ? compareInfo->displayName.c_str() : "(nothing)")) {
         if (ImGui::Selectable("(nothing)", state.compareTechnique.empty())) state.compareTechnique.clear();
         for (const auto& t : app.techniques().techniques())
             if (ImGui::Selectable((t.displayName + "##compare" + t.id).c_str(), t.id == state.compareTechnique))
                 state.compareTechnique = t.id;
         ImGui::EndCombo();
     }
-    helpMarker("Side by side: the technique above on the left half of the view, this one on the right, "
-               "same camera and light. Timings shown are the right-hand one's.");
     if (!state.compareTechnique.empty()) {
-        // Divider and labels over the scene.
-        ImDrawList* background = ImGui::GetBackgroundDrawList();
-        const ImVec2 size = ImGui::GetIO().DisplaySize;
-        background->AddLine(ImVec2(size.x * 0.5f, 0), ImVec2(size.x * 0.5f, size.y), IM_COL32(255, 255, 255, 200), 2.0f);
-        background->AddText(ImVec2(size.x * 0.5f - 8.0f - ImGui::CalcTextSize(state.technique.c_str()).x, size.y - 24.0f),
-                            IM_COL32(255, 255, 255, 255), state.technique.c_str());
-        background->AddText(ImVec2(size.x * 0.5f + 8.0f, size.y - 24.0f), IM_COL32(255, 255, 255, 255),
-                            state.compareTechnique.c_str());
+        int layout = int(state.compareLayout);
+        ImGui::RadioButton("side by side", &layout, int(CompareLayout::SideBySide));
+        ImGui::SameLine();
+        ImGui::RadioButton("wipe", &layout, int(CompareLayout::Wipe));
+        ImGui::SameLine();
+        ImGui::RadioButton("difference", &layout, int(CompareLayout::Difference));
+        state.compareLayout = CompareLayout(layout);
     }
     info = app.techniques().find(state.technique);
     if (info) {
@@ -221,21 +473,25 @@ void Ui::draw(App& app, UiState& state, float frameSeconds) {
         const glm::vec3 toLight = -glm::normalize(light.direction);
         float azimuth = glm::degrees(std::atan2(toLight.z, toLight.x));
         float elevation = glm::degrees(std::asin(std::clamp(toLight.y, -1.0f, 1.0f)));
-        bool changed = ImGui::SliderFloat("azimuth", &azimuth, -180.0f, 180.0f, "%.1f deg");
-        changed |= ImGui::SliderFloat("elevation", &elevation, 1.0f, 90.0f, "%.1f deg");
-        helpMarker("Direction the light comes from. Low elevations give long shadows and make acne and "
-                   "aliasing easy to see.");
+        fieldLabel("azimuth");
+        bool changed = ImGui::SliderFloat("##azimuth", &azimuth, -180.0f, 180.0f, "%.1f deg");
+        fieldLabel("elevation", "Direction the light comes from. Low elevations give long shadows and make acne and "
+                                "aliasing easy to see.");
+        changed |= ImGui::SliderFloat("##elevation", &elevation, 1.0f, 90.0f, "%.1f deg");
         if (changed) {
             const float a = glm::radians(azimuth), e = glm::radians(elevation);
             light.direction = -glm::vec3(std::cos(e) * std::cos(a), std::sin(e), std::cos(e) * std::sin(a));
         }
+        const std::string sizeHelp = "Size of the emitter: soft-shadow techniques widen their penumbrae with it; hard "
+                                     "techniques ignore it.";
         if (light.type == LightType::Directional) {
+            fieldLabel("angular radius (degrees)", sizeHelp);
             float size = glm::degrees(light.size);
-            if (ImGui::SliderFloat("angular radius", &size, 0.0f, 10.0f, "%.2f deg")) light.size = glm::radians(size);
+            if (ImGui::SliderFloat("##light-size", &size, 0.0f, 10.0f, "%.2f deg")) light.size = glm::radians(size);
         } else {
-            ImGui::SliderFloat("radius", &light.size, 0.0f, 2.0f, "%.3f");
+            fieldLabel("radius (scene units)", sizeHelp);
+            ImGui::SliderFloat("##light-size", &light.size, 0.0f, 2.0f, "%.3f");
         }
-        helpMarker("Size of the emitter: soft-shadow techniques widen their penumbrae with it; hard techniques ignore it.");
     }
 
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -243,9 +499,12 @@ void Ui::draw(App& app, UiState& state, float frameSeconds) {
                               : state.view.kind == ViewSelection::Kind::Visibility   ? "visibility (shadow term)"
                               : state.view.kind == ViewSelection::Kind::ErrorHeatmap ? "error heatmap (last measurement)"
                                                                                      : state.view.debugImage;
-        if (ImGui::BeginCombo("image", current.c_str())) {
+        fieldLabel("image");
+        if (ImGui::BeginCombo("##image", current.c_str())) {
             if (ImGui::Selectable("lit")) state.view = {};
             if (ImGui::Selectable("visibility (shadow term)")) state.view = {ViewSelection::Kind::Visibility, ""};
+            if (!state.measurement.empty() && ImGui::Selectable("error heatmap (last measurement)"))
+                state.view = {ViewSelection::Kind::ErrorHeatmap, ""};
             std::string error;
             if (LoadedTechnique* loaded = app.techniques().get(state.technique, error))
                 for (const auto& image : loaded->host().debugImages())
@@ -254,94 +513,89 @@ void Ui::draw(App& app, UiState& state, float frameSeconds) {
         }
         const char* cameraModes[] = {"orbit (drag, wheel, middle-drag)", "fly (WASD QE + drag)"};
         int mode = app.camera().mode() == CameraController::Mode::Orbit ? 0 : 1;
-        if (ImGui::Combo("camera", &mode, cameraModes, 2))
+        fieldLabel("camera");
+        if (ImGui::Combo("##camera", &mode, cameraModes, 2))
             app.camera().setMode(mode == 0 ? CameraController::Mode::Orbit : CameraController::Mode::Fly);
         if (ImGui::Button("Reset camera")) app.camera().reset(app.scene().camera);
-        ImGui::SameLine();
         bool msaa = state.msaaSamples > 0;
-        if (ImGui::Checkbox("MSAA 4x", &msaa)) state.msaaSamples = msaa ? 4 : 0;
-        helpMarker("Multisampling of the main pass. Accuracy runs use it off: resolving averages the G-buffer at edges.");
-        if (ImGui::Button("Screenshot (F12)")) state.screenshotRequested = true;
-        if (!app.scene().name.empty()) ImGui::TextDisabled("scene: %s, %zu triangles", app.scene().name.c_str(), app.scene().triangleCount());
-        ImGui::InputText("##scene", &sceneInput_);
-        ImGui::SameLine();
-        if (ImGui::Button("Load scene")) {
-            std::string error;
-            sceneError_ = app.loadScene(sceneInput_, {}, error) ? "" : error;
+        if (checkbox("MSAA 4x", &msaa, "Multisampling of the main pass. Accuracy runs use it off: resolving averages the "
+                                       "G-buffer at edges."))
+            state.msaaSamples = msaa ? 4 : 0;
+        if (ImGui::Button("Screenshot (F12)")) state.commands.push_back({UiCommand::Kind::Screenshot, ""});
+        if (!state.lastScreenshot.empty()) ImGui::TextWrapped("%s", state.lastScreenshot.c_str());
+        if (!app.scene().name.empty())
+            ImGui::TextWrapped("scene: %s, %zu triangles", app.scene().name.c_str(), app.scene().triangleCount());
+        fieldLabel("load scene (name or JSON path)");
+        if (ImGui::InputText("##scene", &sceneInput_, ImGuiInputTextFlags_EnterReturnsTrue))
+            state.commands.push_back({UiCommand::Kind::LoadScene, sceneInput_});
+        if (ImGui::Button("Load scene")) state.commands.push_back({UiCommand::Kind::LoadScene, sceneInput_});
+        if (!state.sceneError.empty()) {
+            ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
+            ImGui::TextWrapped("%s", state.sceneError.c_str());
+            ImGui::PopStyleColor();
         }
-        if (!sceneError_.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", sceneError_.c_str());
     }
 
     if (ImGui::CollapsingHeader("Timing and memory", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::Text("%.1f FPS  (%.2f ms per frame, host CPU %.3f ms)", 1000.0f / std::max(smoothedFrameMs_, 1e-3f),
-                    smoothedFrameMs_, app.lastCpuFrameMs());
-        if (ImGui::BeginTable("passes", 2, ImGuiTableFlags_BordersInnerH)) {
-            for (const auto& [pass, ms] : app.timer().latest()) {
-                ImGui::TableNextRow();
-                ImGui::TableSetColumnIndex(0);
-                ImGui::TextUnformatted(pass == "frame" ? "GPU total" : pass.c_str());
-                ImGui::TableSetColumnIndex(1);
-                ImGui::Text("%.3f ms", ms);
+        ImGui::TextWrapped("%.1f FPS  (%.2f ms per frame, host CPU %.3f ms)", 1000.0f / std::max(smoothedFrameMs_, 1e-3f),
+                           smoothedFrameMs_, app.lastCpuFrameMs());
+        const bool comparing = !state.compareTechnique.empty();
+        const std::string sides[2] = {state.technique, state.compareTechnique};
+        for (int s = 0; s < (comparing ? 2 : 1); ++s) {
+            if (comparing) ImGui::TextWrapped("%s: %s", s == 0 ? "A" : "B", techniqueTitle(app, sides[s]).c_str());
+            timingsTable(s == 0 ? "passes-a" : "passes-b", state.sideTimings[s]);
+            std::string error;
+            if (LoadedTechnique* loaded = app.techniques().get(sides[s], error)) {
+                ImGui::Text("technique GPU memory: %.2f MiB", double(loaded->host().gpuBytes()) / (1024.0 * 1024.0));
+                for (const auto& [name, allocation] : loaded->host().textures())
+                    ImGui::TextDisabled("  %s: %.2f MiB", allocation.label.c_str(), double(allocation.bytes) / (1024.0 * 1024.0));
+                for (const auto& [name, value] : loaded->host().statistics()) ImGui::Text("%s: %.4g", name.c_str(), value);
             }
-            ImGui::EndTable();
-        }
-        std::string error;
-        if (LoadedTechnique* loaded = app.techniques().get(state.technique, error)) {
-            ImGui::Text("technique GPU memory: %.2f MiB", double(loaded->host().gpuBytes()) / (1024.0 * 1024.0));
-            for (const auto& [name, allocation] : loaded->host().textures())
-                ImGui::TextDisabled("  %s: %.2f MiB", allocation.label.c_str(), double(allocation.bytes) / (1024.0 * 1024.0));
-            for (const auto& [name, value] : loaded->host().statistics()) ImGui::Text("%s: %.4g", name.c_str(), value);
         }
     }
 
     if (ImGui::CollapsingHeader("Accuracy", ImGuiTreeNodeFlags_DefaultOpen)) {
         const char* modes[] = {"hard reference", "soft reference"};
-        ImGui::Combo("against", &state.referenceMode, modes, 2);
-        if (state.referenceMode == 1) ImGui::SliderInt("rays per pixel", &state.referenceSamples, 4, 256);
-        // Translucent casters: the physical model (1 - a) + a t, or the one the technique declares.
+        fieldLabel("against", "Traces the ray-traced reference (Embree, CPU) from the G-buffer of the frame on screen and "
+                              "compares the technique's shadow term per pixel; in a comparison each side is measured for "
+                              "its own technique. The heatmap shows false shadow (acne, over-darkening) in magenta and "
+                              "false light (leaks, peter panning) in green over the dimmed scene.");
+        ImGui::Combo("##against", &state.referenceMode, modes, 2);
+        if (state.referenceMode == 1) {
+            fieldLabel("rays per pixel");
+            ImGui::SliderInt("##rays", &state.referenceSamples, 4, 256);
+        }
+        // Translucent casters: the physical model (1 - a) + a t, or the one the technique declares
+        // (in a comparison, each side's own).
         const TechniqueInfo* judged = app.techniques().find(state.technique);
         const TranslucencyModel ownModel = judged ? judged->translucencyModel : TranslucencyModel::Opaque;
-        const std::string ownLabel = std::string("technique's own (") + translucencyModelName(ownModel) + ")";
+        const std::string ownLabel = state.compareTechnique.empty()
+                                         ? std::string("technique's own (") + translucencyModelName(ownModel) + ")"
+                                         : std::string("each technique's own");
         const char* models[] = {"physical", ownLabel.c_str()};
-        ImGui::Combo("translucency model", &state.referenceModel, models, 2);
-        helpMarker("Traces the ray-traced reference (Embree, CPU) from the G-buffer of the frame on screen and "
-                   "compares the technique's shadow term per pixel. The heatmap shows false shadow (acne, "
-                   "over-darkening) in magenta and false light (leaks, peter panning) in green.");
-        if (ImGui::Button("Measure accuracy")) state.measureRequested = true;
-        if (state.measureRequested) {
-            state.measureRequested = false;
-            ReferenceOptions options;
-            options.mode = state.referenceMode == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
-            options.samplesPerPixel = state.referenceSamples;
-            options.model = state.referenceModel == 1 ? ownModel : TranslucencyModel::Physical;
-            Evaluation evaluation;
-            std::string error;
-            if (app.evaluate(options, evaluation, error)) {
-                const AccuracyMetrics& m = evaluation.metrics;
-                char text[512];
-                std::snprintf(text, sizeof(text),
-                              "MAE %.4f   RMSE %.4f\nfalse shadow %.3f%%   false light %.3f%%\n"
-                              "MAE in penumbra %.4f, elsewhere %.4f\ncompared %.1f%% of pixels (traced in %.2f s)",
-                              m.mae, m.rmse, 100.0 * m.falseShadowRate, 100.0 * m.falseLightRate, m.maePenumbra,
-                              m.maeOutsidePenumbra, 100.0 * m.comparedFraction, evaluation.traceSeconds);
-                state.accuracyText = text;
-                state.heatmap = evaluation.heatmap();
-                state.heatmapUploaded = false;
-                state.view = {ViewSelection::Kind::ErrorHeatmap, ""};
-                const auto frame = app.timer().latest().find("frame");
-                const TechniqueInfo* measuredInfo = app.techniques().find(state.technique);
-                std::string label = measuredInfo ? measuredInfo->id : state.technique;
-                if (measuredInfo)
-                    for (size_t i = 0; i < measuredInfo->params.size(); ++i)
-                        label += " " + measuredInfo->params[i].id + "=" +
-                                 formatParamValue(measuredInfo->params[i], app.params().values(*measuredInfo)[i]);
-                state.measured.push_back({label, frame == app.timer().latest().end() ? 0.0 : frame->second, m.mae});
-            } else {
-                state.accuracyText = error;
-            }
+        fieldLabel("translucency model");
+        ImGui::Combo("##translucency-model", &state.referenceModel, models, 2);
+        if (ImGui::Button("Measure accuracy (M)")) state.commands.push_back({UiCommand::Kind::Measure, ""});
+        if (!state.measureError.empty()) {
+            ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
+            ImGui::TextWrapped("%s", state.measureError.c_str());
+            ImGui::PopStyleColor();
         }
-        if (!state.accuracyText.empty()) ImGui::TextUnformatted(state.accuracyText.c_str());
-        if (state.heatmap.width > 0 && ImGui::Button("Show error heatmap")) state.view = {ViewSelection::Kind::ErrorHeatmap, ""};
+        if (!state.measurement.empty() && !state.staleReason.empty())
+            ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "stale: %s", state.staleReason.c_str());
+        for (size_t s = 0; s < state.measurement.size(); ++s) {
+            const SideMeasurement& side = state.measurement[s];
+            const AccuracyMetrics& m = side.metrics;
+            if (state.measurement.size() > 1) ImGui::TextUnformatted(s == 0 ? "A" : "B");
+            ImGui::TextWrapped("%s", side.label.c_str());
+            ImGui::TextWrapped("MAE %.4f   RMSE %.4f\nfalse shadow %.3f%%   false light %.3f%%\n"
+                               "MAE in penumbra %.4f, elsewhere %.4f\ncompared %.1f%% of pixels (traced in %.2f s)\n"
+                               "%.3f ms GPU, %.2f MiB",
+                               m.mae, m.rmse, 100.0 * m.falseShadowRate, 100.0 * m.falseLightRate, m.maePenumbra,
+                               m.maeOutsidePenumbra, 100.0 * m.comparedFraction, side.traceSeconds, side.gpuMs,
+                               double(side.gpuBytes) / (1024.0 * 1024.0));
+        }
+        if (!state.measurement.empty() && ImGui::Button("Show error heatmap")) state.view = {ViewSelection::Kind::ErrorHeatmap, ""};
         drawSpeedAccuracyPlot(state.measured);
     }
 
@@ -353,22 +607,34 @@ void Ui::draw(App& app, UiState& state, float frameSeconds) {
         if (!pluginError.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", pluginError.c_str());
         if (!shaderError.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", shaderError.c_str());
         for (const auto& error : app.techniques().scanErrors()) ImGui::TextColored(ImVec4(1, 0.7f, 0.3f, 1), "%s", error.c_str());
-        ImGui::BeginChild("log", ImVec2(0, 160), true);
-        for (const auto& entry : recentLog()) {
+        ImGui::BeginChild("log", ImVec2(0, 12.0f * ImGui::GetFontSize()), true);
+        const auto log = recentLog();
+        const bool atBottom = ImGui::GetScrollY() >= ImGui::GetScrollMaxY() - 1.0f;
+        for (const auto& entry : log) {
             const ImVec4 color = entry.level == LogLevel::Error     ? ImVec4(1, 0.4f, 0.4f, 1)
                                  : entry.level == LogLevel::Warning ? ImVec4(1, 0.8f, 0.3f, 1)
                                                                     : ImVec4(0.8f, 0.8f, 0.8f, 1);
+            ImGui::PushStyleColor(ImGuiCol_Text, color);
             ImGui::PushTextWrapPos(0.0f);
-            ImGui::TextColored(color, "%s", entry.message.c_str());
+            ImGui::TextUnformatted(entry.message.c_str());
             ImGui::PopTextWrapPos();
+            ImGui::PopStyleColor();
         }
+        // Follow the newest line unless the reader has scrolled up to read an older one.
+        const std::string newest = log.empty() ? std::string() : log.back().message;
+        if (newest != newestLogLine_ && atBottom) ImGui::SetScrollHereY(1.0f);
+        newestLogLine_ = newest;
         ImGui::EndChild();
     }
-    ImGui::End();
 
-    ImGui::Render();
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (ImGui::CollapsingHeader("Display")) {
+        fieldLabel("UI scale", "Fonts and spacing; 1.5 to 2 for a projector. Also --ui-scale.");
+        if (!ImGui::IsAnyItemActive()) scaleSlider_ = state.uiScale;
+        ImGui::SliderFloat("##ui-scale", &scaleSlider_, 0.75f, 3.0f, "%.2f");
+        // Applied when the slider is released: the fonts are rasterised again at the new size.
+        if (ImGui::IsItemDeactivatedAfterEdit()) state.uiScale = scaleSlider_;
+    }
+    ImGui::End();
 }
 
 } // namespace shadowlab

@@ -1,37 +1,61 @@
 // The classroom panel (Dear ImGui): technique picker, the parameter panel generated from the
 // technique's descriptor, light and camera controls, per-pass GPU timings, memory, debug images,
-// screenshots and the log, including hot-reload errors.
+// screenshots and the log, including hot-reload errors. The panel only edits state and emits
+// commands; the session (session.cpp) runs them between frames.
 #pragma once
 
+#include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "app.h"
+#include "ui/classroom.h"
+#include "ui/imgui_gl.h"
+#include "ui/session.h"
 
 struct GLFWwindow;
 
 namespace shadowlab {
 
+// Work the panel asks for that must not run inside the ImGui frame (ray tracing, read-backs,
+// scene loads): queued in UiState::commands, run by the session after the frame is drawn.
+struct UiCommand {
+    enum class Kind { Measure, Screenshot, LoadScene } kind;
+    std::string argument;   // LoadScene: name or path
+};
+
 struct UiState {
     std::string technique;
-    std::string compareTechnique;     // non-empty: side by side, `technique` left, this one right
+    std::string compareTechnique;     // non-empty: `technique` is A (left), this one B (right)
+    CompareLayout compareLayout = CompareLayout::SideBySide;
+    float wipe = 0.5f;                // Wipe: divider across the view, 0..1 (dragged in the view)
+    bool draggingWipe = false;
     ViewSelection view;
     int msaaSamples = 0;
     float scroll = 0.0f;              // mouse wheel since last frame
-    bool screenshotRequested = false;
+    std::vector<int> pressedKeys;     // GLFW keys pressed since last frame
+    glm::vec2 eventCursor{0.0f};      // the cursor as of the last event read
+    std::vector<glm::vec2> leftPresses;   // where the left button went down since last frame
+    std::optional<glm::vec2> leftRelease; // where it went up since last frame
     bool quitRequested = false;
-    bool measureRequested = false;  // measure accuracy on this frame (button or smoke test)
+    bool showUi = true;               // F1 or H toggles; false: nothing over the view but labels
+    float uiScale = 1.0f;             // fonts and sizes (a projector wants 1.5 to 2)
+    ViewLayout layout;                // this frame's (the session computes it before the panel)
     std::string frameError;
-    int screenshotCounter = 0;
-    std::string nextScreenshotName();
+    std::vector<UiCommand> commands;
+    std::string lastScreenshot;       // path of the last F12 screenshot, or its error
+    std::string sceneError;           // of the last LoadScene command
 
-    // Accuracy measured on demand ("Measure accuracy"), and every measurement of this session for
-    // the error-against-milliseconds plot.
+    // Accuracy measured on demand ("Measure accuracy"): one result per side of the view, and
+    // every measurement of this session for the error-against-milliseconds plot.
     int referenceMode = 0;            // 0 hard, 1 soft
     int referenceSamples = 64;
-    int referenceModel = 0;           // 0 physical, 1 the technique's own translucency model
-    std::string accuracyText;
-    Image heatmap;                    // shown by the ErrorHeatmap view while the size matches
-    bool heatmapUploaded = false;     // in the display texture already (uploaded once, not per frame)
+    int referenceModel = 0;           // 0 physical, 1 each side's technique's own translucency model
+    std::vector<SideMeasurement> measurement;
+    std::string measureError;
+    std::string staleReason;          // why the shown measurement no longer matches the view ("" = current)
+    std::map<std::string, double> sideTimings[2];   // GPU ms per pass of each side's latest frame
     struct MeasuredPoint {
         std::string label;
         double gpuMs;
@@ -42,19 +66,31 @@ struct UiState {
 
 class Ui {
 public:
-    bool init(GLFWwindow* window);
+    // window = nullptr: offscreen (no platform input; the display size comes with each draw).
+    bool init(GLFWwindow* window, float uiScale);
     void shutdown();
-    // Builds and renders the UI over the current framebuffer.
-    void draw(App& app, UiState& state, float frameSeconds);
+    // Builds and renders the UI into `framebuffer` (0 = the window) of size `display`.
+    void draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, glm::ivec2 display);
     bool wantsMouse() const;
     bool wantsKeyboard() const;
 
 private:
+    void applyScale(float scale);
+    void drawViewOverlay(App& app, UiState& state);
+    void drawPanel(App& app, UiState& state);
+    void drawStatusLine(App& app, const UiState& state, bool overlay);
     bool initialised_ = false;
     GLFWwindow* window_ = nullptr;
+    ImGuiGlRenderer renderer_;
+    glm::vec2 initialCursor_{0.0f};
+    float appliedScale_ = 0.0f;
     float smoothedFrameMs_ = 0.0f;
     std::string sceneInput_;
-    std::string sceneError_;
+    std::string newestLogLine_;       // the log follows new lines
+    float scaleSlider_ = 1.0f;
+    std::string reloadStatus_;        // the latest hot-reload line of the log
+    bool reloadStatusIsError_ = false;
+    double reloadStatusSeconds_ = -1e9;   // ImGui time it appeared
 };
 
 } // namespace shadowlab

@@ -1,0 +1,54 @@
+// The classroom window's frame loop (App::runInteractive): the panel beside the view, one or two
+// techniques in the view (side by side, wipe or difference), and the commands the panel emits
+// (measure, screenshot, load scene), run between frames. It draws into a GLFW window, or with a
+// headless backend into an offscreen framebuffer of the same layout, so slides come out the
+// same without a display.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "app.h"
+#include "ui/classroom.h"
+
+namespace shadowlab {
+
+struct InteractiveOptions {
+    std::string technique;
+    std::string compareTechnique;                  // non-empty: compare `technique` (A) with it (B)
+    CompareLayout compareLayout = CompareLayout::SideBySide;
+    float wipe = 0.5f;                             // Wipe: divider across the view, 0..1
+    int frames = 0;                                // > 0: draw that many, save `screenshot`, return
+    std::string screenshot;                        // with frames
+    bool cycle = false;                            // smoke test: every technique and view in turn
+    bool measure = false;                          // measure accuracy after a few frames (slides of the heatmap)
+    bool showUi = true;                            // false: the view (and comparison labels) only
+    ViewSelection view;                            // the image shown at the start (lit, visibility, ...)
+    float uiScale = 1.0f;
+    std::filesystem::path screenshotFolder = "screenshots";   // F12
+};
+
+// One side of the view measured against the reference, for its own technique.
+struct SideMeasurement {
+    std::string technique;      // id
+    std::string label;          // id and parameter values
+    double gpuMs = 0.0;         // the side's last GPU frame time
+    size_t gpuBytes = 0;        // the side's technique memory
+    AccuracyMetrics metrics;
+    double traceSeconds = 0.0;
+    Image heatmap;              // heatmapOverLit of this side's frame
+    MeasurementKey key;         // what it was measured for (stale when the frame no longer matches)
+};
+
+// What a measurement of `technique` at the current render size and camera depends on.
+MeasurementKey currentMeasurementKey(App& app, const std::string& technique);
+
+// Renders one frame of `technique` (at the renderer's current size, with the accuracy targets),
+// traces the reference for that frame and fills `out` (gpuMs is the caller's: timings are read
+// a few frames late). Each side of a comparison is measured this way, for its own technique.
+bool measureSide(App& app, const std::string& technique, const ReferenceOptions& options, SideMeasurement& out,
+                 std::string& error);
+
+} // namespace shadowlab
