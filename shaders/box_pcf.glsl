@@ -1,7 +1,8 @@
-// An n x n box of percentage-closer tests one texel apart around a shadow-map position (seed 000
-// sec. 3.2.4), for the stochastic maps of seed 001 (stochastic-sm on a depth map, cssm2 on a
+// An n x n box of percentage-closer tests around a shadow-map position (seed 000 sec. 3.2.4): the
+// taps of `pcf`, and of the stochastic maps of seed 001 (stochastic-sm on a depth map, cssm2 on a
 // colour map of depths), whose noise only a wide kernel averages away (sec. 2.1.2). Tap (i, j)
-// sits at u + (i, j) - (n - 1) / 2 texels (u = coord.xy * resolution) and compares against the
+// sits at u + ((i, j) - (n - 1) / 2) s texels (u = coord.xy * resolution, s the spacing in texels,
+// 1 for the colour map) and compares against the
 // point's depth less the cone bias, slope * its distance from the centre (light_depth.glsl):
 // far taps may see the receiver's own tilted surface closer to the light.
 #ifndef SHADOWLAB_BOX_PCF_GLSL
@@ -15,12 +16,13 @@ vec2 boxPcfOffset(int i, int j, int kernel) {
 // bilinear comparison ("hardware 2x2 plus an n x n shader kernel", seed 001 Fig. 5.3.C); nearest
 // taps are looked up at their texel's centre (as pcf.glsl does, so the rounding of a position on a
 // texel edge cannot pick the neighbour). Mean of the n^2 tests.
-float boxPcfDepth(sampler2DShadow map, vec3 coord, float resolution, int kernel, float slope, bool bilinear) {
+float boxPcfDepth(sampler2DShadow map, vec3 coord, float resolution, int kernel, float spacing, float slope,
+                  bool bilinear) {
     vec2 u = coord.xy * resolution;
     float lit = 0.0;
     for (int j = 0; j < kernel; ++j)
         for (int i = 0; i < kernel; ++i) {
-            vec2 offset = boxPcfOffset(i, j, kernel);
+            vec2 offset = boxPcfOffset(i, j, kernel) * spacing;
             vec2 position = bilinear ? u + offset : floor(u + offset) + 0.5;
             lit += texture(map, vec3(position / resolution, coord.z - slope * length(offset)));
         }

@@ -5,7 +5,7 @@
 //
 // Two ways to evaluate the filter (the `sampling` parameter; the same filter without the cone
 // bias, and with it the same up to a cone at most one texel diagonal wider, see pcfGather):
-//   taps    the loop of n^2 lookups below (pcfTaps), one texture() per tap;
+//   taps    the loop of n^2 lookups (boxPcfDepth, shaders/box_pcf.glsl), one texture() per tap;
 //   gather  the texels the taps read, four at a time with textureGather (pcfGather), each weighted
 //           by how much of it the taps take. The idea is Castano's ("Shadow Mapping Summary -
 //           Part 1", 2013: the optimised PCF of The Witness, also in MJP's Shadows sample), which
@@ -13,47 +13,18 @@
 //           lookups; here the weights are chosen to reproduce this box of taps exactly rather than
 //           a wider tent, and the comparisons stay in the texture unit.
 #include "light_space.glsl"
-#include "disc_sampling.glsl"
+#include "light_depth.glsl"
+#include "box_pcf.glsl"
 
 #include "shadowlab/kit/depth_map_shared.h"
 #include "pcf_shared.h"
 
 layout(binding = kDepthMapUnit) uniform sampler2DShadow uShadowMap;   // comparison: hardware PCF
 
-float discTap(vec2 uv, float ref) { return texture(uShadowMap, vec3(uv, ref)); }
-
-// Reference depth of tap (i, j): the shaded point's depth less the cone bias (sec. 3.2.4, last
-// paragraph): a tap r texels from the centre may see the receiver's own surface up to slope * r
-// closer to the light; accept that much.
-float tapReference(vec3 coord, float slope, float centre, ivec2 tap) {
-    vec2 offset = (vec2(tap) - centre) * uOffsetScale;
-    return coord.z - slope * length(offset);
-}
-
-// Taps are placed in texel units, u = coord.xy * resolution. A nearest tap is looked up at the
-// centre of the texel its position falls in: the texture unit rounds coordinates to a few
-// sub-texel bits before it picks a texel, so a position within that rounding of a texel edge
-// would otherwise take whichever texel the hardware's precision gives, and the gather below could
-// not know which. Bilinear taps stay where they are: their weights are continuous in the position.
-float pcfTaps(vec3 coord, float slope) {
-    float resolution = uLightDepth.w;
-    float centre = 0.5 * float(uKernel - 1);
-    vec2 u = coord.xy * resolution;
-    float lit = 0.0;
-    for (int j = 0; j < uKernel; ++j)
-        for (int i = 0; i < uKernel; ++i) {
-            vec2 offset = (vec2(i, j) - centre) * uOffsetScale;   // texels, multiples of 1/s
-            vec2 position = u + offset;
-            if (uBilinear == 0) position = floor(position) + 0.5;
-            lit += discTap(position / resolution, tapReference(coord, slope, centre, ivec2(i, j)));
-        }
-    return lit;
-}
-
 // The gather variant, for unit spacing (pcf.cpp uses the taps otherwise). Derivation, per axis
 // (the filter is separable apart from the references), in texel units: the point is at u, texel t
 // covers [t, t + 1), tap i (0 <= i < n) sits at u + i - c with c = (n - 1) / 2.
-//   Nearest taps read texel floor(u + i - c) = t0 + i with t0 = floor(u - c) (pcfTaps looks each up
+//   Nearest taps read texel floor(u + i - c) = t0 + i with t0 = floor(u - c) (boxPcfDepth looks each up
 //   at that texel's centre, so the texture unit takes the same one): the n taps are n neighbouring
 //   texels, each with weight 1.
 //   Bilinear taps read texels floor(u + i - c - 1/2) = t0 + i and t0 + i + 1 with weights 1 - f and
@@ -120,6 +91,6 @@ vec3 shadowTerm(ShadowInput s) {
     vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
     if (!insideShadowMap(coord)) return vec3(1.0);
     float slope = uConeBias * receiverDepthSlope(s.worldNormal, uLightAxis, coord.z, uLightDepth, uLightWorldSize);
-    float lit = uGather != 0 ? pcfGather(coord, slope) : pcfTaps(coord, slope);
-    return vec3(lit / float(uKernel * uKernel));
+    if (uGather != 0) return vec3(pcfGather(coord, slope) / float(uKernel * uKernel));
+    return vec3(boxPcfDepth(uShadowMap, coord, uLightDepth.w, uKernel, uOffsetScale, slope, uBilinear != 0));
 }

@@ -14,5 +14,5 @@ vec3 shadowTerm(ShadowInput s) {
     vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
     if (!insideShadowMap(coord)) return vec3(1.0);
     float slope = uConeBias * receiverDepthSlope(s.worldNormal, uLightAxis, coord.z, uLightDepth, uLightWorldSize);
-    return vec3(boxPcfDepth(uShadowMap, coord, uLightDepth.w, uKernel, slope, uBilinear != 0));
+    return vec3(boxPcfDepth(uShadowMap, coord, uLightDepth.w, uKernel, 1.0, slope, uBilinear != 0));
 }
