@@ -206,6 +206,12 @@ int App::runInteractive(const InteractiveOptions& options) {
             glCreateFramebuffers(1, &name);
             targets.surface.reset(name);
             glNamedFramebufferTexture(name, GL_COLOR_ATTACHMENT0, targets.surfaceColor.get(), 0);
+            const GLenum status = glCheckNamedFramebufferStatus(name, GL_FRAMEBUFFER);
+            if (status != GL_FRAMEBUFFER_COMPLETE) {
+                logError("the offscreen window's framebuffer is " + framebufferStatusName(status));
+                ui.shutdown();
+                return 1;
+            }
             targets.surfaceSize = surfaceSize;
         }
         const GLuint surface = window ? 0 : targets.surface.get();
