@@ -739,8 +739,8 @@ TEST(SoftTechniques, PcssMinDepthMipsAreConservative) {
 
 // The accuracy condition for pcf's gather: soft MAE no worse than the taps', at the
 // default kernel and at 11 x 11. With the cone bias (on by default) the gather's cone is slightly
-// wider (see PcfGather above): measured on llvmpipe it is 0.1-0.2% better on `contact` and at
-// 11 x 11 on `cube`, equal on `overlap` and 0.4% worse at 5 x 5 on `cube`; the bound allows 1%.
+// wider (see PcfGather above): measured on llvmpipe it is 0.1-0.4% better on `contact`, the same
+// on `overlap` and at 11 x 11 on `cube`, and 0.4% worse at 5 x 5 on `cube`; the bound allows 1%.
 class PcfGatherAccuracy : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(PcfGatherAccuracy, SoftAccuracyNoWorseThanTheTaps) {
