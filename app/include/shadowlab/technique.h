@@ -262,6 +262,29 @@ struct CameraPrepass {
     glm::ivec2 size;
 };
 
+// Extension "shadowlab.shadow-maps/1": the shadow maps shadowTerm() reads this frame, told to the
+// host once a frame after renderShadows (each call replaces the last list). The host measures
+// the texel footprint m from them (eval, the footprint view) and draws the light frustum, texel
+// grid and cascade colours in its debug views. A technique that never reports is measured
+// without m. Maps are listed in the order a pixel picks them: the first whose view-distance
+// range holds the pixel and whose clip volume holds the point serves it (cascades, cube faces).
+#define SHADOWLAB_EXT_SHADOW_MAPS "shadowlab.shadow-maps/1"
+struct ShadowMapInfo {
+    uint32_t structSize = sizeof(ShadowMapInfo);
+    glm::mat4 worldToClip{1.0f};             // world -> the map's clip space: xy/w in [-1, 1] spans
+                                             // the map, z/w in [-1, 1] its depth range
+    glm::ivec2 size{0};                      // texels of the level shadowTerm() reads
+    float viewDistanceBegin = 0.0f;          // camera view depths this map serves (cascade splits);
+    float viewDistanceEnd = 1e30f;           // a single map serves them all
+    uint32_t layer = 0;                      // array layer or cube face, for labels
+    const char* label = nullptr;             // "cascade 2", "+x face"; may be null
+};
+struct ShadowMapReport {
+    uint32_t structSize;
+    void* context;
+    void (*report)(void* context, const ShadowMapInfo* maps, uint32_t count);
+};
+
 // Host services, one table per loaded technique (so the host can account for its GPU memory and
 // release whatever it leaves behind on unload).
 class IHost {
