@@ -56,6 +56,7 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
     timer_ = std::make_unique<GpuTimer>();
     renderer_ = std::make_unique<Renderer>(*shaders_);
     if (!renderer_->init(error)) return false;
+    if (!shadowMapViews_.init(*shaders_, error)) return false;
     const glm::ivec2 size = windowed ? backend_->framebufferSize() : options.size;
     if (!checkRenderTargets(size, options.msaaSamples, sceneGeometryBytes(*scene_), error)) {
         badInput = true;   // more than the device or the budget allows: say what it supports
@@ -183,6 +184,7 @@ bool App::renderFrame(const std::string& technique, std::string& error, FrameOut
         timer_->end();
     }
     renderer_->applyDefaultState();
+    loaded->host().beginFrame();
     loaded->technique().renderShadows(frame_, params);
     if (depthPrepass_) {
         timer_->begin("depth pre-pass");
@@ -234,6 +236,18 @@ bool App::presentView(const std::string& technique, const ViewSelection& view, G
         // Computed on the CPU by a measurement, already in the display texture.
         if (!toDisplay) renderer_->present(PresentMode::Color, renderer_->displayTexture(), fbo, size);
         return true;
+    case ViewSelection::Kind::Footprint:
+    case ViewSelection::Kind::TexelGrid:
+    case ViewSelection::Kind::MapCoverage: {
+        if (!renderAccuracyTargets(error)) return false;
+        LoadedTechnique* loaded = techniques_->get(technique, error);
+        if (!loaded) return false;
+        const ShadowMapView kind = view.kind == ViewSelection::Kind::Footprint   ? ShadowMapView::Footprint
+                                   : view.kind == ViewSelection::Kind::TexelGrid ? ShadowMapView::TexelGrid
+                                                                                 : ShadowMapView::Coverage;
+        shadowMapViews_.draw(*renderer_, kind, loaded->host().shadowMaps(), fbo, size);
+        return true;
+    }
     case ViewSelection::Kind::DebugImage: {
         LoadedTechnique* loaded = techniques_->get(technique, error);
         if (!loaded) return false;
@@ -402,6 +416,10 @@ bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string
     const CameraInfo camera = camera_.info(size);
     addViewDepthThirds(out.metrics, out.technique, out.reference, out.mask, positions.data(), size.x, size.y, camera.view,
                        camera.nearPlane, camera.farPlane);
+    if (LoadedTechnique* loaded = techniques_->get(lastTechnique_, error))
+        out.footprint = measureTexelFootprint(gbuffer, out.mask, frame_.camera, frame_.light, loaded->host().shadowMaps());
+    else
+        return false;
     out.referenceFloor = out.referenceStats.sampleError.empty()
                              ? 0.0
                              : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);

@@ -13,10 +13,12 @@
 #include "camera.h"
 #include "groundtruth/groundtruth.h"
 #include "groundtruth/metrics.h"
+#include "groundtruth/texel_footprint.h"
 #include "plugin/params.h"
 #include "plugin/technique_runtime.h"
 #include "render/gpu_timer.h"
 #include "render/renderer.h"
+#include "render/shadow_map_views.h"
 #include "render/shader_library.h"
 #include "scene/scene.h"
 #include "util/image.h"
@@ -39,7 +41,13 @@ struct AppOptions {
 
 // Which image a frame shows: the lit scene, the shadow term, or one of the technique's debug images.
 struct ViewSelection {
-    enum class Kind { Lit, Visibility, DebugImage, ErrorHeatmap } kind = Kind::Lit;
+    // Footprint, TexelGrid and MapCoverage: the host's views of the maps the technique reported
+    // (render/shadow_map_views.h).
+    enum class Kind { Lit, Visibility, DebugImage, ErrorHeatmap, Footprint, TexelGrid, MapCoverage } kind = Kind::Lit;
+    // Whether showing it needs the accuracy targets (shadow term, position, normal) of the frame.
+    bool needsAccuracyTargets() const {
+        return kind == Kind::Visibility || kind == Kind::Footprint || kind == Kind::TexelGrid || kind == Kind::MapCoverage;
+    }
     std::string debugImage;
 };
 
@@ -63,6 +71,7 @@ struct Evaluation {
     double traceSeconds = 0.0;
     ReferenceStats referenceStats;      // rays, refined pixels, per-pixel sampling error of the reference
     double referenceFloor = 0.0;        // soft: the reference's own penumbra MAE (penumbraMean of its sampleError)
+    TexelFootprint footprint;           // m per pixel from the maps the technique reported (none: 0 maps)
     Image heatmap() const;              // errorHeatmap() as an RGBA image
 };
 
@@ -135,6 +144,7 @@ private:
     std::unique_ptr<ShaderLibrary> shaders_;
     std::unique_ptr<GpuTimer> timer_;
     std::unique_ptr<Renderer> renderer_;
+    ShadowMapViews shadowMapViews_;
     std::unique_ptr<TechniqueManager> techniques_;
     std::unique_ptr<Scene> scene_;
     ParamStore params_;

@@ -261,6 +261,9 @@ Image visibilityImage(const std::vector<glm::vec3>& visibility, const std::vecto
 ViewSelection parseView(const std::string& text) {
     if (text == "lit" || text.empty()) return {};
     if (text == "visibility") return {ViewSelection::Kind::Visibility, ""};
+    if (text == "footprint") return {ViewSelection::Kind::Footprint, ""};
+    if (text == "texel-grid") return {ViewSelection::Kind::TexelGrid, ""};
+    if (text == "coverage") return {ViewSelection::Kind::MapCoverage, ""};
     return {ViewSelection::Kind::DebugImage, text};
 }
 
@@ -383,6 +386,8 @@ int commandEval(const CommonOptions& common, const std::string& reference, int s
             out["accuracy"][name] = nlohmann::json::parse(metricsToJson(evaluation.metrics));
             out["accuracy"][name]["model"] = translucencyModelName(model);
             out["accuracy"][name]["trace_seconds"] = evaluation.traceSeconds;
+            if (!out.contains("texel_footprint") && evaluation.footprint.maps > 0)
+                out["texel_footprint"] = nlohmann::json::parse(footprintToJson(evaluation.footprint));
             if (mode == ReferenceOptions::Mode::Soft) {
                 // The reference's own penumbra error: soft figures below about 4x it are not resolved.
                 const ReferenceStats& r = evaluation.referenceStats;
@@ -405,6 +410,18 @@ int commandEval(const CommonOptions& common, const std::string& reference, int s
     for (const auto& [pass, summary] : m.gpuMs)
         std::printf("  GPU %-20s median %8.3f ms  (p5 %.3f, p95 %.3f)\n", pass.c_str(), summary.median, summary.p5, summary.p95);
     std::printf("  host CPU per frame   median %8.3f ms;  GPU memory %.2f MiB\n", m.cpuMs.median, double(m.gpuBytes) / 1048576.0);
+    if (out.contains("texel_footprint")) {
+        // Seed 002 eq. 8.1's dp/ds: pixels one shadow-map texel covers along its worst direction.
+        const auto& f = out["texel_footprint"];
+        const auto& t = f["medianByViewDepth"];
+        std::printf("  texel footprint m (pixels per texel, worst direction; > 1 undersampled): median %.3f  p95 %.3f  "
+                    "max %.3g  undersampled %.1f%% of pixels  median by view-depth third %.3f / %.3f / %.3f  "
+                    "projection cos(a)/cos(b) median %.3f p95 %.3f  (%zu maps, %zu px uncovered)\n",
+                    f["median"].get<double>(), f["p95"].get<double>(), f["max"].get<double>(),
+                    100.0 * f["undersampledFraction"].get<double>(), t[0].get<double>(), t[1].get<double>(),
+                    t[2].get<double>(), f["projectionMedian"].get<double>(), f["projectionP95"].get<double>(),
+                    f["maps"].get<size_t>(), f["uncoveredPixels"].get<size_t>());
+    }
     for (const auto& [name, metrics] : out["accuracy"].items()) {
         std::printf("  vs %s reference (%s model): MAE %.4f  RMSE %.4f  false shadow %.3f%%  false light %.3f%%  "
                     "MAE penumbra %.4f  MAE elsewhere %.4f  noise %.4f  compared %.1f%% of pixels\n",
@@ -557,7 +574,8 @@ int run(int argc, char** argv) {
     int renderFrames = 3;
     render->add_option("--out,-o", renderOut, "PNG file to write")->required();
     render->add_option("--view", renderView,
-                       "lit | visibility | error (heatmap vs the reference) | reference | a debug image (e.g. 'shadow map')");
+                       "lit | visibility | error (heatmap vs the reference) | reference | footprint (texel footprint m, log2 heat map) | "
+                       "texel-grid | coverage (which map serves a pixel, and the light frusta) | a debug image (e.g. 'shadow map')");
     render->add_option("--frames", renderFrames, "frames to render before saving (default 3)")->check(CLI::Range(1, 10000));
     std::string reference = "auto";
     int referenceSamples = BenchSpec{}.referenceSamples;

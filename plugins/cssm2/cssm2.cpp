@@ -102,7 +102,9 @@ class ColouredStochasticShadowMaps final : public kit::TechniqueBase {
             host().registerDebugImage("cssm2 colour map", target_.colour(), DebugImageKind::Color);
         }
         GpuPass pass(host(), "shadow map");
-        mapUniforms_.set(kit::lightSpaceUniforms(host().fitLightSpace(frame.light, DrawSet::All), resolution));
+        const LightSpace lightSpace = host().fitLightSpace(frame.light, DrawSet::All);
+        mapUniforms_.set(kit::lightSpaceUniforms(lightSpace, resolution));
+        kit::reportShadowMap(host(), lightSpace.viewProjection, {resolution, resolution});
         passUniforms_.set({{}, frame.randomSeed, params.asInt(kNoise), params.asFloat(kSlopeBias), params.asFloat(kConstantBias)});
         target_.bind();
         const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};

@@ -91,6 +91,7 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
         glEnable(GL_DEPTH_CLAMP);
         map_.drawDepth(lightSpace, config, focused.cullPlanes);
         glDisable(GL_DEPTH_CLAMP);
+        map_.reportToHost();
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {

@@ -84,7 +84,9 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
         if (target_.ensure({.resolution = resolution}))
             host().registerDebugImage("stochastic shadow map", target_.depth(), DebugImageKind::Depth);
         GpuPass pass(host(), "shadow map");
-        mapUniforms_.set(kit::lightSpaceUniforms(host().fitLightSpace(frame.light, DrawSet::All), resolution));
+        const LightSpace lightSpace = host().fitLightSpace(frame.light, DrawSet::All);
+        mapUniforms_.set(kit::lightSpaceUniforms(lightSpace, resolution));
+        kit::reportShadowMap(host(), lightSpace.viewProjection, {resolution, resolution});
         passUniforms_.set({{}, frame.randomSeed, params.asInt(kNoise), 0.0f, 0.0f});
         target_.bind();
         glClear(GL_DEPTH_BUFFER_BIT);

@@ -95,7 +95,9 @@ class TranslucentShadows final : public kit::TechniqueBase {
             host().registerDebugImage("translucent depth D_t", translucentDepth_.depth(), DebugImageKind::Depth);
             host().registerDebugImage("shadow colour C", shadowColour_.colour(), DebugImageKind::Color);
         }
-        mapUniforms_.set(kit::lightSpaceUniforms(host().fitLightSpace(frame.light, DrawSet::All), resolution));
+        const LightSpace lightSpace = host().fitLightSpace(frame.light, DrawSet::All);
+        mapUniforms_.set(kit::lightSpaceUniforms(lightSpace, resolution));
+        kit::reportShadowMap(host(), lightSpace.viewProjection, {resolution, resolution});
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(params.asFloat(kSlopeBias), params.asFloat(kConstantBias));
         {

@@ -322,6 +322,19 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                         row[prefix + "compared_fraction"] = a.comparedFraction;
                         row[prefix + "noise"] = a.noiseEnergy;
                         if (own) continue;
+                        // By view-depth third (perspective aliasing: seed 002 sec. 3.1).
+                        static constexpr const char* kThirds[] = {"near", "mid", "far"};
+                        for (size_t t = 0; t < 3; ++t) row[prefix + "mae_" + kThirds[t]] = a.maeByViewDepth[t];
+                        if (evaluation.footprint.maps > 0 && !row.contains("footprint_median")) {
+                            const TexelFootprint& f = evaluation.footprint;
+                            row["footprint_median"] = f.median;
+                            row["footprint_p95"] = f.p95;
+                            row["footprint_max"] = f.max;
+                            row["footprint_undersampled"] = f.undersampledFraction;
+                            for (size_t t = 0; t < 3; ++t) row[std::string("footprint_") + kThirds[t]] = f.medianByViewDepth[t];
+                            row["projection_ratio_median"] = f.projectionMedian;
+                            row["shadow_maps"] = f.maps;
+                        }
                         row["technique_penumbra_fraction"] = a.techniquePenumbraFraction;
                         if (mode == ReferenceOptions::Mode::Soft) {
                             // The soft reference's own error: soft figures (and differences between

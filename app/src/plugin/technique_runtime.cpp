@@ -41,7 +41,33 @@ size_t textureBytes(const TextureDesc& desc) {
 }
 
 PluginHost::PluginHost(HostContext context, const TechniqueInfo& info)
-    : context_(context), techniqueId_(info.id), flags_(info.flags) {}
+    : context_(context), techniqueId_(info.id), flags_(info.flags) {
+    shadowMapReport_ = {sizeof(ShadowMapReport), this, &PluginHost::receiveShadowMaps};
+}
+
+void PluginHost::receiveShadowMaps(void* context, const ShadowMapInfo* maps, uint32_t count) {
+    auto& host = *static_cast<PluginHost*>(context);
+    // A list longer than any technique needs (8 cascades x 6 faces) is a bug in the plugin.
+    constexpr uint32_t kMaxMaps = 64;
+    if (!maps && count) return;
+    if (count > kMaxMaps) {
+        host.log(LogLevel::Warning, "reported more than 64 shadow maps; keeping the first 64");
+        count = kMaxMaps;
+    }
+    host.shadowMaps_.clear();
+    host.shadowMapLabels_.clear();
+    host.shadowMapLabels_.reserve(count);
+    for (uint32_t i = 0; i < count; ++i) {
+        // Only the fields the plugin's struct has (structSize), the rest keep their defaults.
+        ShadowMapInfo map;
+        std::memcpy(&map, &maps[i], std::min<size_t>(sizeof(ShadowMapInfo), std::max<size_t>(maps[i].structSize, sizeof(uint32_t))));
+        map.structSize = sizeof(ShadowMapInfo);
+        if (map.size.x <= 0 || map.size.y <= 0) continue;   // not a map the footprint can be measured on
+        host.shadowMapLabels_.push_back(map.label ? map.label : "");
+        host.shadowMaps_.push_back(map);
+    }
+    for (size_t i = 0; i < host.shadowMaps_.size(); ++i) host.shadowMaps_[i].label = host.shadowMapLabels_[i].c_str();
+}
 
 PluginHost::~PluginHost() { releaseAll(); }
 
@@ -54,6 +80,7 @@ const void* PluginHost::extension(const char* id) const {
         return (flags_ & kTechniqueNeedsCameraPrepass) && context_.renderer.prepassTargets().depth
                    ? &context_.renderer.prepassTargets()
                    : nullptr;
+    if (name == SHADOWLAB_EXT_SHADOW_MAPS) return &shadowMapReport_;
     return nullptr;
 }
 

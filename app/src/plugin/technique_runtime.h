@@ -78,6 +78,10 @@ public:
     const std::map<GLuint, TrackedAllocation>& textures() const { return textures_; }
     const std::vector<DebugImage>& debugImages() const { return debugImages_; }
     const std::map<std::string, double>& statistics() const { return statistics_; }
+    // The shadow maps the technique reported for its last frame (SHADOWLAB_EXT_SHADOW_MAPS);
+    // cleared by beginFrame() before each renderShadows, so a technique that stops reporting has none.
+    const std::vector<ShadowMapInfo>& shadowMaps() const { return shadowMaps_; }
+    void beginFrame() { shadowMaps_.clear(); }
     // Deletes every tracked object and program still alive; returns how many were left over.
     int releaseAll();
 
@@ -90,6 +94,10 @@ private:
     std::vector<ProgramId> programs_;
     std::vector<DebugImage> debugImages_;
     std::map<std::string, double> statistics_;
+    std::vector<ShadowMapInfo> shadowMaps_;
+    std::vector<std::string> shadowMapLabels_;   // the reported labels, copied (they point here)
+    ShadowMapReport shadowMapReport_{};
+    static void receiveShadowMaps(void* context, const ShadowMapInfo* maps, uint32_t count);
 };
 
 // Size in bytes of a texture described by `desc`, every mip level included.

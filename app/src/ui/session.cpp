@@ -230,7 +230,7 @@ int App::runInteractive(const InteractiveOptions& options) {
             state.frameError.clear();
             const std::string sides[2] = {state.technique, state.compareTechnique};
             const bool difference = comparing && state.compareLayout == CompareLayout::Difference;
-            const FrameOutputs outputs = difference || state.view.kind == ViewSelection::Kind::Visibility
+            const FrameOutputs outputs = difference || state.view.needsAccuracyTargets()
                                              ? FrameOutputs::Accuracy
                                              : FrameOutputs::Colour;
             for (int s = 0; s < (comparing ? 2 : 1); ++s) {

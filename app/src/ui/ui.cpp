@@ -495,9 +495,15 @@ void Ui::drawPanel(App& app, UiState& state) {
     }
 
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+        static const char* const kFootprint = "texel footprint m (log2 heat map)";
+        static const char* const kTexelGrid = "shadow-map texel grid";
+        static const char* const kCoverage = "map coverage and light frusta";
         std::string current = state.view.kind == ViewSelection::Kind::Lit            ? "lit"
                               : state.view.kind == ViewSelection::Kind::Visibility   ? "visibility (shadow term)"
                               : state.view.kind == ViewSelection::Kind::ErrorHeatmap ? "error heatmap (last measurement)"
+                              : state.view.kind == ViewSelection::Kind::Footprint    ? kFootprint
+                              : state.view.kind == ViewSelection::Kind::TexelGrid    ? kTexelGrid
+                              : state.view.kind == ViewSelection::Kind::MapCoverage  ? kCoverage
                                                                                      : state.view.debugImage;
         fieldLabel("image");
         if (ImGui::BeginCombo("##image", current.c_str())) {
@@ -505,6 +511,16 @@ void Ui::drawPanel(App& app, UiState& state) {
             if (ImGui::Selectable("visibility (shadow term)")) state.view = {ViewSelection::Kind::Visibility, ""};
             if (!state.measurement.empty() && ImGui::Selectable("error heatmap (last measurement)"))
                 state.view = {ViewSelection::Kind::ErrorHeatmap, ""};
+            // The host's views of the maps the technique reports (none for techniques without a map).
+            if (ImGui::Selectable(kFootprint)) state.view = {ViewSelection::Kind::Footprint, ""};
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("Pixels one shadow-map texel covers along its worst direction (seed 002 eq. 8.1, dp/ds).\n"
+                                  "Red: m > 1, texels larger than pixels (undersampled, jagged edges); blue: texels wasted.");
+            if (ImGui::Selectable(kTexelGrid)) state.view = {ViewSelection::Kind::TexelGrid, ""};
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("The shadow map's texel edges projected on the receivers.");
+            if (ImGui::Selectable(kCoverage)) state.view = {ViewSelection::Kind::MapCoverage, ""};
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("Which map (or cascade, or cube face) serves each pixel, and the edges of each map's volume.");
             std::string error;
             if (LoadedTechnique* loaded = app.techniques().get(state.technique, error))
                 for (const auto& image : loaded->host().debugImages())

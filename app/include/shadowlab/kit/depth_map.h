@@ -15,6 +15,7 @@
 #include "shadowlab/kit/depth_map_shared.h"
 #include "shadowlab/kit/focus.h"
 #include "shadowlab/kit/handles.h"
+#include "shadowlab/kit/shadow_map_report.h"
 
 namespace shadowlab::kit {
 
@@ -55,7 +56,12 @@ public:
         GpuPass pass(*host_, "shadow map");
         const FocusedLightSpace focused = focusLightSpace(*host_, frame, config.fit, config.resolution);
         drawDepth(focused.light, config, focused.cullPlanes);
+        reportToHost();
     }
+
+    // Tells the host this frame's map (its matrix and size) for the texel-footprint measure and
+    // debug views; render() does it, a technique drawing with drawDepth() calls it itself.
+    void reportToHost() const { reportShadowMap(*host_, lightSpace_.viewProjection, {resolution_, resolution_}); }
 
     // The depth pass alone, from any light space and without a timer scope (area-reference draws
     // one per light sample inside its own scope). ensureTexture() first. Casters are culled

@@ -13,6 +13,7 @@
 
 #include "shadowlab/kit/depth_map_shared.h"
 #include "shadowlab/kit/handles.h"
+#include "shadowlab/kit/shadow_map_report.h"
 
 namespace shadowlab::kit {
 

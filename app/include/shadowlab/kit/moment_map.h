@@ -30,6 +30,7 @@
 
 #include "shadowlab/kit/focus.h"
 #include "shadowlab/kit/handles.h"
+#include "shadowlab/kit/shadow_map_report.h"
 #include "shadowlab/kit/moment_light_space.h"
 #include "shadowlab/kit/moment_map_shared.h"
 #include "shadowlab/kit/params.h"
@@ -134,6 +135,7 @@ public:
         const FocusedLightSpace focused = focusLightSpace(*host_, frame, config.fit, config.resolution);
         space_ = fitMomentLightSpace(focused.light, host_->bounds(DrawSet::Casters), host_->bounds(DrawSet::All));
         mapUniforms_.set({{}, space_.light.viewProjection, space_.depthPlane});
+        reportShadowMap(*host_, space_.light.viewProjection, {resolution_, resolution_});
         const bool compute = config.blur == BlurPath::Compute;
         const bool depthOnly = compute && !config.momentsNeedDerivatives;
         {

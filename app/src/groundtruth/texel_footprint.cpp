@@ -1,0 +1,177 @@
+// Texel footprint on the screen (see texel_footprint.h).
+#include "groundtruth/texel_footprint.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "util/stats.h"
+
+namespace shadowlab {
+
+namespace {
+
+// A point's texel coordinates in `map` (x, y in texels), false behind a perspective map's eye.
+bool texelOf(const glm::dmat4& worldToClip, const glm::dvec2& size, const glm::dvec3& p, glm::dvec2& texel) {
+    const glm::dvec4 clip = worldToClip * glm::dvec4(p, 1.0);
+    if (clip.w <= 1e-12) return false;
+    texel = (glm::dvec2(clip) / clip.w * 0.5 + 0.5) * size;
+    return true;
+}
+
+// Where the camera ray through `ndc` meets the plane through p with normal n.
+bool rayOnPlane(const glm::dmat4& inverseViewProjection, const glm::dvec2& ndc, const glm::dvec3& p,
+                const glm::dvec3& n, glm::dvec3& hit) {
+    const glm::dvec4 a = inverseViewProjection * glm::dvec4(ndc, -1.0, 1.0);
+    const glm::dvec4 b = inverseViewProjection * glm::dvec4(ndc, 1.0, 1.0);
+    if (std::abs(a.w) < 1e-300 || std::abs(b.w) < 1e-300) return false;
+    const glm::dvec3 origin = glm::dvec3(a) / a.w;
+    const glm::dvec3 direction = glm::dvec3(b) / b.w - origin;
+    const double denominator = glm::dot(n, direction);
+    // Edge-on (the ray runs along the plane, under about 0.06 degrees): no footprint to speak of.
+    if (std::abs(denominator) <= 1e-3 * glm::length(direction)) return false;
+    hit = origin + direction * (glm::dot(n, p - origin) / denominator);
+    return true;
+}
+
+double medianOf(std::vector<double>& values) { return values.empty() ? 0.0 : percentile(values, 0.5); }
+
+} // namespace
+
+int servingShadowMap(const std::vector<ShadowMapInfo>& maps, const glm::vec3& world, float viewDistance) {
+    for (size_t i = 0; i < maps.size(); ++i) {
+        const ShadowMapInfo& map = maps[i];
+        if (viewDistance < map.viewDistanceBegin || viewDistance >= map.viewDistanceEnd) continue;
+        const glm::vec4 clip = map.worldToClip * glm::vec4(world, 1.0f);
+        if (clip.w <= 0.0f) continue;
+        if (std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w) return int(i);
+    }
+    return -1;
+}
+
+namespace {
+
+struct CameraMatrices {
+    glm::dmat4 viewProjection, inverse;
+    glm::dvec2 pixel;   // one pixel in NDC
+    explicit CameraMatrices(const CameraInfo& camera)
+        : viewProjection(camera.viewProjection), inverse(glm::inverse(viewProjection)),
+          pixel(2.0 / glm::dvec2(glm::max(camera.viewport, glm::ivec2(1)))) {}
+};
+
+float footprint(const CameraMatrices& camera, const ShadowMapInfo& map, const glm::vec3& point, const glm::vec3& normal) {
+    const glm::dvec3 p(point), n(glm::normalize(glm::dvec3(normal)));
+    const glm::dvec4 clip = camera.viewProjection * glm::dvec4(p, 1.0);
+    if (clip.w <= 0.0) return 0.0f;
+    const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+    glm::dvec3 px, py;
+    if (!rayOnPlane(camera.inverse, ndc + glm::dvec2(camera.pixel.x, 0.0), p, n, px)) return 0.0f;
+    if (!rayOnPlane(camera.inverse, ndc + glm::dvec2(0.0, camera.pixel.y), p, n, py)) return 0.0f;
+    const glm::dmat4 toClip(map.worldToClip);
+    const glm::dvec2 size(map.size);
+    glm::dvec2 t0, tx, ty;
+    if (!texelOf(toClip, size, p, t0) || !texelOf(toClip, size, px, tx) || !texelOf(toClip, size, py, ty)) return 0.0f;
+    // A maps a step in pixels to a step in texels; the worst direction has the fewest texels per
+    // pixel, A's smallest singular value, so m = 1 / sigma_min pixels per texel.
+    const glm::dvec2 c1 = tx - t0, c2 = ty - t0;
+    const double a = glm::dot(c1, c1), b = glm::dot(c1, c2), c = glm::dot(c2, c2);
+    const double half = 0.5 * (a - c);
+    const double lambdaMin = 0.5 * (a + c) - std::sqrt(half * half + b * b);
+    constexpr double kLargest = 1e6;   // a plane edge-on to the light: no texel for it at all
+    if (lambdaMin <= 1.0 / (kLargest * kLargest)) return float(kLargest);
+    return float(std::min(1.0 / std::sqrt(lambdaMin), kLargest));
+}
+
+} // namespace
+
+float texelFootprintAt(const CameraInfo& camera, const ShadowMapInfo& map, const glm::vec3& point, const glm::vec3& normal) {
+    return footprint(CameraMatrices(camera), map, point, normal);
+}
+
+TexelFootprint measureTexelFootprint(const GBufferView& gbuffer, const std::vector<uint8_t>& mask, const CameraInfo& camera,
+                                     const LightInfo& light, const std::vector<ShadowMapInfo>& maps) {
+    const size_t count = size_t(std::max(gbuffer.width, 0)) * size_t(std::max(gbuffer.height, 0));
+    if (mask.size() != count || !gbuffer.positions || !gbuffer.normals)
+        throw std::invalid_argument("texel footprint: the mask and the G-buffer must both be width * height");
+    TexelFootprint out;
+    out.width = gbuffer.width;
+    out.height = gbuffer.height;
+    out.maps = maps.size();
+    out.m.assign(count, 0.0f);
+    out.projection.assign(count, 0.0f);
+    if (maps.empty()) return out;
+    CameraInfo view = camera;
+    view.viewport = {gbuffer.width, gbuffer.height};
+    const CameraMatrices matrices(view);
+    std::vector<double> all, projection;
+    std::array<std::vector<double>, 3> thirds;
+    size_t undersampled = 0;
+    const float depthRange = std::max(camera.farPlane - camera.nearPlane, 1e-6f);
+    for (size_t i = 0; i < count; ++i) {
+        if (!mask[i]) continue;
+        const glm::vec3 p(gbuffer.positions[i]), n(gbuffer.normals[i]);
+        const float viewDistance = -(camera.view * glm::vec4(p, 1.0f)).z;
+        const int serving = servingShadowMap(maps, p, viewDistance);
+        if (serving < 0) {
+            ++out.uncoveredPixels;
+            continue;
+        }
+        const float m = footprint(matrices, maps[size_t(serving)], p, n);
+        if (m <= 0.0f) continue;
+        out.m[i] = m;
+        all.push_back(m);
+        undersampled += m > 1.0f ? 1 : 0;
+        const int third = std::clamp(int(3.0f * (viewDistance - camera.nearPlane) / depthRange), 0, 2);
+        thirds[size_t(third)].push_back(m);
+        // Eq. 6.1: alpha between the view vector and the normal, beta between the light vector and
+        // the normal (the mask keeps only pixels facing the light, so cos(beta) > 0).
+        const glm::vec3 toLight = light.type == LightType::Directional ? -light.direction : light.position - p;
+        const float cosAlpha = std::abs(glm::dot(glm::normalize(n), glm::normalize(camera.position - p)));
+        const float cosBeta = std::max(glm::dot(glm::normalize(n), glm::normalize(toLight)), 1e-6f);
+        out.projection[i] = cosAlpha / cosBeta;
+        projection.push_back(out.projection[i]);
+    }
+    out.measuredPixels = all.size();
+    if (all.empty()) return out;
+    out.median = percentile(all, 0.5);
+    out.p95 = percentile(all, 0.95);
+    out.max = *std::max_element(all.begin(), all.end());
+    out.undersampledFraction = double(undersampled) / double(all.size());
+    for (size_t t = 0; t < 3; ++t) out.medianByViewDepth[t] = medianOf(thirds[t]);
+    out.projectionMedian = percentile(projection, 0.5);
+    out.projectionP95 = percentile(projection, 0.95);
+    return out;
+}
+
+Image footprintHeatmap(const TexelFootprint& footprint) {
+    Image image{footprint.width, footprint.height, 4,
+                std::vector<uint8_t>(size_t(footprint.width) * size_t(footprint.height) * 4, 255)};
+    const glm::vec3 low(40, 80, 230), unit(120, 190, 120), high(230, 40, 30), none(24, 24, 24);
+    for (size_t i = 0; i < footprint.m.size(); ++i) {
+        glm::vec3 colour = none;
+        if (footprint.m[i] > 0.0f) {
+            const float t = std::clamp(std::log2(footprint.m[i]) / 4.0f, -1.0f, 1.0f);   // log2 m in [-4, 4]
+            colour = t < 0.0f ? glm::mix(unit, low, -t) : glm::mix(unit, high, t);
+        }
+        for (int c = 0; c < 3; ++c) image.pixels[i * 4 + size_t(c)] = uint8_t(colour[c] + 0.5f);
+    }
+    return image;
+}
+
+std::string footprintToJson(const TexelFootprint& f, int indent) {
+    const nlohmann::json out = {{"median", f.median},
+                                {"p95", f.p95},
+                                {"max", f.max},
+                                {"undersampledFraction", f.undersampledFraction},
+                                {"medianByViewDepth", f.medianByViewDepth},
+                                {"projectionMedian", f.projectionMedian},
+                                {"projectionP95", f.projectionP95},
+                                {"measuredPixels", f.measuredPixels},
+                                {"uncoveredPixels", f.uncoveredPixels},
+                                {"maps", f.maps}};
+    return out.dump(indent);
+}
+
+} // namespace shadowlab

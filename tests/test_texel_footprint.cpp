@@ -1,0 +1,132 @@
+// The texel footprint m (seed 002 eq. 8.1, dp/ds: pixels one shadow-map texel covers along its
+// worst direction) against its closed forms, and as eval measures it from the maps the
+// techniques report (SHADOWLAB_EXT_SHADOW_MAPS).
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "groundtruth/texel_footprint.h"
+#include "test_support.h"
+
+using namespace shadowlab;
+
+namespace {
+
+constexpr float kFovY = glm::radians(60.0f);
+constexpr int kPixels = 200;
+
+CameraInfo cameraAt(glm::vec3 eye, glm::vec3 target, glm::vec3 up) {
+    CameraInfo c;
+    c.view = glm::lookAt(eye, target, up);
+    c.projection = glm::perspective(kFovY, 1.0f, 0.1f, 1000.0f);
+    c.viewProjection = c.projection * c.view;
+    c.inverseViewProjection = glm::inverse(c.viewProjection);
+    c.position = eye;
+    c.nearPlane = 0.1f;
+    c.farPlane = 1000.0f;
+    c.fovY = kFovY;
+    c.viewport = {kPixels, kPixels};
+    return c;
+}
+
+// An orthographic map of `texels` over a square of `extent` world units, light travelling along
+// `direction` towards the origin.
+ShadowMapInfo orthographicMap(float extent, int texels, glm::vec3 direction) {
+    ShadowMapInfo map;
+    const glm::vec3 d = glm::normalize(direction);
+    const glm::vec3 up = std::abs(d.z) > 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+    map.worldToClip = glm::ortho(-extent / 2, extent / 2, -extent / 2, extent / 2, 0.1f, 100.0f) * glm::lookAt(-50.0f * d, glm::vec3(0), up);
+    map.size = {texels, texels};
+    return map;
+}
+
+// World size of one pixel at distance d, at the centre of the view.
+float pixelSize(float distance) { return 2.0f * distance * std::tan(kFovY / 2) / float(kPixels); }
+
+} // namespace
+
+// Camera straight down 10 units over the ground, light straight down: one texel of a 1024 map
+// over 20 units is 20/1024 units wide, one pixel 2*10*tan(30 deg)/200: m is their ratio.
+TEST(TexelFootprint, PerpendicularViewIsTheTexelOverThePixel) {
+    const CameraInfo camera = cameraAt({0, 10, 0}, {0, 0, 0}, {0, 0, -1});
+    const ShadowMapInfo map = orthographicMap(20.0f, 1024, {0, -1, 0});
+    const float m = texelFootprintAt(camera, map, {0, 0, 0}, {0, 1, 0});
+    EXPECT_NEAR(m, (20.0f / 1024.0f) / pixelSize(10.0f), 1e-3 * m);
+}
+
+// Eq. 8.1's perspective term 1/z: twice as far, half the pixels per texel.
+TEST(TexelFootprint, PerspectiveTermIsOneOverDistance) {
+    const ShadowMapInfo map = orthographicMap(20.0f, 1024, {0, -1, 0});
+    const float nearM = texelFootprintAt(cameraAt({0, 5, 0}, {0, 0, 0}, {0, 0, -1}), map, {0, 0, 0}, {0, 1, 0});
+    const float farM = texelFootprintAt(cameraAt({0, 10, 0}, {0, 0, 0}, {0, 0, -1}), map, {0, 0, 0}, {0, 1, 0});
+    EXPECT_NEAR(nearM / farM, 2.0f, 2e-3f);
+}
+
+// A camera tilted 60 degrees from the normal: pixels stretch along the tilt, so they hold more
+// texels that way; the worst direction is across the tilt, where a pixel is as wide as seen
+// head-on from the same distance.
+TEST(TexelFootprint, WorstDirectionIsAcrossAnObliqueView) {
+    const ShadowMapInfo map = orthographicMap(20.0f, 1024, {0, -1, 0});
+    const float distance = 10.0f, tilt = glm::radians(60.0f);
+    const CameraInfo camera = cameraAt({0, distance * std::cos(tilt), distance * std::sin(tilt)}, {0, 0, 0}, {0, 1, 0});
+    const float m = texelFootprintAt(camera, map, {0, 0, 0}, {0, 1, 0});
+    EXPECT_NEAR(m, (20.0f / 1024.0f) / pixelSize(distance), 2e-3 * m);
+}
+
+// Eq. 8.1's projection term cos(alpha) / cos(beta): a light 70 degrees off the normal spreads a
+// texel over 1/cos(70 deg) as much ground along its direction, the camera still head-on.
+TEST(TexelFootprint, ProjectionTermIsCosAlphaOverCosBeta) {
+    const CameraInfo camera = cameraAt({0, 10, 0}, {0, 0, 0}, {0, 0, -1});
+    const float beta = glm::radians(70.0f);
+    const ShadowMapInfo slanted = orthographicMap(20.0f, 1024, {std::sin(beta), -std::cos(beta), 0});
+    const float m = texelFootprintAt(camera, slanted, {0, 0, 0}, {0, 1, 0});
+    EXPECT_NEAR(m, (20.0f / 1024.0f) / pixelSize(10.0f) / std::cos(beta), 2e-3 * m);
+}
+
+// Cascades: the first map whose view-distance range and clip volume hold the point serves it.
+TEST(TexelFootprint, ServingMapFollowsTheSplitsAndTheCoverage) {
+    std::vector<ShadowMapInfo> maps = {orthographicMap(10.0f, 512, {0, -1, 0}), orthographicMap(40.0f, 512, {0, -1, 0})};
+    maps[0].viewDistanceEnd = 10.0f;
+    maps[1].viewDistanceBegin = 10.0f;
+    EXPECT_EQ(servingShadowMap(maps, {1, 0, 1}, 5.0f), 0);
+    EXPECT_EQ(servingShadowMap(maps, {1, 0, 1}, 15.0f), 1);
+    EXPECT_EQ(servingShadowMap(maps, {8, 0, 1}, 5.0f), -1) << "outside the near cascade's square, and too near for the far one";
+    EXPECT_EQ(servingShadowMap(maps, {30, 0, 1}, 15.0f), -1) << "outside every map";
+}
+
+// Through eval: shadowmap reports its one map, and m scales as 1/resolution (same fit, same view).
+TEST(TexelFootprint, EvalMeasuresTheReportedMap) {
+    auto app = test::makeHeadlessApp("cube", {320, 240});
+    ASSERT_TRUE(app);
+    const Evaluation coarse = test::evaluateTechnique(*app, "shadowmap", {"resolution=1024"}, ReferenceOptions::Mode::Hard);
+    const Evaluation fine = test::evaluateTechnique(*app, "shadowmap", {"resolution=2048"}, ReferenceOptions::Mode::Hard);
+    ASSERT_EQ(coarse.footprint.maps, 1u);
+    ASSERT_GT(coarse.footprint.measuredPixels, 10000u);
+    EXPECT_EQ(coarse.footprint.uncoveredPixels, 0u) << "the scene fit covers every lit pixel";
+    EXPECT_NEAR(coarse.footprint.median / fine.footprint.median, 2.0, 0.02);
+    EXPECT_GE(coarse.footprint.p95, coarse.footprint.median);
+    // `none` draws no map: nothing to measure.
+    const Evaluation none = test::evaluateTechnique(*app, "none", {}, ReferenceOptions::Mode::Hard);
+    EXPECT_EQ(none.footprint.maps, 0u);
+    EXPECT_EQ(none.footprint.measuredPixels, 0u);
+}
+
+// Seed 002's claim in m itself (sec. 4.2, ch. 8): on forest-002 a scene-fitted 2048 map is
+// undersampled near the viewer; the focus body and LiSPSM's warp give the near third smaller
+// texels (lower m) from the same 2048 x 2048.
+TEST(TexelFootprint, FocusingAndWarpingShrinkNearTexels) {
+    auto app = test::makeHeadlessApp("forest-002", {256, 160});
+    ASSERT_TRUE(app);
+    auto nearM = [&](const std::string& technique, std::vector<std::string> sets) {
+        sets.push_back("resolution=2048");
+        const Evaluation e = test::evaluateTechnique(*app, technique, sets, ReferenceOptions::Mode::Hard);
+        EXPECT_GT(e.footprint.measuredPixels, 1000u) << technique;
+        return e.footprint.medianByViewDepth[0];
+    };
+    const double scene = nearM("shadowmap", {"fit=scene"}), focus = nearM("shadowmap", {"fit=focus-body"}),
+                 warped = nearM("lispsm", {});
+    std::printf("forest-002 near-third median m: scene %.3f, focus-body %.3f, lispsm %.3f\n", scene, focus, warped);
+    EXPECT_GT(scene, 1.0) << "a scene fit undersamples near the viewer";
+    EXPECT_LT(focus, 0.5 * scene);
+    EXPECT_LT(warped, focus);
+}
