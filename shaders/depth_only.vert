@@ -10,5 +10,7 @@ out vec2 vUv;   // for fragment stages that sample the material's textures (surf
 
 void main() {
     vUv = inUv;
-    gl_Position = uShadowMatrix * uModel * vec4(inPosition, 1.0);
+    vec4 world = uModel * vec4(inPosition, 1.0);
+    gl_ClipDistance[0] = dot(uDepthClipPlane, world);
+    gl_Position = uShadowMatrix * world;
 }

@@ -6,6 +6,7 @@
 // the technique passes its own.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct DepthMapConfig {
     float slopeBias = 2.0f;        // glPolygonOffset factor
     Cull cull = Cull::None;        // none: open and single-sided casters (plates, planes) cast too
     FitConfig fit{};               // the `fit` and `snap` parameters (kit::readFit); default: the scene
+    // Casters clipped at this world plane (kept where dot(plane, (p, 1)) >= 0) when set: a warp
+    // that is singular behind it (psm's virtual camera plane).
+    std::optional<glm::vec4> clipPlane{};
 };
 
 // depth_format parameter index (kit::depthFormatParam) -> GL format.
@@ -69,7 +73,10 @@ public:
     void drawDepth(const LightSpace& lightSpace, const DepthMapConfig& config,
                    const std::vector<glm::vec4>& cullPlanes = {}) {
         lightSpace_ = lightSpace;
-        uniforms_.set(mainPassUniforms());
+        DepthMapUniforms block = mainPassUniforms();
+        if (config.clipPlane) block.uDepthClipPlane = *config.clipPlane;
+        uniforms_.set(block);
+        if (config.clipPlane) glEnable(GL_CLIP_DISTANCE0);
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
         glViewport(0, 0, resolution_, resolution_);
         glClear(GL_DEPTH_BUFFER_BIT);
@@ -84,6 +91,7 @@ public:
         request.cullPlanes = cullPlanes.data();
         request.cullPlaneCount = uint32_t(cullPlanes.size());
         host_->drawScene(request, program_.use());
+        glDisable(GL_CLIP_DISTANCE0);
     }
 
     // Binds the map to its unit with a host sampler (CompareLinear: the texture unit's bilinear

@@ -11,6 +11,8 @@ SHADOWLAB_UNIFORM_BLOCK(DepthMapUniforms, 1) {
     vec4 uLightDepth;         // near, far, 1 perspective / 0 orthographic, resolution
     vec4 uLightWorldSize4;    // xy: map extent in world units (orthographic) or at unit distance (perspective)
     vec4 uLightAxis4;         // xyz: unit world direction along which the map measures depth
+    vec4 uDepthClipPlane;     // depth pass: world plane, casters clipped where dot(plane, (p, 1)) < 0
+                              // (GL_CLIP_DISTANCE0 on only when DepthMapConfig::clipPlane is set)
 };
 SHADOWLAB_SHARED_END
 

@@ -1,0 +1,95 @@
+// Perspective shadow maps (Stamminger and Drettakis 2002; seed 002 ch. 7): the map is rendered in
+// the camera's post-perspective space, where the view frustum is the unit cube, so near shadows
+// get the texels (psm_space.h derives the light space, the uneven z distribution, the virtual
+// move-back and the change of light type). Included as the method LiSPSM was built to fix: its
+// quality hangs on the near plane and jumps with the move-back, and a light in front of the
+// viewer shining back (duelling frusta) needs more than one map; there this falls back to the
+// plain focused map, and says so in the statistic "fallback".
+#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/focus.h>
+#include <shadowlab/kit/params.h>
+#include <shadowlab/kit/technique_base.h>
+
+#include "psm_space.h"
+
+namespace {
+
+using namespace shadowlab;
+
+constexpr ParamDesc kParams[] = {
+    kit::resolutionParam(),
+    kit::constantBiasParam(),
+    kit::slopeBiasParam(),
+    kit::cullParam(2),
+    kit::hardwareFilterParam(),
+};
+enum : uint32_t {
+    kResolution = kit::paramIndex(kParams, "resolution"),
+    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
+    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
+    kCull = kit::paramIndex(kParams, "cull"),
+    kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
+};
+
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "psm",
+     .displayName = "Perspective shadow maps",
+     .category = "hard",
+     .explanation = "The shadow map is rendered after the camera's own perspective, where the view frustum is a "
+                    "cube: near shadows get most texels (seed 002 ch. 7). Its weak points are the seed's: the "
+                    "near plane decides the distribution (half the depth range goes to the first near-distance "
+                    "in front of the camera, eq. 7.1-7.2), casters behind the viewer need a virtual move-back "
+                    "that weakens the warp and jumps as the view turns, and a light from in front of the viewer "
+                    "cannot be held in one map (it falls back to a plain focused map). Compare with lispsm, "
+                    "which keeps light rays parallel and tunes the warp with n_opt.",
+     .shadowGlsl = "psm.glsl",
+     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
+    kParams);
+
+class PerspectiveShadowMaps final : public kit::TechniqueBase {
+    bool setup(std::string& error) override { return map_.create(host(), error); }
+
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
+                                   .constantBias = params.asFloat(kConstantBias),
+                                   .slopeBias = params.asFloat(kSlopeBias),
+                                   .cull = kit::Cull(params.asInt(kCull))};
+        map_.ensureTexture(config.resolution, config.format);
+        GpuPass pass(host(), "shadow map");
+        // The view from the nearest visible receiver on (psm_space.h), and its B (eq. 4.2): what the
+        // map must hold, and what decides the move-back and the near plane.
+        FrameContext shortened = frame;
+        shortened.camera = psm::receiverCamera(
+            frame.camera, psm::nearestReceiverDepth(frame.camera, host().objects(), host().objectCount()));
+        const kit::FocusedLightSpace focused =
+            kit::focusLightSpace(host(), shortened, {kit::Fit::FocusBody, false}, config.resolution);
+        LightSpace lightSpace = focused.light;
+        const auto space = psm::psmSpace(shortened.camera, frame.light, focused.body.vertices());
+        host().reportStatistic("near plane", shortened.camera.nearPlane);
+        if (space) {
+            lightSpace.viewProjection = space->viewProjection;
+            lightSpace.projection = space->viewProjection * glm::inverse(lightSpace.view);
+            lightSpace.perspective = true;
+            config.clipPlane = space->clipPlane;
+        }
+        host().reportStatistic("fallback", space ? 0.0 : 1.0);
+        host().reportStatistic("move-back", space ? space->moveBack : 0.0);
+        host().reportStatistic("post-perspective light (0 point, 1 directional, 2 inverted)",
+                               space ? double(int(space->lightType)) : -1.0);
+        // Depth clamp: parts of kept casters beyond the light frustum's depth range still occlude.
+        glEnable(GL_DEPTH_CLAMP);
+        map_.drawDepth(lightSpace, config, focused.cullPlanes);
+        glDisable(GL_DEPTH_CLAMP);
+        map_.reportToHost();
+    }
+
+    void bindMainPass(const FrameContext&, const ParamValues& params) override {
+        map_.bindMainPass(params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+    }
+
+    kit::DepthMap map_;
+};
+
+} // namespace
+
+SHADOWLAB_PLUGIN(PerspectiveShadowMaps, kDescriptor)
