@@ -15,6 +15,7 @@
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
+#include "lispsm_shared.h"
 #include "lispsm_warp.h"
 
 namespace {
@@ -28,11 +29,27 @@ constexpr ParamDesc kParams[] = {
      "8.13): 1 equalises the error at the focus body's near and far ends. Smaller warps harder (near "
      "shadows sharper, far ones blocky: Fig. 8.4 left); larger tends to a uniform focused map (Fig. 8.4 "
      "right).", nullptr},
-    kit::constantBiasParam(),
+    kit::constantBiasParam(65536),   // room for a constant bias alone to remove acne (Fig. 5.6)
     kit::slopeBiasParam(),
     kit::cullParam(2),
     kit::hardwareFilterParam(),
     kit::snapParam(),
+    {"depth", "stored depth", ParamType::Enum, 0, 1, 0, "",
+     "What the map stores (seed 002 sec. 5.3): the warp's own hyperbolic z, whose steps grow along the "
+     "warp so that one bias is too small at one end and too large at the other, or linear depth along "
+     "the light over the focus body (TSM's linear z), written per fragment with the slope-scaled bias "
+     "done in the shader.", "hyperbolic|linear"},
+    {"bias_method", "bias method", ParamType::Enum, 0, 3, 0, "",
+     "offset: constant and slope-scaled polygon offset (eq. 5.2). midpoint: a second layer by depth "
+     "peeling and the test against min((z2 - z1) / 2, z_offset) past the first (eq. 5.1, dual shadow "
+     "maps). second-depth: the test against the second layer (Wang and Molnar). inverted-back-faces: "
+     "back faces stored (cull front) with the offset reversed, towards the light. The two-layer "
+     "methods draw every face and ignore the bias and cull parameters.",
+     "offset|midpoint|second-depth|inverted-back-faces"},
+    {"z_offset", "midpoint z_offset", ParamType::Float, 0, 1, 0.05, "depth range",
+     "Eq. 5.1's largest bias, in units of the map's depth range: about an object's size. Too small "
+     "brings back acne where the second surface is far (a ground plane); too large lets light leak "
+     "under casters close to their receivers.", nullptr},
 };
 enum : uint32_t {
     kResolution = kit::paramIndex(kParams, "resolution"),
@@ -42,7 +59,12 @@ enum : uint32_t {
     kCull = kit::paramIndex(kParams, "cull"),
     kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
     kSnap = kit::paramIndex(kParams, "snap"),
+    kDepth = kit::paramIndex(kParams, "depth"),
+    kBiasMethod = kit::paramIndex(kParams, "bias_method"),
+    kZOffset = kit::paramIndex(kParams, "z_offset"),
 };
+
+enum class BiasMethod : int { Offset = 0, Midpoint = 1, SecondDepth = 2, InvertedBackFaces = 3 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "lispsm",
@@ -60,13 +82,30 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
     kParams);
 
 class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
-    bool setup(std::string& error) override { return map_.create(host(), error); }
+    bool setup(std::string& error) override {
+        if (!map_.create(host(), error) || !secondLayer_.create(host(), error)) return false;
+        uniforms_.create(host(), "lispsm biasing");
+        return depthProgram_.build(host(), {.vertexFile = "lispsm_depth.vert", .fragmentFile = "lispsm_depth.frag"}, error);
+    }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
-                                         .constantBias = params.asFloat(kConstantBias),
-                                         .slopeBias = params.asFloat(kSlopeBias),
-                                         .cull = kit::Cull(params.asInt(kCull))};
+        kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
+                                   .constantBias = params.asFloat(kConstantBias),
+                                   .slopeBias = params.asFloat(kSlopeBias),
+                                   .cull = kit::Cull(params.asInt(kCull))};
+        const auto method = BiasMethod(params.asInt(kBiasMethod));
+        const bool linear = params.asInt(kDepth) == 1;
+        twoLayers_ = method == BiasMethod::Midpoint || method == BiasMethod::SecondDepth;
+        if (method == BiasMethod::InvertedBackFaces) {
+            config.cull = kit::Cull::Front;
+            config.constantBias = -config.constantBias;
+            config.slopeBias = -config.slopeBias;
+        }
+        if (twoLayers_) {
+            // Both layers of every caster, no offset: the layers' gap is the bias.
+            config.cull = kit::Cull::None;
+            config.constantBias = config.slopeBias = 0.0f;
+        }
         map_.ensureTexture(config.resolution, config.format);
         GpuPass pass(host(), "shadow map");
         // Step 1 of sec. 9.2.1: focus on B (the uniform fallback when there is no warp).
@@ -86,19 +125,66 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
                 lightSpace.perspective = true;
             }
         }
+        // Linear depth along the map's axis over B (or the scene where B is empty), 0 to 1.
+        const glm::vec3 axis = -glm::vec3(lightSpace.view[0][2], lightSpace.view[1][2], lightSpace.view[2][2]);
+        std::vector<glm::vec3> extent = focused.body.vertices();
+        if (extent.empty()) {
+            glm::vec3 corners[8];
+            kit::boundsCorners(host().bounds(DrawSet::All), corners);
+            extent.assign(corners, corners + 8);
+        }
+        float lo = INFINITY, hi = -INFINITY;
+        for (const glm::vec3& p : extent) {
+            lo = std::min(lo, glm::dot(axis, p));
+            hi = std::max(hi, glm::dot(axis, p));
+        }
+        const float range = std::max(hi - lo, 1e-6f);
+        shared::lispsm::LispsmUniforms block{};
+        block.uLinearDepthPlane = glm::vec4(axis / range, -lo / range);
+        block.uLinearDepth = linear ? 1 : 0;
+        block.uBiasMethod = twoLayers_ ? int(method) : 0;
+        block.uZOffset = params.asFloat(kZOffset);
+        // A written depth gets no polygon offset: linear depth biases in its fragment stage.
+        block.uSlopeFactor = linear ? config.slopeBias : 0.0f;
+        block.uConstantUnits = linear ? config.constantBias : 0.0f;
+        if (linear || twoLayers_) {
+            config.program = &depthProgram_;
+            if (linear) config.constantBias = config.slopeBias = 0.0f;
+        }
+        uniforms_.set(block);
+        uniforms_.bind();
         // Casters between B and the light's side of the scene are in B; depth clamp keeps any part of
         // a kept caster beyond the warp's depth range in the map rather than clipping it away.
         glEnable(GL_DEPTH_CLAMP);
         map_.drawDepth(lightSpace, config, focused.cullPlanes);
+        if (twoLayers_) {
+            // The second layer (sec. 5.2, depth peeling): the same pass behind the first layer.
+            secondLayer_.ensureTexture(config.resolution, config.format);
+            glBindTextureUnit(shared::lispsm::kFirstDepthUnit, map_.texture());
+            glBindSampler(shared::lispsm::kFirstDepthUnit, host().sampler(SamplerKind::Nearest));
+            block.uPeel = 1;
+            uniforms_.set(block);
+            secondLayer_.drawDepth(lightSpace, config, focused.cullPlanes);
+        }
         glDisable(GL_DEPTH_CLAMP);
         map_.reportToHost();
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
         map_.bindMainPass(params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+        uniforms_.bind();
+        // Raw depths of both layers (the first again where there is no second: never read then).
+        const GLuint nearest = host().sampler(SamplerKind::Nearest);
+        glBindTextureUnit(shared::lispsm::kFirstDepthUnit, map_.texture());
+        glBindSampler(shared::lispsm::kFirstDepthUnit, nearest);
+        glBindTextureUnit(shared::lispsm::kSecondDepthUnit, twoLayers_ ? secondLayer_.texture() : map_.texture());
+        glBindSampler(shared::lispsm::kSecondDepthUnit, nearest);
     }
 
-    kit::DepthMap map_;
+    kit::DepthMap map_, secondLayer_;
+    kit::Program depthProgram_;
+    kit::UniformBlock<shared::lispsm::LispsmUniforms> uniforms_;
+    bool twoLayers_ = false;
 };
 
 } // namespace

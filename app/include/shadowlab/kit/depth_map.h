@@ -35,6 +35,9 @@ struct DepthMapConfig {
     // Casters clipped at this world plane (kept where dot(plane, (p, 1)) >= 0) when set: a warp
     // that is singular behind it (psm's virtual camera plane).
     std::optional<glm::vec4> clipPlane{};
+    // The technique's own depth-pass program instead of depth_only.vert (it reads the same block;
+    // lispsm's linear depth and depth peeling), or null.
+    const Program* program = nullptr;
 };
 
 // depth_format parameter index (kit::depthFormatParam) -> GL format.
@@ -90,7 +93,7 @@ public:
         request.set = DrawSet::OpaqueCasters;
         request.cullPlanes = cullPlanes.data();
         request.cullPlaneCount = uint32_t(cullPlanes.size());
-        host_->drawScene(request, program_.use());
+        host_->drawScene(request, config.program ? config.program->use() : program_.use());
         glDisable(GL_CLIP_DISTANCE0);
     }
 

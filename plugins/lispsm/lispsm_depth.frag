@@ -1,0 +1,20 @@
+// Linear depth (seed 002 sec. 5.3): written per fragment, since interpolating it as z/w across a
+// warped triangle would bend it; polygon offset does not apply to a written depth, so eq. 5.2's
+// slope-scaled bias (factor * depth slope + r * units) is added here. Peeling (sec. 5.2): the
+// second layer keeps only fragments behind the first layer's depth at the same texel.
+#include "lispsm_shared.h"
+
+layout(binding = kFirstDepthUnit) uniform sampler2D uFirstLayer;
+
+in float vLinearDepth;
+
+void main() {
+    float depth = gl_FragCoord.z;
+    if (uLinearDepth == 1) {
+        float slope = max(abs(dFdx(vLinearDepth)), abs(dFdy(vLinearDepth)));
+        depth = clamp(vLinearDepth, 0.0, 1.0) + uSlopeFactor * slope + uConstantUnits * exp2(-24.0);
+    }
+    // Same program, same depth for the same surface in both layers: a strict comparison peels it.
+    if (uPeel == 1 && depth <= texelFetch(uFirstLayer, ivec2(gl_FragCoord.xy), 0).r) discard;
+    gl_FragDepth = depth;
+}
