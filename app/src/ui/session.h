@@ -7,11 +7,13 @@
 
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "app.h"
 #include "ui/classroom.h"
+#include "ui/tour.h"
 
 namespace shadowlab {
 
@@ -28,6 +30,12 @@ struct InteractiveOptions {
     ViewSelection view;                            // the image shown at the start (lit, visibility, ...)
     float uiScale = 1.0f;
     std::filesystem::path screenshotFolder = "screenshots";   // F12
+    // A guided tour, started at `tourStep` (from 0), and/or a session file applied at the start
+    // (both checked whole before: tour.h). The session folder is where "Save session" writes.
+    std::shared_ptr<const Tour> tour;
+    int tourStep = 0;
+    std::string session;
+    std::filesystem::path sessionFolder = "sessions";
 };
 
 // One side of the view measured against the reference, for its own technique.
