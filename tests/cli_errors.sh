@@ -187,7 +187,7 @@ expect 2 "tour-param.json: steps\[1\].*shadowmap has no parameter 'kernel'" -- t
 tour_step "$tmp/tour-range.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "parameters": {"resolution": 10}, "caption": "c"}'
 expect 2 "tour-range.json: steps\[1\].*resolution.*out of range" -- tour "$tmp/tour-range.json" --out "$tmp/tour"
 tour_step "$tmp/tour-scene.json" '{"title": "two", "scene": "nowhere", "technique": "shadowmap", "caption": "c"}'
-expect 2 "tour-scene.json: steps\[1\].*scene: nowhere" -- tour "$tmp/tour-scene.json" --out "$tmp/tour"
+expect 2 "tour-scene.json: steps\[1\].*scene: .*nowhere: cannot open scene file" -- tour "$tmp/tour-scene.json" --out "$tmp/tour"
 tour_step "$tmp/tour-light.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "light": {"size": 90}, "caption": "c"}'
 expect 2 "tour-light.json: steps\[1\].*light.size" -- tour "$tmp/tour-light.json" --out "$tmp/tour"
 tour_step "$tmp/tour-view.json" '{"title": "two", "scene": "cube", "technique": "pcf", "view": "moments", "caption": "c"}'

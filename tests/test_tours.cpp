@@ -273,5 +273,9 @@ TEST(Sessions, ASavedSessionIsATourStepAndRestoresTheSameFrame) {
     EXPECT_LT(largest, 1e-3f) << "the restored session draws a different frame";
     // Saved again, it is the same session.
     json again = tourStepJson(captureSession(*other, restored));
-    for (const char* key : {"scene", "sceneParameters", "technique", "parameters", "view"}) EXPECT_EQ(again[key], saved[key]) << key;
+    for (const char* key : {"scene", "sceneParameters", "technique", "parameters", "view"})
+        EXPECT_EQ(again.value(key, json()), saved.value(key, json())) << key;
+    EXPECT_EQ(saved.value("scene", ""), "contact");
+    EXPECT_EQ(saved["parameters"].value("kernel", 0), 9);
+    EXPECT_EQ(saved["parameters"].value("offset_scale", 0.0), 1.37) << "written in full precision";
 }

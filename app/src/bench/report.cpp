@@ -51,7 +51,7 @@ bool writeImages(App& app, const BenchSpec& spec, const std::filesystem::path& d
             if (!app.presentView(info.id, {}, ~0u, {}, error)) return false;
             ReportImage entry{scene, info.id, info.displayName, scene + "-" + info.id + ".png", "", "", {}};
             if (!writePng(dir / entry.image, app.readDisplay(), error)) return false;
-            if (info.category != "reference") {
+            if (info.id != "reference") {   // the ray-traced ground truth itself; area-reference is measured
                 const bool hard = info.category == "hard" || info.category == "baseline";
                 ReferenceOptions options;
                 options.mode = hard ? ReferenceOptions::Mode::Hard : ReferenceOptions::Mode::Soft;
