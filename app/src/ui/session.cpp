@@ -2,7 +2,8 @@
 //   input -> layout (panel beside the view, halves of a comparison) -> for each side: its
 //   technique's frame at the side's size, presented into the display texture, blitted into its
 //   rectangle -> the panel and the labels (ImGui) -> the commands the panel emitted (screenshot,
-//   measure, load scene) -> swap
+//   measure, load scene, tour step, load tour, save or load session) -> swap
+// --tour and --session are the same commands, run once before the first frame.
 #include "ui/session.h"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 // The classroom window's frame loop (App::runInteractive): the panel beside the view, one or two
 // techniques in the view (side by side, wipe or difference), and the commands the panel emits
-// (measure, screenshot, load scene), run between frames. It draws into a GLFW window, or with a
+// (measure, screenshot, load scene, tour steps, sessions), run between frames. It draws into a GLFW window, or with a
 // headless backend into an offscreen framebuffer of the same layout, so slides come out the
 // same without a display.
 #pragma once

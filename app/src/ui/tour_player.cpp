@@ -15,12 +15,11 @@ ViewSelection viewFromStepName(const std::string& name) {
 }
 
 std::string stepViewName(const ViewSelection& view) {
-    switch (view.kind) {
-    case ViewSelection::Kind::Lit: return "lit";
-    case ViewSelection::Kind::Visibility: return "visibility";
-    case ViewSelection::Kind::ErrorHeatmap: return "error";
-    case ViewSelection::Kind::DebugImage: return view.debugImage;
-    }
+    // An if-chain, not a switch: views added to ViewSelection elsewhere fall back to lit here
+    // until they get a name of their own.
+    if (view.kind == ViewSelection::Kind::Visibility) return "visibility";
+    if (view.kind == ViewSelection::Kind::ErrorHeatmap) return "error";
+    if (view.kind == ViewSelection::Kind::DebugImage) return view.debugImage;
     return "lit";
 }
 
