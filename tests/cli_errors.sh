@@ -173,5 +173,36 @@ PY
     else echo "FAIL: SIG$signal: got '$result' (exit status, folders left), want '$expected'"; failures=$((failures + 1)); fi
 done
 
+# --- issue 14: guided tours and sessions are read and checked whole before the first frame; a bad
+# one exits 2 naming the file, the step and the problem (tests/test_tours.cpp has every field).
+tour_step() {   # tour_step FILE STEP-JSON: a tour whose second step is STEP-JSON
+    printf '{"title": "t", "steps": [{"title": "ok", "scene": "cube", "technique": "shadowmap", "caption": "c"}, %s]}\n' "$2" > "$1"
+}
+printf '{"title": "t", "steps": [' > "$tmp/tour-broken.json"
+expect 2 "tour-broken.json" -- tour "$tmp/tour-broken.json" --out "$tmp/tour"
+tour_step "$tmp/tour-technique.json" '{"title": "two", "scene": "cube", "technique": "nosuch", "caption": "c"}'
+expect 2 "tour-technique.json: steps\[1\] (\"two\"): technique 'nosuch': no such technique" -- tour "$tmp/tour-technique.json" --out "$tmp/tour"
+tour_step "$tmp/tour-param.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "parameters": {"kernel": 3}, "caption": "c"}'
+expect 2 "tour-param.json: steps\[1\].*shadowmap has no parameter 'kernel'" -- tour "$tmp/tour-param.json" --out "$tmp/tour"
+tour_step "$tmp/tour-range.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "parameters": {"resolution": 10}, "caption": "c"}'
+expect 2 "tour-range.json: steps\[1\].*resolution.*out of range" -- tour "$tmp/tour-range.json" --out "$tmp/tour"
+tour_step "$tmp/tour-scene.json" '{"title": "two", "scene": "nowhere", "technique": "shadowmap", "caption": "c"}'
+expect 2 "tour-scene.json: steps\[1\].*scene: .*nowhere: cannot open scene file" -- tour "$tmp/tour-scene.json" --out "$tmp/tour"
+tour_step "$tmp/tour-light.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "light": {"size": 90}, "caption": "c"}'
+expect 2 "tour-light.json: steps\[1\].*light.size" -- tour "$tmp/tour-light.json" --out "$tmp/tour"
+tour_step "$tmp/tour-view.json" '{"title": "two", "scene": "cube", "technique": "pcf", "view": "moments", "caption": "c"}'
+expect_bounded 2 "tour-view.json: steps\[1\].*view 'moments': pcf has no such image" -- tour --backend osmesa --size 64x48 "$tmp/tour-view.json" --out "$tmp/tour"
+[ ! -e "$tmp/tour/step-01.png" ] || { echo "FAIL: a slide was drawn before the tour was refused"; failures=$((failures + 1)); }
+expect 2 "no-such-tour: no such tour file" -- tour no-such-tour --out "$tmp/tour"
+# The window's --tour and --session, with and without a display.
+expect 2 "--tour: .*tour-range.json: steps\[1\]" -- --backend osmesa --tour "$tmp/tour-range.json" --frames 2 --screenshot "$tmp/s.png"
+tour_step "$tmp/tour-ok.json" '{"title": "two", "scene": "hover", "technique": "pcf", "caption": "c"}'
+expect 2 "--tour-step 9: .* has steps 1 to 2" -- --backend osmesa --tour "$tmp/tour-ok.json" --tour-step 9 --frames 2
+expect 2 "--tour: no display" -- --backend osmesa --tour "$tmp/tour-ok.json"
+echo '{"title": "s", "scene": "cube", "technique": "shadowmap", "parameters": {"slope_bias": -1}, "caption": "c"}' > "$tmp/session-bad.json"
+expect 2 "--session: .*session-bad.json.*slope_bias.*out of range" -- --backend osmesa --session "$tmp/session-bad.json" --frames 2
+echo '{"title": "s", "scene": "cube", "technique": "shadowmap", "caption": "c", "steps": []}' > "$tmp/session-tour.json"
+expect 2 "session-tour.json: unknown field 'steps'" -- --backend osmesa --session "$tmp/session-tour.json" --frames 2
+
 [ $failures = 0 ] || { echo "$failures failure(s)"; exit 1; }
 echo "all CLI error checks passed"

@@ -94,3 +94,15 @@ TEST(FuzzRegressions, BenchSpecInputsReplayCleanly) {
         return true;
     });
 }
+
+TEST(FuzzRegressions, TourInputsReplayCleanly) {
+    EXPECT_GE(replay({kFuzz / "regressions" / "tour"}, [](const std::string& text) { return fuzz::fuzzTour(bytes(text), text.size()); }),
+              8);
+    replay({kSource / "assets" / "tours"}, [](const std::string& text) {
+        return fuzz::fuzzTour(bytes(text), text.size());   // they name techniques the harness lacks
+    });
+    replay({kFuzz / "corpus" / "tour"}, [](const std::string& text) {
+        EXPECT_TRUE(fuzz::fuzzTour(bytes(text), text.size())) << "a seed that is refused";
+        return true;
+    });
+}

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # One-command set-up for a fresh Debian 12 machine.
 #   tools/setup.sh run    install missing packages, build Release, run the main job on the default
-#                         scene (the window with a display; otherwise every technique rendered to
-#                         out/*.png with a table of timings)
+#                         scene (the window with a display; otherwise the report: every technique
+#                         rendered to out/images/<scene>-<technique>.png with its error heatmap, a
+#                         table of timings, out/README.md)
 #   tools/setup.sh test   install missing packages, build Release, run the whole test suite (ctest)
 # Everything comes from Debian packages; nothing is downloaded at build time.
 set -euo pipefail
@@ -14,7 +15,8 @@ packages=(build-essential cmake ninja-build pkg-config python3 python3-glad
           libglfw3-dev libglm-dev libimgui-dev libtinyobjloader-dev libstb-dev
           libegl-dev libgl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri
           libgtest-dev libcli11-dev nlohmann-json3-dev libembree-dev
-          glslang-tools python3-matplotlib xvfb xauth xdotool fonts-dejavu-core)
+          glslang-tools python3-matplotlib xvfb xauth xdotool fonts-dejavu-core
+          chromium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

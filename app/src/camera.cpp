@@ -22,6 +22,16 @@ void CameraController::reset(const SceneCamera& camera) {
     far_ = camera.farPlane;
 }
 
+SceneCamera CameraController::pose() const {
+    SceneCamera camera;
+    camera.position = mode_ == Mode::Orbit ? target_ - forward() * distance_ : position_;
+    camera.target = mode_ == Mode::Orbit ? target_ : position_ + forward() * distance_;
+    camera.fovY = fovY_;
+    camera.nearPlane = near_;
+    camera.farPlane = far_;
+    return camera;
+}
+
 glm::vec3 CameraController::forward() const {
     return {std::sin(yaw_) * std::cos(pitch_), std::sin(pitch_), -std::cos(yaw_) * std::cos(pitch_)};
 }

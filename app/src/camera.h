@@ -11,6 +11,9 @@ public:
     enum class Mode { Orbit, Fly };
 
     void reset(const SceneCamera& camera);
+    // Where the camera is now, as a scene camera (orbit: its target; fly: a point ahead at the
+    // orbit distance): reset(pose()) gives the same view. Saved sessions and tour steps use it.
+    SceneCamera pose() const;
     CameraInfo info(glm::ivec2 viewport) const;
     // The interactive window: a viewport narrower than `aspect` (a side panel, half of a side by
     // side comparison) widens the vertical field of view so the horizontal extent the scene was

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -23,6 +24,8 @@
 #include "bench/report.h"
 #include "groundtruth/reference_technique.h"
 #include "ui/session.h"
+#include "ui/tour.h"
+#include "ui/tour_pages.h"
 #include "util/gl_limits.h"
 #include "util/log.h"
 #include "util/paths.h"
@@ -167,6 +170,10 @@ struct WindowOptions {
     bool hideUi = false;
     bool measure = false;
     std::string screenshotDir = "screenshots";
+    std::string tour;            // a built-in tour's name or a tour file
+    int tourStep = 1;            // from 1
+    std::string session;         // a session file applied at the start
+    std::string sessionDir = "sessions";
     // Flags given that only the window reads (for the message when there is no window).
     std::vector<std::string> given;
 };
@@ -190,6 +197,55 @@ int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& te
     out.screenshot = w.screenshot;
     out.cycle = w.smokeFrames > 0;
     out.frames = w.smokeFrames > 0 ? w.smokeFrames : w.frames;
+    out.session = w.session;
+    out.sessionFolder = w.sessionDir;
+    return 0;
+}
+
+// The techniques as their descriptors say, without GL (list, and checking tours and sessions
+// before anything is created).
+std::vector<TechniqueInfo> describedTechniques() {
+    PluginScan scan = scanPlugins(pluginDir());
+    scan.techniques.push_back(copyDescriptor(referenceDescriptor(), {}));   // built into the host
+    return scan.techniques;
+}
+
+// --tour and --session, read and checked whole before the first frame (exit 2 naming the file,
+// the step and the problem).
+int checkLessonOptions(const WindowOptions& w, std::shared_ptr<const Tour>& tour) {
+    if (w.tour.empty() && w.session.empty()) return 0;
+    const std::vector<TechniqueInfo> techniques = describedTechniques();
+    std::string error;
+    if (!w.tour.empty()) {
+        auto loaded = std::make_shared<Tour>();
+        if (!loadTour(w.tour, techniques, *loaded, error)) return fail("--tour: " + error, kExitBadInput);
+        if (w.tourStep < 1 || w.tourStep > int(loaded->steps.size()))
+            return fail("--tour-step " + std::to_string(w.tourStep) + ": " + loaded->source + " has steps 1 to " +
+                            std::to_string(loaded->steps.size()),
+                        kExitBadInput);
+        tour = std::move(loaded);
+    }
+    if (!w.session.empty()) {
+        TourStep step;
+        if (!loadSession(w.session, techniques, step, error)) return fail("--session: " + error, kExitBadInput);
+    }
+    return 0;
+}
+
+// `shadowlab tour TOUR --out DIR`: every step of a tour as a slide with its caption and figures.
+int commandTour(const CommonOptions& common, const std::string& name, const TourPageOptions& pageOptions) {
+    Tour tour;
+    std::string error;
+    if (!loadTour(name, describedTechniques(), tour, error)) return fail(error, kExitBadInput);
+    CommonOptions first = common;
+    if (first.scene.empty()) first.scene = tour.steps.front().scene;   // loaded once at start, not twice
+    App app;
+    if (int code = startApp(app, first, false)) return code;
+    TourPageOptions options = pageOptions;
+    if (!parseSize(common.size, options.size, error)) return fail(error, kExitBadInput);
+    const int code = writeTourPages(app, tour, options, error);
+    if (code) return fail(error, code);
+    std::printf("tour: %zu steps written to %s (index.html, README.md)\n", tour.steps.size(), options.outDir.string().c_str());
     return 0;
 }
 
@@ -563,6 +619,13 @@ int run(int argc, char** argv) {
                               "window: measure accuracy after a few frames, each side of a comparison for its own "
                               "technique, and show the heatmap (with --frames: a slide of it)"));
     windowOption(cli.add_option("--screenshot-dir", window.screenshotDir, "window: folder of F12 screenshots (default screenshots)"));
+    windowOption(cli.add_option("--tour", window.tour,
+                                "window: play a guided tour, a built-in name (assets/tours) or a tour file; with --frames "
+                                "a slide of one step"));
+    windowOption(cli.add_option("--tour-step", window.tourStep, "window: the tour's step to start at (from 1)"))
+        ->check(CLI::Range(1, int(kMaxTourSteps)));
+    windowOption(cli.add_option("--session", window.session, "window: restore a saved session (a JSON tour step) at the start"));
+    windowOption(cli.add_option("--session-dir", window.sessionDir, "window: folder of saved sessions (default sessions)"));
     cli.add_option("--out-dir", outDir, "headless main job: folder of the report (default out)");
 
     auto* list = cli.add_subcommand("list", "list techniques and their parameters");
@@ -616,6 +679,19 @@ int run(int argc, char** argv) {
     report->add_option("--spec", reportSpec, "benchmark spec (default assets/bench/default.json; quick.json on llvmpipe)");
     report->add_option("--out,-o", reportOut, "output folder (default out)");
 
+    auto* tourCommand = cli.add_subcommand("tour", "render every step of a guided tour into index.html and README.md");
+    std::string tourName;
+    TourPageOptions tourPages;
+    std::string tourOut;
+    tourCommand->add_option("tour", tourName, "a built-in tour (assets/tours/<name>.json) or a tour file")->required();
+    tourCommand->add_option("--out,-o", tourOut, "output folder")->required();
+    tourCommand->add_option("--frames", tourPages.frames, "frames drawn before each step's image (default 3)")->check(CLI::Range(1, 1000));
+    tourCommand->add_option("--bench-frames", tourPages.benchFrames, "timed frames of each technique (default 30)")
+        ->check(CLI::Range(1, 100000));
+    tourCommand->add_option("--warmup", tourPages.warmupFrames, "warm-up frames before them (default 5)")->check(CLI::Range(0, 100000));
+    tourCommand->add_option("--samples", tourPages.referenceSamples, "soft reference: rays per pixel (default 256)")
+        ->check(CLI::Range(1, 4096));
+
     auto* reloadLatency = cli.add_subcommand("reload-latency", "measure hot-reload latency of a plugin library");
     int reloadTrials = 10;
     reloadLatency->add_option("--trials", reloadTrials, "number of reloads (default 10)")->check(CLI::Range(1, 1000));
@@ -646,6 +722,10 @@ int run(int argc, char** argv) {
     }
 
     if (*list) return commandList(listJson);
+    if (*tourCommand) {
+        tourPages.outDir = tourOut;
+        return commandTour(common, tourName, tourPages);
+    }
     if (*render) return commandRender(common, renderOut, renderView, renderFrames, reference, referenceSamples, renderCompare);
     if (*bench) {
         std::vector<BenchSpec> specs;
@@ -700,6 +780,8 @@ int run(int argc, char** argv) {
         return fail("--screenshot " + window.screenshot + ": needs --frames N (or --smoke-test N) to say when to take it",
                     kExitBadInput);
     if (window.frames > 0 && window.smokeFrames > 0) return fail("--frames and --smoke-test: give one of them", kExitBadInput);
+    std::shared_ptr<const Tour> tour;
+    if (int code = checkLessonOptions(window, tour)) return code;
     const bool display = common.backend.empty() ? defaultBackend() == BackendKind::Glfw : common.backend == "glfw";
     const bool drawnFrames = window.frames > 0 || window.smokeFrames > 0;
     if (!display && !drawnFrames) {
@@ -721,6 +803,8 @@ int run(int argc, char** argv) {
     if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
     InteractiveOptions options;
     if (int code = windowOptionsProblem(app, window, technique, options)) return code;
+    options.tour = tour;
+    options.tourStep = window.tourStep - 1;
     if (!display) logInfo("no display: drawing the window offscreen (" + std::string(backendName(app.backend().kind())) + ")");
     return app.runInteractive(options);
 }

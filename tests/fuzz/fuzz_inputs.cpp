@@ -9,6 +9,7 @@
 
 #include "bench/bench_spec.h"
 #include "scene/scene.h"
+#include "ui/tour.h"
 #include "util/text_file.h"
 
 namespace shadowlab::fuzz {
@@ -159,6 +160,41 @@ bool fuzzBenchSpec(const uint8_t* data, size_t size) {
         }
     }
     return accepted;
+}
+
+bool fuzzTour(const uint8_t* data, size_t size) {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    std::string error;
+    nlohmann::json json;
+    if (!parseJsonText(text, "fuzz-tour.json", json, error)) {
+        if (error.rfind("fuzz-tour.json", 0) != 0) broken("a JSON error that does not name the file: " + error);
+        return false;
+    }
+    Tour tour;
+    bool accepted = false;
+    if (json.is_object() && !json.contains("steps") && json.contains("caption")) {
+        // A session file: one step.
+        TourStep step;
+        accepted = parseTourStep(json, "fuzz-tour.json", {}, step, error) && checkTourStep(step, "fuzz-tour.json", techniques(), error);
+        if (accepted) tour.steps.push_back(step);
+    } else {
+        accepted = parseTour(json, "fuzz-tour.json", {}, tour, error) && checkTour(tour, techniques(), error);
+    }
+    if (!accepted) {
+        if (error.rfind("fuzz-tour.json", 0) != 0) broken("the error does not name the file: " + error);
+        return false;
+    }
+    for (const TourStep& step : tour.steps) {
+        bool known = false;
+        for (const auto& t : techniques()) known |= t.id == step.technique;
+        if (!known) broken("an unknown technique was accepted: " + step.technique);
+        if (step.caption.empty() || step.caption.size() > kMaxCaptionBytes) broken("a caption out of bounds was accepted");
+        TourStep again;
+        const nlohmann::json written = tourStepJson(step);
+        if (!parseTourStep(written, "again", {}, again, error)) broken("a written step does not read back: " + error);
+        if (tourStepJson(again) != written) broken("a written step reads back differently: " + written.dump());
+    }
+    return true;
 }
 
 } // namespace shadowlab::fuzz

@@ -30,5 +30,10 @@ bool fuzzObj(const uint8_t* data, size_t size);
 // A benchmark spec (JSON); if the input is not JSON, its lines are tried as command-line values
 // (--sweep, --size, --budget). Nothing may throw; checkBenchSpec runs against a fixed technique list.
 bool fuzzBenchSpec(const uint8_t* data, size_t size);
+// A guided tour (JSON; a session file when the input is one step object): parseTour/parseTourStep
+// and checkTour against a fixed technique list. Errors name "fuzz-tour.json"; an accepted tour
+// holds only known techniques and parameters in range, and its steps written back as JSON
+// (tourStepJson, a saved session) read back as the same steps.
+bool fuzzTour(const uint8_t* data, size_t size);
 
 } // namespace shadowlab::fuzz

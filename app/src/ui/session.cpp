@@ -2,18 +2,23 @@
 //   input -> layout (panel beside the view, halves of a comparison) -> for each side: its
 //   technique's frame at the side's size, presented into the display texture, blitted into its
 //   rectangle -> the panel and the labels (ImGui) -> the commands the panel emitted (screenshot,
-//   measure, load scene) -> swap
+//   measure, load scene, tour step, load tour, save or load session) -> swap
+// --tour and --session are the same commands, run once before the first frame.
 #include "ui/session.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include <GLFW/glfw3.h>
 
+#include "ui/tour_player.h"
 #include "ui/ui.h"
 #include "util/log.h"
 #include "util/paths.h"
+#include "util/text_file.h"
 
 namespace shadowlab {
 
@@ -146,6 +151,152 @@ int App::runInteractive(const InteractiveOptions& options) {
     int exitCode = 0;
     const int smokeFrames = options.cycle ? options.frames : 0;
 
+    // The commands the panel, the keys, tours and sessions emit; run between frames (and once
+    // before the first, for --tour and --session).
+    GLuint surface = 0;
+    glm::ivec2 surfaceSize{0};
+    std::function<void(const UiCommand&)> runCommand = [&](const UiCommand& command) {
+        std::string error;
+        switch (command.kind) {
+        case UiCommand::Kind::Screenshot: {
+            std::filesystem::path file = command.argument;
+            if (file.empty()) {
+                std::error_code ec;
+                std::filesystem::create_directories(options.screenshotFolder, ec);
+                file = uniqueScreenshotPath(options.screenshotFolder, scene_->name, state.technique, state.compareTechnique,
+                                            std::chrono::system_clock::now());
+            }
+            if (writePng(file, readSurface(surface, surfaceSize), error)) {
+                logInfo("screenshot saved: " + file.string());
+                state.lastScreenshot = "saved " + file.string();
+            } else {
+                logError(error);
+                state.lastScreenshot = error;
+                if (options.frames > 0) exitCode = 1;
+            }
+            break;
+        }
+        case UiCommand::Kind::Measure: {
+            ReferenceOptions reference;
+            reference.mode = state.referenceMode == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
+            reference.samplesPerPixel = state.referenceSamples;
+            std::vector<SideMeasurement> results;
+            state.measureError.clear();
+            const std::string sides[2] = {state.technique, state.compareTechnique};
+            for (int s = 0; s < (state.compareTechnique.empty() ? 1 : 2); ++s) {
+                const TechniqueInfo* info = techniques_->find(sides[s]);
+                reference.model = state.referenceModel == 1 && info ? info->translucencyModel : TranslucencyModel::Physical;
+                SideMeasurement result;
+                if (!measureSide(*this, sides[s], reference, result, error)) {
+                    state.measureError = sides[s] + ": " + error;
+                    break;
+                }
+                const auto frameMs = state.sideTimings[s].find("frame");
+                result.gpuMs = frameMs == state.sideTimings[s].end() ? 0.0 : frameMs->second;
+                state.measured.push_back({result.label, result.gpuMs, result.metrics.mae});
+                char figures[128];
+                std::snprintf(figures, sizeof(figures), ": MAE %.6f, %.3f ms GPU, %.2f MiB", result.metrics.mae, result.gpuMs,
+                              double(result.gpuBytes) / (1024.0 * 1024.0));
+                logInfo("accuracy of " + result.label + figures);
+                // Its texture, for the heatmap view (re-created only when the size changed).
+                const glm::ivec2 size{result.heatmap.width, result.heatmap.height};
+                if (targets.heatmapSizes[s] != size) {
+                    targets.heatmaps[s] = makeTexture(GL_RGBA8, size);
+                    targets.heatmapSizes[s] = size;
+                }
+                glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+                glTextureSubImage2D(targets.heatmaps[s].get(), 0, 0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE,
+                                    result.heatmap.pixels.data());
+                results.push_back(std::move(result));
+            }
+            if (state.measureError.empty()) {
+                state.measurement = std::move(results);
+                if (state.compareLayout != CompareLayout::Difference) state.view = {ViewSelection::Kind::ErrorHeatmap, ""};
+            }
+            break;
+        }
+        case UiCommand::Kind::LoadScene:
+            state.sceneError = loadScene(command.argument, {}, error) ? "" : error;
+            break;
+        case UiCommand::Kind::TourStep: {
+            if (!state.tour || state.tour->steps.empty()) break;
+            const int last = int(state.tour->steps.size()) - 1;
+            int index = state.tourStep;
+            if (command.argument == "next") index = std::min(index + 1, last);
+            else if (command.argument == "previous") index = std::max(index - 1, 0);
+            else if (command.argument != "restart") index = std::clamp(std::atoi(command.argument.c_str()), 0, last);
+            const std::string where = state.tour->source + ": steps[" + std::to_string(index) + "]";
+            if (applyTourStep(*this, state.tour->steps[size_t(index)], state, error)) {
+                state.tourStep = index;
+                state.tourStatus.clear();
+                state.tourStatusIsError = false;
+                logInfo("tour step " + std::to_string(index + 1) + " of " + std::to_string(last + 1) + ": " +
+                        state.tour->steps[size_t(index)].title);
+            } else {
+                state.tourStatus = where + ": " + error;
+                state.tourStatusIsError = true;
+                logError(state.tourStatus);
+                if (options.frames > 0) exitCode = 1;
+            }
+            break;
+        }
+        case UiCommand::Kind::LoadTour: {
+            auto tour = std::make_shared<Tour>();
+            if (!loadTour(command.argument, techniques_->techniques(), *tour, error)) {
+                state.tourStatus = error;
+                state.tourStatusIsError = true;
+                logError(error);
+                break;
+            }
+            state.tour = std::move(tour);
+            state.tourStep = 0;
+            runCommand({UiCommand::Kind::TourStep, "0"});
+            break;
+        }
+        case UiCommand::Kind::SaveSession: {
+            std::filesystem::path file = command.argument;
+            if (file.empty()) {
+                std::error_code ec;
+                std::filesystem::create_directories(options.sessionFolder, ec);
+                file = uniqueSessionPath(options.sessionFolder, scene_->name, state.technique, std::chrono::system_clock::now());
+            }
+            const TourStep step = captureSession(*this, state);
+            if (writeWholeFile(file, tourStepJson(step).dump(2) + "\n", error)) {
+                state.sessionStatus = "saved " + file.string();
+                state.sessionStatusIsError = false;
+                logInfo("session saved: " + file.string());
+            } else {
+                state.sessionStatus = error;
+                state.sessionStatusIsError = true;
+                logError(error);
+                if (options.frames > 0) exitCode = 1;
+            }
+            break;
+        }
+        case UiCommand::Kind::LoadSession: {
+            TourStep step;
+            if (loadSession(command.argument, techniques_->techniques(), step, error) &&
+                applyTourStep(*this, step, state, error)) {
+                state.sessionStatus = "loaded " + command.argument;
+                state.sessionStatusIsError = false;
+                logInfo("session loaded: " + command.argument);
+            } else {
+                state.sessionStatus = error;
+                state.sessionStatusIsError = true;
+                logError(error);
+                if (options.frames > 0) exitCode = 2;
+            }
+            break;
+        }
+        }
+    };
+
+    if (options.tour) {
+        state.tour = options.tour;
+        runCommand({UiCommand::Kind::TourStep, std::to_string(options.tourStep)});
+    }
+    if (!options.session.empty()) runCommand({UiCommand::Kind::LoadSession, options.session});
+
     while (!backend_->shouldClose()) {
         backend_->pollEvents();
         const auto now = std::chrono::steady_clock::now();
@@ -199,7 +350,7 @@ int App::runInteractive(const InteractiveOptions& options) {
         if (options.measure && frame == measureFrame) state.commands.push_back({UiCommand::Kind::Measure, ""});
 
         // The surface: the window's framebuffer, or the offscreen one (created once).
-        const glm::ivec2 surfaceSize = window ? backend_->framebufferSize() : options_.size;
+        surfaceSize = window ? backend_->framebufferSize() : options_.size;
         if (!window && targets.surfaceSize != surfaceSize) {
             targets.surfaceColor = makeTexture(GL_RGBA8, surfaceSize);
             GLuint name = 0;
@@ -214,7 +365,7 @@ int App::runInteractive(const InteractiveOptions& options) {
             }
             targets.surfaceSize = surfaceSize;
         }
-        const GLuint surface = window ? 0 : targets.surface.get();
+        surface = window ? 0 : targets.surface.get();
         const bool comparing = !state.compareTechnique.empty();
         state.layout = computeViewLayout(surfaceSize, state.showUi, panelWidthFor(state.uiScale, surfaceSize.x), comparing,
                                          state.compareLayout, state.wipe);
@@ -301,70 +452,7 @@ int App::runInteractive(const InteractiveOptions& options) {
         std::vector<UiCommand> commands;
         commands.swap(state.commands);
         if (finalShot) commands.insert(commands.begin(), UiCommand{UiCommand::Kind::Screenshot, options.screenshot});
-        for (const UiCommand& command : commands) {
-            switch (command.kind) {
-            case UiCommand::Kind::Screenshot: {
-                std::filesystem::path file = command.argument;
-                if (file.empty()) {
-                    std::error_code ec;
-                    std::filesystem::create_directories(options.screenshotFolder, ec);
-                    file = uniqueScreenshotPath(options.screenshotFolder, scene_->name, state.technique, state.compareTechnique,
-                                                std::chrono::system_clock::now());
-                }
-                if (writePng(file, readSurface(surface, surfaceSize), error)) {
-                    logInfo("screenshot saved: " + file.string());
-                    state.lastScreenshot = "saved " + file.string();
-                } else {
-                    logError(error);
-                    state.lastScreenshot = error;
-                    if (options.frames > 0) exitCode = 1;
-                }
-                break;
-            }
-            case UiCommand::Kind::Measure: {
-                ReferenceOptions reference;
-                reference.mode = state.referenceMode == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
-                reference.samplesPerPixel = state.referenceSamples;
-                std::vector<SideMeasurement> results;
-                state.measureError.clear();
-                const std::string sides[2] = {state.technique, state.compareTechnique};
-                for (int s = 0; s < (state.compareTechnique.empty() ? 1 : 2); ++s) {
-                    const TechniqueInfo* info = techniques_->find(sides[s]);
-                    reference.model = state.referenceModel == 1 && info ? info->translucencyModel : TranslucencyModel::Physical;
-                    SideMeasurement result;
-                    if (!measureSide(*this, sides[s], reference, result, error)) {
-                        state.measureError = sides[s] + ": " + error;
-                        break;
-                    }
-                    const auto frameMs = state.sideTimings[s].find("frame");
-                    result.gpuMs = frameMs == state.sideTimings[s].end() ? 0.0 : frameMs->second;
-                    state.measured.push_back({result.label, result.gpuMs, result.metrics.mae});
-                    char figures[128];
-                    std::snprintf(figures, sizeof(figures), ": MAE %.6f, %.3f ms GPU, %.2f MiB", result.metrics.mae, result.gpuMs,
-                                  double(result.gpuBytes) / (1024.0 * 1024.0));
-                    logInfo("accuracy of " + result.label + figures);
-                    // Its texture, for the heatmap view (re-created only when the size changed).
-                    const glm::ivec2 size{result.heatmap.width, result.heatmap.height};
-                    if (targets.heatmapSizes[s] != size) {
-                        targets.heatmaps[s] = makeTexture(GL_RGBA8, size);
-                        targets.heatmapSizes[s] = size;
-                    }
-                    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-                    glTextureSubImage2D(targets.heatmaps[s].get(), 0, 0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE,
-                                        result.heatmap.pixels.data());
-                    results.push_back(std::move(result));
-                }
-                if (state.measureError.empty()) {
-                    state.measurement = std::move(results);
-                    if (state.compareLayout != CompareLayout::Difference) state.view = {ViewSelection::Kind::ErrorHeatmap, ""};
-                }
-                break;
-            }
-            case UiCommand::Kind::LoadScene:
-                state.sceneError = loadScene(command.argument, {}, error) ? "" : error;
-                break;
-            }
-        }
+        for (const UiCommand& command : commands) runCommand(command);
         backend_->swapBuffers();
         ++frame;
         if (options.frames > 0 && frame >= options.frames) break;

@@ -1,17 +1,19 @@
 // The classroom window's frame loop (App::runInteractive): the panel beside the view, one or two
 // techniques in the view (side by side, wipe or difference), and the commands the panel emits
-// (measure, screenshot, load scene), run between frames. It draws into a GLFW window, or with a
+// (measure, screenshot, load scene, tour steps, sessions), run between frames. It draws into a GLFW window, or with a
 // headless backend into an offscreen framebuffer of the same layout, so slides come out the
 // same without a display.
 #pragma once
 
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "app.h"
 #include "ui/classroom.h"
+#include "ui/tour.h"
 
 namespace shadowlab {
 
@@ -28,6 +30,12 @@ struct InteractiveOptions {
     ViewSelection view;                            // the image shown at the start (lit, visibility, ...)
     float uiScale = 1.0f;
     std::filesystem::path screenshotFolder = "screenshots";   // F12
+    // A guided tour, started at `tourStep` (from 0), and/or a session file applied at the start
+    // (both checked whole before: tour.h). The session folder is where "Save session" writes.
+    std::shared_ptr<const Tour> tour;
+    int tourStep = 0;
+    std::string session;
+    std::filesystem::path sessionFolder = "sessions";
 };
 
 // One side of the view measured against the reference, for its own technique.

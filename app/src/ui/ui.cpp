@@ -285,7 +285,14 @@ void Ui::draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, 
             if (key == GLFW_KEY_F12) state.commands.push_back({UiCommand::Kind::Screenshot, ""});
             if (key == GLFW_KEY_F1 || key == GLFW_KEY_H) state.showUi = !state.showUi;
             if (key == GLFW_KEY_M) state.commands.push_back({UiCommand::Kind::Measure, ""});
+            if (key == GLFW_KEY_F5) state.commands.push_back({UiCommand::Kind::SaveSession, ""});
             if (key == GLFW_KEY_ESCAPE) state.quitRequested = true;
+            // The tour player: next, previous, restart the step.
+            if (state.tour) {
+                if (key == GLFW_KEY_RIGHT || key == GLFW_KEY_PAGE_DOWN) state.commands.push_back({UiCommand::Kind::TourStep, "next"});
+                if (key == GLFW_KEY_LEFT || key == GLFW_KEY_PAGE_UP) state.commands.push_back({UiCommand::Kind::TourStep, "previous"});
+                if (key == GLFW_KEY_HOME) state.commands.push_back({UiCommand::Kind::TourStep, "restart"});
+            }
         }
     }
     state.pressedKeys.clear();
@@ -407,9 +414,10 @@ void Ui::drawPanel(App& app, UiState& state) {
     ImGui::Begin("shadowlab", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     drawStatusLine(app, state, false);
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("F1 or H hides this panel, F12 saves a screenshot, M measures accuracy");
+    ImGui::TextWrapped("F1 or H hides this panel, F12 saves a screenshot, M measures accuracy, F5 saves the session");
     ImGui::PopStyleColor();
     ImGui::Separator();
+    drawTourPlayer(app, state);
 
     // Technique picker, grouped by category.
     const TechniqueInfo* info = app.techniques().find(state.technique);
@@ -551,6 +559,8 @@ void Ui::drawPanel(App& app, UiState& state) {
             ImGui::PopStyleColor();
         }
     }
+
+    drawLessonSection(app, state);
 
     if (ImGui::CollapsingHeader("Timing and memory", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::TextWrapped("%.1f FPS  (%.2f ms per frame, host CPU %.3f ms)", 1000.0f / std::max(smoothedFrameMs_, 1e-3f),

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "ui/classroom.h"
 #include "ui/imgui_gl.h"
 #include "ui/session.h"
+#include "ui/tour.h"
 
 struct GLFWwindow;
 
@@ -20,9 +22,14 @@ namespace shadowlab {
 
 // Work the panel asks for that must not run inside the ImGui frame (ray tracing, read-backs,
 // scene loads): queued in UiState::commands, run by the session after the frame is drawn.
+// Tours and sessions go through the same queue: the window's buttons and keys, --tour and
+// --session at the start, and the headless `tour` command (one step per run) all apply a step
+// with the same command.
 struct UiCommand {
-    enum class Kind { Measure, Screenshot, LoadScene } kind;
-    std::string argument;   // LoadScene: name or path
+    enum class Kind { Measure, Screenshot, LoadScene, TourStep, LoadTour, SaveSession, LoadSession } kind;
+    // LoadScene, LoadTour, LoadSession: name or path; SaveSession: path ("" = a new name under
+    // the session folder); TourStep: "next", "previous", "restart" or a step index from 0.
+    std::string argument;
 };
 
 struct UiState {
@@ -46,6 +53,15 @@ struct UiState {
     std::vector<UiCommand> commands;
     std::string lastScreenshot;       // path of the last F12 screenshot, or its error
     std::string sceneError;           // of the last LoadScene command
+
+    // The guided tour being played (none: no tour player), its step, and what the last tour or
+    // session command said.
+    std::shared_ptr<const Tour> tour;
+    int tourStep = 0;
+    std::string tourStatus;
+    bool tourStatusIsError = false;
+    std::string sessionStatus;
+    bool sessionStatusIsError = false;
 
     // Accuracy measured on demand ("Measure accuracy"): one result per side of the view, and
     // every measurement of this session for the error-against-milliseconds plot.
@@ -79,6 +95,8 @@ private:
     void drawViewOverlay(App& app, UiState& state);
     void drawPanel(App& app, UiState& state);
     void drawStatusLine(App& app, const UiState& state, bool overlay);
+    void drawTourPlayer(App& app, UiState& state);   // tour_panel.cpp
+    void drawLessonSection(App& app, UiState& state); // tour_panel.cpp
     bool initialised_ = false;
     GLFWwindow* window_ = nullptr;
     ImGuiGlRenderer renderer_;
@@ -86,6 +104,8 @@ private:
     float appliedScale_ = 0.0f;
     float smoothedFrameMs_ = 0.0f;
     std::string sceneInput_;
+    std::string tourInput_;
+    std::string sessionInput_;
     std::string newestLogLine_;       // the log follows new lines
     float scaleSlider_ = 1.0f;
     std::string reloadStatus_;        // the latest hot-reload line of the log

@@ -1,0 +1,249 @@
+// The headless tour pages (see tour_pages.h).
+#include "ui/tour_pages.h"
+
+#include <cstdio>
+#include <memory>
+#include <sstream>
+
+#include "ui/session.h"
+#include "util/log.h"
+#include "util/text_file.h"
+
+namespace shadowlab {
+namespace {
+
+struct TechniqueFigures {
+    std::string technique;
+    std::string displayName;
+    std::string reference;        // "hard", "soft", or "" (the reference itself: no error)
+    double frameMs = 0.0;         // median GPU ms of a timed frame
+    double gpuMiB = 0.0;
+    AccuracyMetrics metrics;
+};
+
+struct StepPage {
+    std::string image;            // file name in the output folder
+    std::vector<TechniqueFigures> figures;
+};
+
+std::string fixed(double value, int digits) {
+    char text[64];
+    std::snprintf(text, sizeof(text), "%.*f", digits, value);
+    return text;
+}
+
+std::string stepImageName(size_t index) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "step-%02zu.png", index + 1);
+    return name;
+}
+
+bool isDebugView(const std::string& view) { return view != "lit" && view != "visibility" && view != "error"; }
+
+// A debug view exists only once its technique has drawn a frame (plugins register their images
+// when they create them): one frame of each such technique, before any step is rendered, so a
+// view no technique has is refused before the first slide.
+bool checkDebugViews(App& app, const Tour& tour, std::string& error) {
+    for (size_t i = 0; i < tour.steps.size(); ++i) {
+        const TourStep& step = tour.steps[i];
+        if (!isDebugView(step.view)) continue;
+        if (!app.renderFrame(step.technique, error)) return false;
+        LoadedTechnique* loaded = app.techniques().get(step.technique, error);
+        if (!loaded) return false;
+        std::string names = "lit, visibility, error";
+        bool found = false;
+        for (const DebugImage& image : loaded->host().debugImages()) {
+            found |= image.name == step.view;
+            names += ", " + image.name;
+        }
+        if (!found) {
+            error = tour.source + ": steps[" + std::to_string(i) + "] (\"" + step.title + "\"): view '" + step.view +
+                    "': " + step.technique + " has no such image (views: " + names + ")";
+            return false;
+        }
+    }
+    return true;
+}
+
+bool measureTechnique(App& app, const std::string& id, const TourPageOptions& options, TechniqueFigures& out,
+                      std::string& error) {
+    const TechniqueInfo* info = app.techniques().find(id);
+    if (!info) {
+        error = "no technique '" + id + "'";
+        return false;
+    }
+    out.technique = id;
+    out.displayName = info->displayName;
+    if (!app.setRenderSize(options.size, error)) return false;
+    Measurement m;
+    if (!app.measure(id, options.warmupFrames, options.benchFrames, m, error)) return false;
+    const auto frame = m.gpuMs.find("frame");
+    out.frameMs = frame == m.gpuMs.end() ? 0.0 : frame->second.median;
+    out.gpuMiB = double(m.gpuBytes) / (1024.0 * 1024.0);
+    if (id == "reference") return true;   // the ground truth itself: nothing to compare
+    ReferenceOptions reference;
+    const bool hard = info->category == "hard" || info->category == "baseline";
+    reference.mode = hard ? ReferenceOptions::Mode::Hard : ReferenceOptions::Mode::Soft;
+    reference.samplesPerPixel = options.referenceSamples;
+    reference.adaptive = true;
+    reference.model = TranslucencyModel::Physical;
+    Evaluation evaluation;
+    if (!app.evaluate(reference, evaluation, error)) return false;
+    out.reference = hard ? "hard" : "soft";
+    out.metrics = evaluation.metrics;
+    return true;
+}
+
+// What each column means: said once, on both pages.
+const char* const kColumns[][2] = {
+    {"technique", "the technique measured (A, then B when the step compares two)"},
+    {"reference", "what it is compared with: the hard (one ray to the light's centre) or soft (rays over the light's "
+                  "area) ray-traced reference; hard for hard techniques, soft for filtered and soft ones"},
+    {"MAE", "mean absolute error of the shadow term against the reference, over the compared (lit-side) pixels"},
+    {"false shadow", "compared pixels the reference lights (>= 0.5) that the technique darkens (< 0.5): acne, over-darkening"},
+    {"false light", "compared pixels the reference shadows that the technique lights: leaks, peter panning, light bleeding"},
+    {"frame ms", "median GPU time of a whole frame over the short benchmark (" "warm-up, then timed frames)"},
+    {"GPU MiB", "the technique's own GPU memory (shadow maps, blurred copies)"},
+};
+
+std::string figureCell(const TechniqueFigures& f, int column) {
+    const bool measured = !f.reference.empty();
+    switch (column) {
+    case 0: return f.displayName + " (" + f.technique + ")";
+    case 1: return measured ? f.reference : "(is the reference)";
+    case 2: return measured ? fixed(f.metrics.mae, 4) : "-";
+    case 3: return measured ? fixed(100.0 * f.metrics.falseShadowRate, 2) + "%" : "-";
+    case 4: return measured ? fixed(100.0 * f.metrics.falseLightRate, 2) + "%" : "-";
+    case 5: return fixed(f.frameMs, 3);
+    case 6: return fixed(f.gpuMiB, 2);
+    }
+    return "";
+}
+
+constexpr int kColumnCount = int(sizeof(kColumns) / sizeof(kColumns[0]));
+
+std::string htmlPage(const Tour& tour, const std::vector<StepPage>& pages, const TourPageOptions& options) {
+    std::ostringstream html;
+    html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << htmlEscape(tour.title)
+         << "</title>\n<style>\nbody{font-family:sans-serif;max-width:" << options.size.x + 40
+         << "px;margin:2em auto;line-height:1.45;color:#222}\nfigure{margin:0 0 1em}\nimg{max-width:100%;height:auto;"
+            "border:1px solid #ccc}\nfigcaption{margin-top:.5em}\ntable{border-collapse:collapse;margin:.5em 0 2em}\n"
+            "td,th{border:1px solid #ccc;padding:.2em .5em;text-align:right}\ntd:first-child,th:first-child{text-align:left}\n"
+            "dt{font-weight:bold}\n</style>\n</head>\n<body>\n<h1>"
+         << htmlEscape(tour.title) << "</h1>\n";
+    if (!tour.description.empty()) html << "<p>" << htmlEscape(tour.description) << "</p>\n";
+    html << "<p>" << tour.steps.size() << " steps, drawn at " << options.size.x << "x" << options.size.y
+         << ". Columns of the tables:</p>\n<dl>\n";
+    for (const auto& column : kColumns) html << "<dt>" << column[0] << "</dt><dd>" << htmlEscape(column[1]) << "</dd>\n";
+    html << "</dl>\n";
+    for (size_t i = 0; i < tour.steps.size(); ++i) {
+        const TourStep& step = tour.steps[i];
+        html << "<section id=\"step-" << i + 1 << "\">\n<h2>" << i + 1 << ". " << htmlEscape(step.title) << "</h2>\n"
+             << "<figure>\n<img src=\"" << pages[i].image << "\" width=\"" << options.size.x << "\" height=\""
+             << options.size.y << "\" alt=\"" << htmlEscape(step.title) << "\">\n<figcaption>" << htmlEscape(step.caption)
+             << "</figcaption>\n</figure>\n<table>\n<tr>";
+        for (const auto& column : kColumns) html << "<th>" << column[0] << "</th>";
+        html << "</tr>\n";
+        for (const TechniqueFigures& f : pages[i].figures) {
+            html << "<tr>";
+            for (int c = 0; c < kColumnCount; ++c) html << "<td>" << htmlEscape(figureCell(f, c)) << "</td>";
+            html << "</tr>\n";
+        }
+        html << "</table>\n</section>\n";
+    }
+    html << "</body>\n</html>\n";
+    return html.str();
+}
+
+std::string markdownPage(const Tour& tour, const std::vector<StepPage>& pages, const TourPageOptions& options) {
+    std::ostringstream md;
+    md << "# " << tour.title << "\n\n";
+    if (!tour.description.empty()) md << tour.description << "\n\n";
+    md << tour.steps.size() << " steps, drawn at " << options.size.x << "x" << options.size.y
+       << " (`shadowlab tour`). Columns of the tables:\n\n";
+    for (const auto& column : kColumns) md << "- **" << column[0] << "**: " << column[1] << "\n";
+    md << "\n";
+    for (size_t i = 0; i < tour.steps.size(); ++i) {
+        const TourStep& step = tour.steps[i];
+        md << "## " << i + 1 << ". " << step.title << "\n\n![" << step.title << "](" << pages[i].image << ")\n\n"
+           << step.caption << "\n\n|";
+        for (const auto& column : kColumns) md << " " << column[0] << " |";
+        md << "\n|---|";
+        for (int c = 1; c < kColumnCount; ++c) md << "---:|";
+        md << "\n";
+        for (const TechniqueFigures& f : pages[i].figures) {
+            md << "|";
+            for (int c = 0; c < kColumnCount; ++c) md << " " << figureCell(f, c) << " |";
+            md << "\n";
+        }
+        md << "\n";
+    }
+    return md.str();
+}
+
+} // namespace
+
+std::string htmlEscape(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    for (char c : text) {
+        switch (c) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += "&quot;"; break;
+        default: out += c;
+        }
+    }
+    return out;
+}
+
+int writeTourPages(App& app, const Tour& tour, const TourPageOptions& options, std::string& error) {
+    std::error_code ec;
+    std::filesystem::create_directories(options.outDir, ec);
+    if (ec) {
+        error = options.outDir.string() + ": cannot create the folder (" + ec.message() + ")";
+        return 1;
+    }
+    if (!checkDebugViews(app, tour, error)) return 2;
+    const auto shared = std::make_shared<const Tour>(tour);
+    std::vector<StepPage> pages(tour.steps.size());
+    for (size_t i = 0; i < tour.steps.size(); ++i) {
+        const TourStep& step = tour.steps[i];
+        // The slide: the window's own frame loop with the step applied by its UiCommand, panel hidden.
+        InteractiveOptions slide;
+        slide.technique = step.technique;
+        slide.tour = shared;
+        slide.tourStep = int(i);
+        slide.showUi = false;
+        slide.frames = std::max(options.frames, step.view == "error" ? 3 : 1);   // error: measured after frame 1
+        pages[i].image = stepImageName(i);
+        slide.screenshot = (options.outDir / pages[i].image).string();
+        if (const int code = app.runInteractive(slide); code != 0) {
+            error = tour.source + ": steps[" + std::to_string(i) + "]: the slide was not written";
+            return code;
+        }
+        for (const std::string& id : {step.technique, step.compare}) {
+            if (id.empty()) continue;
+            TechniqueFigures figures;
+            if (!measureTechnique(app, id, options, figures, error)) {
+                error = tour.source + ": steps[" + std::to_string(i) + "]: " + id + ": " + error;
+                return 1;
+            }
+            pages[i].figures.push_back(figures);
+        }
+        std::printf("step %zu/%zu  %-40s", i + 1, tour.steps.size(), step.title.substr(0, 40).c_str());
+        for (const TechniqueFigures& f : pages[i].figures)
+            std::printf("  %s: %.3f ms%s", f.technique.c_str(), f.frameMs,
+                        f.reference.empty() ? "" : (", MAE " + fixed(f.metrics.mae, 4)).c_str());
+        std::printf("\n");
+        std::fflush(stdout);
+    }
+    if (!writeWholeFile(options.outDir / "index.html", htmlPage(tour, pages, options), error)) return 1;
+    if (!writeWholeFile(options.outDir / "README.md", markdownPage(tour, pages, options), error)) return 1;
+    logInfo("tour: " + std::to_string(tour.steps.size()) + " steps, " + std::to_string(pages.size()) + " images, index.html and "
+            "README.md in " + options.outDir.string());
+    return 0;
+}
+
+} // namespace shadowlab

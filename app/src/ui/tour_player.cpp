@@ -1,0 +1,111 @@
+// Tours and sessions on the running app (see tour_player.h).
+#include "ui/tour_player.h"
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <map>
+
+namespace shadowlab {
+
+ViewSelection viewFromStepName(const std::string& name) {
+    if (name == "lit" || name == "error" || name.empty()) return {};   // error: lit until measured
+    if (name == "visibility") return {ViewSelection::Kind::Visibility, ""};
+    return {ViewSelection::Kind::DebugImage, name};
+}
+
+std::string stepViewName(const ViewSelection& view) {
+    // An if-chain, not a switch: views added to ViewSelection elsewhere fall back to lit here
+    // until they get a name of their own.
+    if (view.kind == ViewSelection::Kind::Visibility) return "visibility";
+    if (view.kind == ViewSelection::Kind::ErrorHeatmap) return "error";
+    if (view.kind == ViewSelection::Kind::DebugImage) return view.debugImage;
+    return "lit";
+}
+
+bool applyTourStep(App& app, const TourStep& step, UiState& state, std::string& error) {
+    const std::map<std::string, double> overrides(step.sceneParameters.begin(), step.sceneParameters.end());
+    if (!app.loadScene(step.scene, overrides, error)) return false;
+    for (const std::string& id : {step.technique, step.compare}) {
+        if (id.empty()) continue;
+        const TechniqueInfo* info = app.techniques().find(id);
+        if (!info) {
+            error = "technique '" + id + "': no such technique";
+            return false;
+        }
+        app.params().resetToDefaults(*info);
+    }
+    std::vector<std::string> assignments;
+    for (const auto& [key, text] : step.parameters) assignments.push_back(key + "=" + text);
+    if (!app.applyAssignments(assignments, step.technique, error)) return false;
+    if (step.camera) {
+        SceneCamera camera = app.scene().camera;   // near and far planes stay the scene's
+        camera.position = step.camera->position;
+        camera.target = step.camera->target;
+        camera.fovY = glm::radians(step.camera->fovDegrees);
+        app.camera().reset(camera);
+    }
+    LightInfo& light = app.light();
+    if (step.light.direction) light.direction = glm::normalize(*step.light.direction);
+    if (step.light.size)
+        light.size = light.type == LightType::Directional ? glm::radians(float(*step.light.size)) : float(*step.light.size);
+    state.technique = step.technique;
+    state.compareTechnique = step.compare;
+    state.compareLayout = step.layout;
+    state.wipe = step.wipe;
+    state.view = viewFromStepName(step.view);
+    state.measurement.clear();
+    state.staleReason.clear();
+    state.measureError.clear();
+    state.frameError.clear();
+    // Measured after the next frame is drawn, when the main targets have the view's size.
+    if (step.view == "error") state.commands.push_back({UiCommand::Kind::Measure, ""});
+    return true;
+}
+
+namespace {
+
+// Parameter values as text that reads back as the same double (floats in full precision).
+std::string exactValueText(const ParamSpec& spec, double value) {
+    if (spec.type != ParamType::Float) return formatParamValue(spec, value);
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.17g", value);
+    return text;
+}
+
+} // namespace
+
+TourStep captureSession(App& app, const UiState& state) {
+    TourStep step;
+    const Scene& scene = app.scene();
+    step.scene = scene.source.rfind("builtin:", 0) == 0 ? scene.source.substr(8)
+                                                        : std::filesystem::absolute(scene.source).lexically_normal().string();
+    for (const auto& [name, value] : scene.parameters) step.sceneParameters.emplace_back(name, value);
+    step.technique = state.technique;
+    step.compare = state.compareTechnique;
+    step.layout = state.compareLayout;
+    step.wipe = state.wipe;
+    for (const std::string& id : {state.technique, state.compareTechnique}) {
+        const TechniqueInfo* info = id.empty() ? nullptr : app.techniques().find(id);
+        if (!info) continue;
+        const auto& values = app.params().values(*info);
+        const std::string prefix = id == state.technique ? "" : id + ".";
+        for (size_t i = 0; i < info->params.size(); ++i)
+            step.parameters.emplace_back(prefix + info->params[i].id, exactValueText(info->params[i], values[i]));
+    }
+    const SceneCamera pose = app.camera().pose();
+    step.camera = TourCamera{pose.position, pose.target, glm::degrees(pose.fovY)};
+    const LightInfo& light = app.light();
+    step.light.direction = light.direction;
+    step.light.size = light.type == LightType::Directional ? double(glm::degrees(light.size)) : double(light.size);
+    step.view = stepViewName(state.view);
+    const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    char date[32];
+    std::strftime(date, sizeof(date), "%Y-%m-%d %H:%M", std::localtime(&now));
+    const std::string what = state.technique + (state.compareTechnique.empty() ? "" : " against " + state.compareTechnique);
+    step.title = "session: " + what + " on " + scene.name;
+    step.caption = "Saved " + std::string(date) + ": " + what + " on " + scene.name + ". Write what to look at here.";
+    return step;
+}
+
+} // namespace shadowlab

@@ -1,0 +1,281 @@
+// Guided tours and saved sessions (issue 14): the built-in tours are valid against the real
+// plugins; a bad tour is refused whole with the file, the step and the problem named; a step
+// applied through the window's own path (App::runInteractive, the tour player's UiCommand) puts
+// its scene, parameters and view on screen; a saved session is a tour step and restores the
+// same frame.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "groundtruth/reference_technique.h"
+#include "plugin/plugin_library.h"
+#include "test_support.h"
+#include "ui/session.h"
+#include "ui/tour.h"
+#include "ui/tour_player.h"
+#include "ui/ui.h"
+#include "util/paths.h"
+
+using namespace shadowlab;
+using nlohmann::json;
+
+namespace {
+
+std::vector<TechniqueInfo> realTechniques() {
+    std::vector<TechniqueInfo> techniques = scanPlugins(pluginDir()).techniques;
+    techniques.push_back(copyDescriptor(referenceDescriptor(), {}));
+    return techniques;
+}
+
+json validTour() {
+    return json::parse(R"({
+      "title": "t",
+      "steps": [
+        {"title": "one", "scene": "cube", "technique": "shadowmap", "caption": "First."},
+        {"title": "two", "scene": "hover", "sceneParameters": {"height": 1.2}, "technique": "pcf",
+         "compare": "shadowmap", "layout": "wipe", "wipe": 0.3,
+         "parameters": {"kernel": 7, "cone_bias": false, "shadowmap.depth_format": "16"},
+         "camera": {"position": [0, 3, 4], "target": [0, 0.3, 0], "fov": 50},
+         "light": {"direction": [0.3, -1, 0.2], "size": 2.5}, "view": "visibility", "caption": "Second."}
+      ]})");
+}
+
+// The error of the tour with steps[1] patched by `patch` (merge_patch: null removes a field).
+std::string errorOf(const json& patch) {
+    json tour = validTour();
+    tour["steps"][1].merge_patch(patch);
+    Tour parsed;
+    std::string error;
+    if (parseTour(tour, "t.json", {}, parsed, error) && checkTour(parsed, realTechniques(), error)) return "";
+    return error;
+}
+
+int countMagenta(const Texture& image) {
+    int count = 0;
+    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4)
+        count += image.rgba[i] > 150 && image.rgba[i + 1] < 110 && image.rgba[i + 2] > 150;
+    return count;
+}
+
+} // namespace
+
+TEST(Tours, EveryBuiltInTourIsValidAgainstThePluginsAndCitesItsSeeds) {
+    const auto names = builtinTourNames();
+    for (const char* expected : {"shadow-mapping", "soft-shadows", "large-scenes", "coloured-shadows"})
+        EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << "missing tour " << expected;
+    const auto techniques = realTechniques();
+    for (const std::string& name : names) {
+        SCOPED_TRACE(name);
+        Tour tour;
+        std::string error;
+        ASSERT_TRUE(loadTour(name, techniques, tour, error)) << error;
+        EXPECT_GE(tour.steps.size(), 5u);
+        for (const TourStep& step : tour.steps) {
+            // Every caption says where its formula or figure comes from.
+            EXPECT_NE(step.caption.find("seed 00"), std::string::npos) << step.title << ": the caption cites no seed";
+            EXPECT_GE(step.caption.size(), 150u) << step.title << ": a caption of a few sentences";
+        }
+    }
+}
+
+TEST(Tours, AValidTourParsesToItsFieldsAndRoundTrips) {
+    Tour tour;
+    std::string error;
+    ASSERT_TRUE(parseTour(validTour(), "t.json", {}, tour, error)) << error;
+    ASSERT_TRUE(checkTour(tour, realTechniques(), error)) << error;
+    const TourStep& step = tour.steps[1];
+    EXPECT_EQ(step.compare, "shadowmap");
+    EXPECT_EQ(step.layout, CompareLayout::Wipe);
+    EXPECT_FLOAT_EQ(step.wipe, 0.3f);
+    ASSERT_EQ(step.parameters.size(), 3u);
+    EXPECT_EQ(step.parameters[0], (std::pair<std::string, std::string>{"cone_bias", "false"}));
+    ASSERT_TRUE(step.camera);
+    EXPECT_FLOAT_EQ(step.camera->fovDegrees, 50.0f);
+    EXPECT_DOUBLE_EQ(*step.light.size, 2.5);
+    EXPECT_EQ(step.view, "visibility");
+    // The JSON a session is saved as reads back as the same step.
+    TourStep again;
+    ASSERT_TRUE(parseTourStep(tourStepJson(step), "again", {}, again, error)) << error;
+    EXPECT_EQ(tourStepJson(again), tourStepJson(step));
+}
+
+TEST(Tours, ABadStepIsNamedWithItsFileStepAndProblem) {
+    const std::pair<json, std::string> cases[] = {
+        {{{"technique", "nosuch"}}, "technique 'nosuch': no such technique"},
+        {{{"compare", "nosuch"}}, "compare 'nosuch': no such technique"},
+        {{{"parameters", {{"radius", 3}}}}, "pcf has no parameter 'radius'"},
+        {{{"parameters", {{"kernel", 99}}}}, "out of range"},
+        {{{"parameters", {{"kernel", 2.5}}}}, "not an integer"},
+        {{{"parameters", {{"shadowmap.depth_format", "12"}}}}, "is not one of"},
+        {{{"parameters", {{"vsm.min_variance", 0.1}}}}, "'vsm' is not this step's technique"},
+        {{{"parameters", {{"kernel", {1, 2}}}}}, "expected a number, true/false or an enum label"},
+        {{{"scene", "no-such-scene"}}, "scene: no-such-scene"},
+        {{{"sceneParameters", {{"height", "high"}}}}, "sceneParameters.height: expected a finite number"},
+        {{{"sceneParameters", {{"heigth", 1}}}}, "heigth"},
+        {{{"light", {{"size", 90}}}}, "light.size"},
+        {{{"light", {{"direction", {0, 0, 0}}}}}, "light.direction: must not be zero"},
+        {{{"camera", {{"position", {0, 1, 0}}, {"target", {0, 1, 0}}}}}, "position and target are the same point"},
+        {{{"camera", {{"position", {0, 1, 0}}, {"target", {0, 0, 0}}, {"fov", 0}}}}, "camera.fov"},
+        {{{"camera", {{"position", {0, 1e30, 0}}, {"target", {0, 0, 0}}}}}, "camera.position"},
+        {{{"layout", "diagonal"}}, "layout: 'diagonal'"},
+        {{{"wipe", 2}}, "wipe: expected a number from 0 to 1"},
+        {{{"caption", ""}}, "caption: must not be empty"},
+        {{{"caption", nullptr}}, "missing 'caption'"},
+        {{{"techinque", "pcf"}}, "unknown field 'techinque'"},
+    };
+    for (const auto& [patch, expected] : cases) {
+        SCOPED_TRACE(patch.dump());
+        const std::string error = errorOf(patch);
+        EXPECT_NE(error.find("t.json: steps[1]"), std::string::npos) << error;
+        EXPECT_NE(error.find(expected), std::string::npos) << error;
+    }
+    EXPECT_EQ(errorOf(json::object()), "") << "the unpatched tour is valid";
+}
+
+TEST(Tours, BadFilesAreNamed) {
+    const auto techniques = realTechniques();
+    char folder[] = "/tmp/shadowlab-tours-XXXXXX";
+    ASSERT_TRUE(mkdtemp(folder));
+    const std::filesystem::path dir = folder;
+    auto write = [&](const std::string& name, const std::string& text) {
+        std::ofstream(dir / name) << text;
+        return (dir / name).string();
+    };
+    Tour tour;
+    std::string error;
+    EXPECT_FALSE(loadTour(write("broken.json", "{\"title\": \"x\", \"steps\": ["), techniques, tour, error));
+    EXPECT_NE(error.find("broken.json"), std::string::npos) << error;
+    EXPECT_FALSE(loadTour(write("empty.json", "{\"title\": \"x\", \"steps\": []}"), techniques, tour, error));
+    EXPECT_NE(error.find("empty.json: 'steps' must be a non-empty array"), std::string::npos) << error;
+    EXPECT_FALSE(loadTour(write("list.json", "[1, 2]"), techniques, tour, error));
+    EXPECT_NE(error.find("list.json: expected an object"), std::string::npos) << error;
+    EXPECT_FALSE(loadTour("no-such-tour", techniques, tour, error));
+    EXPECT_NE(error.find("no-such-tour: no such tour file"), std::string::npos) << error;
+    EXPECT_NE(error.find("shadow-mapping"), std::string::npos) << "the built-in tours are listed: " << error;
+    TourStep step;
+    EXPECT_FALSE(loadSession(write("session.json", "{\"title\": \"s\"}"), techniques, step, error));
+    EXPECT_NE(error.find("session.json: missing 'scene'"), std::string::npos) << error;
+    std::filesystem::remove_all(dir);
+}
+
+// The tour player's path: runInteractive with a tour applies the step by its UiCommand before
+// the first frame, and the heatmap of a step whose view is "error" shows its acne.
+TEST(TourPlayer, AStepThroughTheWindowPathSetsSceneParametersAndView) {
+    auto app = test::makeHeadlessApp("contact", {320, 180});
+    ASSERT_TRUE(app);
+    auto tour = std::make_shared<Tour>();
+    std::string error;
+    ASSERT_TRUE(loadTour("shadow-mapping", realTechniques(), *tour, error)) << error;
+    auto stepIndex = [&](const std::string& prefix) {
+        for (size_t i = 0; i < tour->steps.size(); ++i)
+            if (tour->steps[i].title.rfind(prefix, 0) == 0) return int(i);
+        ADD_FAILURE() << "no step " << prefix;
+        return 0;
+    };
+    const std::string shot = "/tmp/shadowlab-tour-step-" + std::to_string(getpid()) + ".png";
+    auto slide = [&](int step) {
+        InteractiveOptions options;
+        options.technique = "none";
+        options.tour = tour;
+        options.tourStep = step;
+        options.frames = 3;
+        options.showUi = false;
+        options.screenshot = shot;
+        EXPECT_EQ(app->runInteractive(options), 0);
+        const Texture image = loadPngTexture(shot, 1.0f, uint64_t(64) << 20);
+        std::filesystem::remove(shot);
+        return image;
+    };
+    const Texture acne = slide(stepIndex("Shadow acne"));
+    EXPECT_EQ(app->scene().name, "cube");
+    const TechniqueInfo* shadowmap = app->techniques().find("shadowmap");
+    ASSERT_TRUE(shadowmap);
+    const auto& values = app->params().values(*shadowmap);
+    EXPECT_EQ(values[size_t(shadowmap->paramIndex("constant_bias"))], 0.0);
+    EXPECT_EQ(values[size_t(shadowmap->paramIndex("slope_bias"))], 0.0);
+    EXPECT_EQ(values[size_t(shadowmap->paramIndex("cull"))], 0.0) << "cull none";
+    EXPECT_EQ(acne.width, 320);
+    const Texture biased = slide(stepIndex("Bias removes"));
+    EXPECT_EQ(values[size_t(shadowmap->paramIndex("constant_bias"))], 2.0);
+    // The heatmap (the step's view "error") marks acne's false shadow magenta; bias removes most.
+    const int acnePixels = countMagenta(acne), biasedPixels = countMagenta(biased);
+    EXPECT_GT(acnePixels, 500) << "no false shadow shown for acne";
+    EXPECT_LT(biasedPixels * 4, acnePixels) << "bias should remove most of the acne";
+}
+
+TEST(TourPlayer, StepParametersStayEditableAndRestartRestoresThem) {
+    auto app = test::makeHeadlessApp("cube", {160, 96});
+    ASSERT_TRUE(app);
+    Tour tour;
+    std::string error;
+    ASSERT_TRUE(parseTour(validTour(), "t.json", {}, tour, error)) << error;
+    UiState state;
+    ASSERT_TRUE(applyTourStep(*app, tour.steps[1], state, error)) << error;
+    EXPECT_EQ(state.technique, "pcf");
+    EXPECT_EQ(state.compareTechnique, "shadowmap");
+    EXPECT_EQ(app->scene().name, "hover");
+    EXPECT_NEAR(app->scene().parameters.at("height"), 1.2, 1e-12);
+    const TechniqueInfo* pcf = app->techniques().find("pcf");
+    auto kernel = [&] { return app->params().values(*pcf)[size_t(pcf->paramIndex("kernel"))]; };
+    EXPECT_EQ(kernel(), 7.0);
+    ASSERT_TRUE(app->params().set(*pcf, "kernel", "11", error)) << error;   // as the panel's slider does
+    EXPECT_EQ(kernel(), 11.0);
+    app->camera().zoom(3.0f);
+    ASSERT_TRUE(applyTourStep(*app, tour.steps[1], state, error)) << error;   // "Restart step"
+    EXPECT_EQ(kernel(), 7.0);
+    EXPECT_NEAR(glm::distance(app->camera().pose().position, glm::vec3(0, 3, 4)), 0.0f, 1e-4f);
+    EXPECT_NEAR(glm::degrees(app->light().size), 2.5f, 1e-4f);
+}
+
+// A saved session is a valid tour step, and loading it elsewhere gives the same frame.
+TEST(Sessions, ASavedSessionIsATourStepAndRestoresTheSameFrame) {
+    const auto techniques = realTechniques();
+    auto app = test::makeHeadlessApp("contact", {160, 96});
+    ASSERT_TRUE(app);
+    std::string error;
+    UiState state;
+    state.technique = "pcf";
+    state.view = {ViewSelection::Kind::Visibility, ""};
+    ASSERT_TRUE(app->applyAssignments({"kernel=9", "offset_scale=1.37", "cone_bias=false"}, "pcf", error)) << error;
+    app->camera().look({40.0f, -25.0f});
+    app->camera().pan({15.0f, 5.0f});
+    app->light().direction = glm::normalize(glm::vec3(0.4f, -1.0f, 0.25f));
+    app->light().size = glm::radians(1.7f);
+    const auto before = test::renderVisibility(*app, "pcf", {});
+
+    const json saved = tourStepJson(captureSession(*app, state));
+    TourStep step;
+    ASSERT_TRUE(parseTourStep(json::parse(saved.dump()), "session.json", {}, step, error)) << error;
+    ASSERT_TRUE(checkTourStep(step, "session.json", techniques, error)) << error;
+    Tour tour;   // pasted into a tour as it is
+    ASSERT_TRUE(parseTour(json{{"title", "from a session"}, {"steps", {saved}}}, "t.json", {}, tour, error)) << error;
+    ASSERT_TRUE(checkTour(tour, techniques, error)) << error;
+
+    auto other = test::makeHeadlessApp("cube", {160, 96});   // another scene, defaults everywhere
+    ASSERT_TRUE(other);
+    UiState restored;
+    ASSERT_TRUE(applyTourStep(*other, step, restored, error)) << error;
+    EXPECT_EQ(restored.technique, "pcf");
+    EXPECT_EQ(restored.view.kind, ViewSelection::Kind::Visibility);
+    EXPECT_EQ(other->scene().name, "contact");
+    const TechniqueInfo* pcf = other->techniques().find("pcf");
+    EXPECT_EQ(other->params().values(*pcf), app->params().values(*app->techniques().find("pcf")));
+    EXPECT_LT(glm::distance(other->camera().pose().position, app->camera().pose().position), 1e-4f);
+    EXPECT_LT(glm::distance(other->light().direction, app->light().direction), 1e-6f);
+    EXPECT_NEAR(other->light().size, app->light().size, 1e-6f);
+    const auto after = test::renderVisibility(*other, "pcf", {});
+    ASSERT_EQ(before.size(), after.size());
+    float largest = 0.0f;
+    for (size_t i = 0; i < before.size(); ++i) largest = std::max(largest, glm::length(before[i] - after[i]));
+    EXPECT_LT(largest, 1e-3f) << "the restored session draws a different frame";
+    // Saved again, it is the same session.
+    json again = tourStepJson(captureSession(*other, restored));
+    for (const char* key : {"scene", "sceneParameters", "technique", "parameters", "view"})
+        EXPECT_EQ(again.value(key, json()), saved.value(key, json())) << key;
+    EXPECT_EQ(saved.value("scene", ""), "contact");
+    EXPECT_EQ(saved["parameters"].value("kernel", 0), 9);
+    EXPECT_EQ(saved["parameters"].value("offset_scale", 0.0), 1.37) << "written in full precision";
+}
