@@ -164,9 +164,9 @@ struct CascadeFitConfig {
 
 namespace cascade_detail {
 
-// Orthographic light space over light-view rectangle [lo, hi] and depth from the points' and the
+// Orthographic light space over the light-view rectangle centre +- half and depth from the points' and the
 // casters' extent in that view (reaching towards the light to every caster).
-inline LightSpace orthographic(const glm::mat4& view, glm::vec2 lo, glm::vec2 hi, float zLo, float zHi,
+inline LightSpace orthographic(const glm::mat4& view, glm::vec2 centre, glm::vec2 half, float zLo, float zHi,
                                const Bounds& casters) {
     glm::vec3 corners[8];
     boundsCorners(casters, corners);
@@ -176,10 +176,15 @@ inline LightSpace orthographic(const glm::mat4& view, glm::vec2 lo, glm::vec2 hi
     ls.view = view;
     ls.nearPlane = -zHi - margin;
     ls.farPlane = -zLo + margin;
-    ls.projection = glm::ortho(lo.x, hi.x, lo.y, hi.y, ls.nearPlane, ls.farPlane);
+    // glm::ortho(centre - half, centre + half, ...) with the scale from the half-size itself:
+    // 2 / (hi - lo) would round differently as the rectangle moves, and the stabilised texel size
+    // must not change.
+    ls.projection = glm::ortho(-half.x, half.x, -half.y, half.y, ls.nearPlane, ls.farPlane);
+    ls.projection[3][0] = -centre.x / half.x;
+    ls.projection[3][1] = -centre.y / half.y;
     ls.viewProjection = ls.projection * ls.view;
     ls.perspective = false;
-    ls.worldSizeAtUnitDepth = hi - lo;
+    ls.worldSizeAtUnitDepth = 2.0f * half;
     return ls;
 }
 
@@ -206,7 +211,7 @@ inline Cascade fitDirectionalCascade(const CameraInfo& camera, const glm::mat4& 
         const glm::vec3 centre = glm::vec3(lightView * glm::vec4(centreWorld, 1.0f));
         // Whole texels from the light view's origin (fixed in the world).
         const glm::vec2 snapped = glm::floor(glm::vec2(centre) / texel) * texel;
-        cascade.light = cascade_detail::orthographic(lightView, snapped - radius, snapped + radius, centre.z - radius,
+        cascade.light = cascade_detail::orthographic(lightView, snapped, glm::vec2(radius), centre.z - radius,
                                                      centre.z + radius, casters);
         cascade.texelWorldSize = texel;
         return cascade;
@@ -226,7 +231,8 @@ inline Cascade fitDirectionalCascade(const CameraInfo& camera, const glm::mat4& 
     }
     // Half a texel of slack each side: the slice's silhouette lands on texels, not between them.
     const glm::vec2 pad = 0.5f * (glm::vec2(hi) - glm::vec2(lo)) / float(res) + 1e-5f;
-    cascade.light = cascade_detail::orthographic(lightView, glm::vec2(lo) - pad, glm::vec2(hi) + pad, lo.z, hi.z, casters);
+    cascade.light = cascade_detail::orthographic(lightView, 0.5f * (glm::vec2(lo) + glm::vec2(hi)),
+                                                 0.5f * (glm::vec2(hi) - glm::vec2(lo)) + pad, lo.z, hi.z, casters);
     cascade.texelWorldSize = (hi.x - lo.x + 2.0f * pad.x) / float(res);
     return cascade;
 }
