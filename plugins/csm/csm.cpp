@@ -168,10 +168,7 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
         glViewport(0, 0, resolution_, resolution_);
         glClear(GL_DEPTH_BUFFER_BIT);
-        if (depth.cull != kit::Cull::None) {
-            glEnable(GL_CULL_FACE);
-            glCullFace(depth.cull == kit::Cull::Back ? GL_BACK : GL_FRONT);
-        }
+        kit::applyCull(depth.cull);
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(depth.slopeBias, depth.constantBias);
         glEnable(GL_DEPTH_CLAMP);
@@ -209,12 +206,7 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
         maps_ = kit::makeTexture(host(), {.target = GL_TEXTURE_2D_ARRAY, .internalFormat = GL_DEPTH_COMPONENT32F,
                                           .width = resolution, .height = resolution, .depth = count,
                                           .label = "cascades"});
-        glTextureParameteri(maps_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(maps_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, maps_, 0);   // layered
-        glNamedFramebufferDrawBuffer(framebuffer_, GL_NONE);
-        glNamedFramebufferReadBuffer(framebuffer_, GL_NONE);
-        host().checkFramebuffer(framebuffer_, "cascades");
+        kit::attachDepthTarget(host(), framebuffer_, maps_, "cascades");   // layered: gl_Layer picks the cascade
     }
 
     void fitCascades(const FrameContext& frame, const kit::CascadeRanges& ranges, const kit::CascadeFitConfig& config) {

@@ -1,7 +1,8 @@
 // Cascaded shadow maps: the camera frustum cut into slices along the view depth, one map per slice
 // (seed 002 sec. 7.1: "a partitioning of the view frustum into subsets and each subset is rendered
-// into its own shadow map"). Pure maths, no GL: tests/test_cascades.cpp checks it against closed
-// forms. plugins/csm renders the maps; docs/cascades.md explains the choices.
+// into its own shadow map"; seed 000 sec. 2.2.6 names shadow-map partitioning beside warping).
+// Pure maths, no GL: tests/test_cascades.cpp checks it against closed forms. plugins/csm renders
+// the maps; docs/cascades.md explains the choices.
 //
 // Splits, the practical scheme (Zhang, Sun, Xu and Lo 2006, "Parallel-split shadow maps for
 // large-scale virtual environments"; GPU Gems 3 ch. 10, eq. 10.1-10.3): with N slices over view

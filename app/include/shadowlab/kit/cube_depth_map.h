@@ -59,7 +59,6 @@ public:
                             error))
             return false;
         framebuffer_ = makeFramebuffer(host, "cube shadow map");
-        uniforms_.create(host, "cube shadow map uniforms");
         return true;
     }
 
@@ -77,10 +76,7 @@ public:
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
         glViewport(0, 0, resolution_, resolution_);
         glClear(GL_DEPTH_BUFFER_BIT);
-        if (config.cull != Cull::None) {
-            glEnable(GL_CULL_FACE);
-            glCullFace(config.cull == Cull::Back ? GL_BACK : GL_FRONT);
-        }
+        applyCull(config.cull);
         host_->drawScene(DrawSet::OpaqueCasters, program_.use());
         report();
     }
@@ -109,19 +105,16 @@ public:
     }
 
     // (Re)allocates the cube (six faces, counted so by the host) when resolution or format change.
+    // The block's buffer comes with the first cube, so a technique that never meets a point light
+    // holds nothing of the cube path.
     void ensureTexture(int resolution, GLenum format = GL_DEPTH_COMPONENT32F) {
         if (texture_ && resolution == resolution_ && format == format_) return;
+        if (!texture_) uniforms_.create(*host_, "cube shadow map uniforms");
         resolution_ = resolution;
         format_ = format;
         texture_ = makeTexture(*host_, {.target = GL_TEXTURE_CUBE_MAP, .internalFormat = format, .width = resolution,
                                         .height = resolution, .label = "cube shadow map"});
-        glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        // Layered: gl_Layer picks the face.
-        glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, texture_, 0);
-        glNamedFramebufferDrawBuffer(framebuffer_, GL_NONE);
-        glNamedFramebufferReadBuffer(framebuffer_, GL_NONE);
-        host_->checkFramebuffer(framebuffer_, "cube shadow map");
+        attachDepthTarget(*host_, framebuffer_, texture_, "cube shadow map");   // layered: gl_Layer picks the face
     }
 
     GLuint texture() const { return texture_; }
