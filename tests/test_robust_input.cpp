@@ -522,8 +522,8 @@ TEST(RobustBench, EveryValueIsCheckedBeforeTheRunNamingTheOption) {
     EXPECT_TRUE(checkBenchSpec(commandLineSpec({"resolution=256,512", "light.size=0.5,2"}), realTechniques(), error)) << error;
 
     EXPECT_MENTIONS(specError(commandLineSpec({"light.size=abc"})), "--sweep light.size=...: 'abc' is not a number");
-    // Named after the first technique with the parameter (by category, then id: lispsm among the hard ones).
-    EXPECT_MENTIONS(specError(commandLineSpec({"resolution=256,abc"})), "--sweep resolution=...: lispsm: parameter 'resolution': 'abc' is not a number");
+    // Named after the first technique with the parameter (by category, then id: csm among the hard ones).
+    EXPECT_MENTIONS(specError(commandLineSpec({"resolution=256,abc"})), "--sweep resolution=...: csm: parameter 'resolution': 'abc' is not a number");
     EXPECT_MENTIONS(specError(commandLineSpec({"resolution=100000"})), "out of range");
     EXPECT_MENTIONS(specError(commandLineSpec({"scene.floating=4,lots"})), "'lots' is not a number");
     EXPECT_MENTIONS(specError(commandLineSpec({"light.size=50"})), "'50' on scene 'cube': a directional light's size");

@@ -12,6 +12,9 @@
 // closer to the light. The cone bias (a receiver bias proportional to the tap's distance from
 // the centre and to the receiver's slope, sec. 3.2.4 last paragraph) removes that acne at the
 // price of some peter panning under large kernels.
+// Point lights: the kit's cube map (kit/cube_depth_map.h), the n x n taps laid across the ray from
+// the light (shaders/cube_shadow.glsl), with the cone bias; `sampling = gather` uses the taps there.
+#include <shadowlab/kit/cube_depth_map.h>
 #include <shadowlab/kit/depth_map.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
@@ -80,19 +83,25 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
 class PercentageCloserFiltering final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         uniforms_.create(host(), "pcf uniforms");
-        return map_.create(host(), error);
+        return map_.create(host(), error) && cube_.create(host(), error);
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        map_.render(frame, {.resolution = params.asInt(kResolution),
-                            .constantBias = params.asFloat(kConstantBias),
-                            .slopeBias = params.asFloat(kSlopeBias),
-                            .fit = kit::readFit(params, kFit, kSnap)});
+        const kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
+                                         .constantBias = params.asFloat(kConstantBias),
+                                         .slopeBias = params.asFloat(kSlopeBias),
+                                         .fit = kit::readFit(params, kFit, kSnap)};
+        if (frame.light.type == LightType::Point) return cube_.render(frame, config);
+        map_.render(frame, config);
     }
 
-    void bindMainPass(const FrameContext&, const ParamValues& params) override {
+    void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
         const bool bilinear = params.asBool(kHardwareFilter);
-        map_.bindMainPass(bilinear ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+        const SamplerKind sampling = bilinear ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
+        if (frame.light.type == LightType::Point)
+            cube_.bindMainPass(sampling);
+        else
+            map_.bindMainPass(sampling);
         // The gather fetches the texels of taps one texel apart; other spacings use the taps.
         const bool gather = params.asInt(kSampling) == 1 && params.asFloat(kOffsetScale) == 1.0f;
         const bool coneBias = params.asBool(kConeBias);
@@ -101,6 +110,7 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
     }
 
     kit::DepthMap map_;
+    kit::CubeDepthMap cube_;
     kit::UniformBlock<shared::pcf::PcfUniforms> uniforms_;
 };
 

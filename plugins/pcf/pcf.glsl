@@ -15,6 +15,7 @@
 #include "light_space.glsl"
 #include "light_depth.glsl"
 #include "box_pcf.glsl"
+#include "cube_shadow.glsl"
 
 #include "shadowlab/kit/depth_map_shared.h"
 #include "pcf_shared.h"
@@ -88,6 +89,7 @@ float pcfGather(vec3 coord, float slope) {
 }
 
 vec3 shadowTerm(ShadowInput s) {
+    if (lightType() == LIGHT_POINT) return vec3(cubeShadow(s.worldPos, s.worldNormal, uKernel, uOffsetScale, uConeBias));
     vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
     if (!insideShadowMap(coord)) return vec3(1.0);
     float slope = uConeBias * receiverDepthSlope(s.worldNormal, uLightAxis, coord.z, uLightDepth, uLightWorldSize);

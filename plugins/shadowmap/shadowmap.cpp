@@ -8,6 +8,9 @@
 // Options: constant and slope-scaled bias through glPolygonOffset, culling of front faces in
 // the shadow pass (only back faces are stored; seed 002 "biasing with back faces"), and the
 // hardware's 2x2 comparison filter (sampler2DShadow with linear filtering).
+// Point lights: a cube of six faces storing the linear distance (kit/cube_depth_map.h), with the
+// same resolution (per face), bias, culling and filter; `fit` and `snap` do not apply to it.
+#include <shadowlab/kit/cube_depth_map.h>
 #include <shadowlab/kit/depth_map.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
@@ -51,22 +54,27 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
     kParams);
 
 class ShadowMapping final : public kit::TechniqueBase {
-    bool setup(std::string& error) override { return map_.create(host(), error); }
+    bool setup(std::string& error) override { return map_.create(host(), error) && cube_.create(host(), error); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        map_.render(frame, {.resolution = params.asInt(kResolution),
-                            .format = kit::depthFormat(params.asInt(kDepthFormat)),
-                            .constantBias = params.asFloat(kConstantBias),
-                            .slopeBias = params.asFloat(kSlopeBias),
-                            .cull = kit::Cull(params.asInt(kCull)),
-                            .fit = kit::readFit(params, kFit, kSnap)});
+        const kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
+                                         .format = kit::depthFormat(params.asInt(kDepthFormat)),
+                                         .constantBias = params.asFloat(kConstantBias),
+                                         .slopeBias = params.asFloat(kSlopeBias),
+                                         .cull = kit::Cull(params.asInt(kCull)),
+                                         .fit = kit::readFit(params, kFit, kSnap)};
+        if (frame.light.type == LightType::Point) return cube_.render(frame, config);
+        map_.render(frame, config);
     }
 
-    void bindMainPass(const FrameContext&, const ParamValues& params) override {
-        map_.bindMainPass(params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+    void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
+        const SamplerKind sampling = params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
+        if (frame.light.type == LightType::Point) return cube_.bindMainPass(sampling);
+        map_.bindMainPass(sampling);
     }
 
     kit::DepthMap map_;
+    kit::CubeDepthMap cube_;
 };
 
 } // namespace

@@ -40,6 +40,27 @@ struct DepthMapConfig {
     const Program* program = nullptr;
 };
 
+// The shadow pass's face culling (none, back or front faces).
+inline void applyCull(Cull cull) {
+    if (cull == Cull::None) return;
+    glEnable(GL_CULL_FACE);
+    glCullFace(cull == Cull::Back ? GL_BACK : GL_FRONT);
+}
+
+// A depth texture as a framebuffer's only attachment (the whole texture: layered for arrays and
+// cube maps, gl_Layer picking the layer), with nearest filtering and clamping so it is complete for
+// plain reads without a sampler object too (pcss's min-depth pass fetches the map).
+inline void attachDepthTarget(IHost& host, GLuint framebuffer, GLuint texture, const char* what) {
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, texture, 0);
+    glNamedFramebufferDrawBuffer(framebuffer, GL_NONE);
+    glNamedFramebufferReadBuffer(framebuffer, GL_NONE);
+    host.checkFramebuffer(framebuffer, what);
+}
+
 // depth_format parameter index (kit::depthFormatParam) -> GL format.
 inline GLenum depthFormat(int index) {
     static constexpr GLenum kFormats[] = {GL_DEPTH_COMPONENT16, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT32F};
@@ -83,10 +104,7 @@ public:
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
         glViewport(0, 0, resolution_, resolution_);
         glClear(GL_DEPTH_BUFFER_BIT);
-        if (config.cull != Cull::None) {
-            glEnable(GL_CULL_FACE);
-            glCullFace(config.cull == Cull::Back ? GL_BACK : GL_FRONT);
-        }
+        applyCull(config.cull);
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(config.slopeBias, config.constantBias);
         DrawRequest request;
@@ -112,15 +130,7 @@ public:
         format_ = format;
         texture_ = makeTexture(*host_, {.target = GL_TEXTURE_2D, .internalFormat = format, .width = resolution,
                                         .height = resolution, .label = "shadow map"});
-        // Complete for plain reads without a sampler object too (pcss's min-depth pass fetches it).
-        glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTextureParameteri(texture_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, texture_, 0);
-        glNamedFramebufferDrawBuffer(framebuffer_, GL_NONE);
-        glNamedFramebufferReadBuffer(framebuffer_, GL_NONE);
-        host_->checkFramebuffer(framebuffer_, "shadow map");
+        attachDepthTarget(*host_, framebuffer_, texture_, "shadow map");
         host_->registerDebugImage("shadow map", texture_, DebugImageKind::Depth);
     }
 
