@@ -402,6 +402,7 @@ bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string
     const CameraInfo camera = camera_.info(size);
     addViewDepthThirds(out.metrics, out.technique, out.reference, out.mask, positions.data(), size.x, size.y, camera.view,
                        camera.nearPlane, camera.farPlane);
+    out.positions = positions;
     out.referenceFloor = out.referenceStats.sampleError.empty()
                              ? 0.0
                              : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);

@@ -14,11 +14,12 @@ cmake --build "$build" -j"${JOBS:-$(nproc)}"
 
 status=0
 summary=""
-for target in scene obj bench_spec; do
+for target in scene obj bench_spec path; do
     case $target in
     scene) seeds=(assets/scenes tests/fuzz/corpus/scene tests/fuzz/regressions/scene); dict=scene.dict; max_len=16384 ;;
     obj) seeds=(tests/fuzz/corpus/obj tests/fuzz/regressions/obj); dict=obj.dict; max_len=16384 ;;
     bench_spec) seeds=(assets/bench tests/fuzz/corpus/bench tests/fuzz/regressions/bench); dict=bench.dict; max_len=8192 ;;
+    path) seeds=(assets/stress tests/fuzz/corpus/path tests/fuzz/regressions/path); dict=path.dict; max_len=16384 ;;
     esac
     corpus="$build/corpus/$target"
     artifacts="$build/artifacts/$target"
