@@ -172,7 +172,7 @@ TEST(TemporalMetrics, ATechniqueThatChangesAsTheTruthDoesHasNoFlicker) {
     shade(b, 10.3f);
     const TemporalFrameMetrics same = compareConsecutiveFrames(a, b);
     EXPECT_EQ(same.flicker, 0.0);
-    EXPECT_GT(same.pixels, 8u * 28u);
+    EXPECT_GT(same.pixels, 6u * 28u);   // the last row and column have no neighbour beyond them
     // The technique's edge crawls by a whole pixel while the truth stands still: one column of 8
     // rows changes by 1 (bilinear reprojection: about 1 - 0.4 of it at the neighbours).
     TemporalFrame c = planeFrame(32, 8, 0.4f);

@@ -47,6 +47,24 @@ bool timePath(App& app, const std::string& technique, const CameraPath& path, co
     return true;
 }
 
+// The last frame's shadow maps and light seen from another camera: its main pass again with the
+// accuracy targets, untimed, `camera` in place of the frame's, so the previous frame's shadow term
+// is evaluated at the current frame's pixels exactly. Not for techniques with the camera
+// pre-pass (their term is per pixel of their own view).
+bool renderPreviousMapsFrom(App& app, const std::string& technique, const CameraInfo& camera, std::string& error) {
+    LoadedTechnique* loaded = app.techniques().get(technique, error);
+    if (!loaded) return false;
+    const std::vector<double>& values = app.params().values(loaded->info());
+    const ParamValues params(values.data(), uint32_t(values.size()));
+    FrameContext frame = app.lastFrame();
+    frame.camera = camera;
+    app.renderer().setView(frame.camera, frame.light);
+    if (app.depthPrepass()) app.renderer().mainDepthPrepass(FrameOutputs::Accuracy);
+    app.renderer().mainPass(loaded->mainProgram(FrameOutputs::Accuracy), FrameOutputs::Accuracy,
+                            [&] { loaded->technique().bindMainPass(frame, params); });
+    return true;
+}
+
 AccuracyMetrics regionMetrics(const Evaluation& e, const std::vector<uint8_t>& region, const CameraInfo& camera) {
     std::vector<uint8_t> mask = e.mask;
     for (size_t i = 0; i < mask.size() && i < region.size(); ++i) mask[i] = mask[i] && region[i];
@@ -75,7 +93,27 @@ bool measurePath(App& app, const std::string& technique, const CameraPath& path,
     TemporalFrame previous, current;
     std::vector<TemporalFrameMetrics> temporal;
     TemporalChanges changes;
+    const TechniqueInfo* techniqueInfo = app.techniques().find(technique);
+    // Exact: the previous frame's maps and light at the current pixels. Techniques with the camera
+    // pre-pass hold a per-pixel term of their own view, so they are reprojected as images instead.
+    const bool samePoints = techniqueInfo && !(techniqueInfo->flags & kTechniqueNeedsCameraPrepass);
+    std::vector<glm::vec3> previousTechnique, previousReference;
     for (int frame = 0; frame < path.frames; ++frame) {
+        if (frame > 0 && samePoints) {
+            // Frame t's camera, frame t-1's maps and light (the app's light is still t-1's).
+            SceneCamera c = camera;
+            LightInfo unusedLight = light;
+            applyPathState(samplePath(path, path.frameTime(frame)), c, unusedLight);
+            app.camera().reset(c);
+            if (!renderPreviousMapsFrom(app, technique, app.camera().info(app.renderer().size()), error)) return false;
+            const auto positions = app.renderer().readTarget(MainTarget::Position);
+            const auto normals = app.renderer().readTarget(MainTarget::Normal);
+            const auto visibility = app.renderer().readTarget(MainTarget::Visibility);
+            previousTechnique.resize(visibility.size());
+            for (size_t i = 0; i < visibility.size(); ++i) previousTechnique[i] = glm::clamp(glm::vec3(visibility[i]), 0.0f, 1.0f);
+            const GBufferView gbuffer{app.renderer().size().x, app.renderer().size().y, positions.data(), normals.data()};
+            if (!app.traceReference(gbuffer, options.reference, previousReference, error)) return false;
+        }
         setPathFrame(app, path, frame, camera, light);
         if (!app.renderFrame(technique, error)) return false;
         Evaluation e;
@@ -94,7 +132,8 @@ bool measurePath(App& app, const std::string& technique, const CameraPath& path,
         current.viewProjection = info.viewProjection;
         current.eye = info.position;
         if (frame > 0) {
-            result.temporal = compareConsecutiveFrames(previous, current, &changes, &region);
+            result.temporal = samePoints ? compareAtSamePoints(previousTechnique, previousReference, current, &changes, &region)
+                                         : compareConsecutiveFrames(previous, current, &changes, &region);
             temporal.push_back(result.temporal);
         }
         if (options.onFrame) options.onFrame(result, e, frame > 0 ? &changes : nullptr);

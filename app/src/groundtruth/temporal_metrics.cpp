@@ -81,6 +81,41 @@ TemporalFrameMetrics compareConsecutiveFrames(const TemporalFrame& previous, con
     return m;
 }
 
+TemporalFrameMetrics compareAtSamePoints(const std::vector<glm::vec3>& previousTechnique,
+                                         const std::vector<glm::vec3>& previousReference, const TemporalFrame& current,
+                                         TemporalChanges* changes, const std::vector<uint8_t>* region) {
+    checkFrame(current, "current");
+    const size_t pixels = current.mask.size();
+    if (previousTechnique.size() != pixels || previousReference.size() != pixels || (region && region->size() != pixels))
+        throw std::invalid_argument("compareAtSamePoints: the previous images or the region are not width x height");
+    if (changes) {
+        changes->deltaTechnique.assign(pixels, 0.0f);
+        changes->deltaReference.assign(pixels, 0.0f);
+        changes->valid.assign(pixels, 0);
+    }
+    TemporalFrameMetrics m;
+    double sumFlicker = 0.0, sumNoise = 0.0;
+    for (size_t i = 0; i < pixels; ++i) {
+        if (!current.mask[i] || (region && !(*region)[i])) continue;
+        const double dv = double(scalar(current.technique[i])) - double(scalar(previousTechnique[i]));
+        const double dr = double(scalar(current.reference[i])) - double(scalar(previousReference[i]));
+        ++m.pixels;
+        sumFlicker += std::abs(dv - dr);
+        if (std::abs(dr) < kConstantReference) {
+            ++m.constantPixels;
+            sumNoise += 0.5 * dv * dv;
+        }
+        if (changes) {
+            changes->deltaTechnique[i] = float(dv);
+            changes->deltaReference[i] = float(dr);
+            changes->valid[i] = 1;
+        }
+    }
+    m.flicker = m.pixels ? sumFlicker / double(m.pixels) : 0.0;
+    m.noiseVariance = m.constantPixels ? sumNoise / double(m.constantPixels) : 0.0;
+    return m;
+}
+
 TemporalSummary summarizeTemporal(const std::vector<TemporalFrameMetrics>& frames) {
     TemporalSummary s;
     s.comparisons = int(frames.size());

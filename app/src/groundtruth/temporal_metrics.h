@@ -2,7 +2,9 @@
 // from one frame to the next, against how the ray-traced reference changes at the same surface
 // points. Pure CPU, no Embree; the per-frame images are those of App::evaluate (metrics.h).
 //
-// The previous frame is reprojected to the current pixels through world positions: the current
+// Two ways to bring the previous frame to the current pixels. Exact (compareAtSamePoints): the
+// previous frame's maps and light evaluated at the current pixels' world positions. Reprojected
+// (compareConsecutiveFrames), for terms that exist only per pixel of their own view: the current
 // pixel's world position p goes through the previous view-projection to a point of the previous
 // image, whose technique and reference values are interpolated bilinearly from its 4 nearest
 // pixels. A pixel counts as visible in both frames when it is compared now (metrics.h
@@ -63,6 +65,15 @@ struct TemporalChanges {
 // `region` (optional, width * height): only pixels where it is 1 are counted.
 TemporalFrameMetrics compareConsecutiveFrames(const TemporalFrame& previous, const TemporalFrame& current,
                                               TemporalChanges* changes = nullptr, const std::vector<uint8_t>* region = nullptr);
+
+// The exact form, without resampling: the previous frame's technique and reference evaluated at
+// the current frame's own pixels (its shadow maps and light applied to the current world
+// positions, App::renderAccuracyTargetsFrom), so each pixel compares the same surface point in
+// both frames and no pixel is lost to disocclusion. Same definitions as above, over the pixels
+// of `mask` (and `region` when given).
+TemporalFrameMetrics compareAtSamePoints(const std::vector<glm::vec3>& previousTechnique,
+                                         const std::vector<glm::vec3>& previousReference, const TemporalFrame& current,
+                                         TemporalChanges* changes = nullptr, const std::vector<uint8_t>* region = nullptr);
 
 struct TemporalSummary {
     double meanFlicker = 0.0;     // mean of E_t over the path's comparisons
