@@ -39,6 +39,41 @@ expect 0 "wrote" -- render --backend osmesa -t shadowmap --view "shadow map" --s
 [ -s "$tmp/map.png" ] || { echo "FAIL: no PNG written"; failures=$((failures + 1)); }
 expect 0 '"id": "shadowmap"' -- list --json
 
+# --- issue 12: camera and light paths, `bench --path`, `render --path`, `stress`.
+printf '{"keyframes": [{"time": 1}, {"time": 0.5}]}' > "$tmp/backwards.json"
+printf '{"keyframes": [{"time": 0, "camera": {"posiiton": [0, 1, 2]}}]}' > "$tmp/typo.json"
+printf '{"keyframes": [{"time": 0, "light": {"position": [0, 5, 0]}}]}' > "$tmp/positioned.json"
+printf '{"keyframes": [' > "$tmp/truncated.json"
+pathrender=(render --backend osmesa --size 48x32 -t shadowmap)
+expect 2 "backwards.json: keyframes\[1\].time: times must increase" -- "${pathrender[@]}" --path "$tmp/backwards.json" --out "$tmp/frames"
+expect 2 "typo.json: keyframes\[0\].camera.posiiton: unknown field" -- "${pathrender[@]}" --path "$tmp/typo.json" --out "$tmp/frames"
+expect 2 "positioned.json: moves the light by position, but scene 'cube' has a directional light" -- "${pathrender[@]}" --path "$tmp/positioned.json" --out "$tmp/frames"
+expect 2 "truncated.json" -- "${pathrender[@]}" --path "$tmp/truncated.json" --out "$tmp/frames"
+expect 2 "no-such-path.json" -- "${pathrender[@]}" --path "$tmp/no-such-path.json" --out "$tmp/frames"
+expect 2 "not a file, nor a path of scene 'cube' or a built-in path (orbit, dolly" -- "${pathrender[@]}" --path spiral --out "$tmp/frames"
+expect 2 "backwards.json" -- bench --backend osmesa --size 48x32 --techniques shadowmap --path "$tmp/backwards.json" --out "$tmp/p.json"
+expect 2 "--path: times one setting per technique" -- bench --backend osmesa --techniques shadowmap --path orbit --sweep resolution=512,1024 --out "$tmp/p.json"
+expect 0 "wrote 3 frames of path 'dolly'" -- "${pathrender[@]}" --path dolly --path-frames 3 --out "$tmp/frames"
+[ "$(ls "$tmp/frames" | grep -c '^frame_0000[0-2].png$')" = 3 ] || { echo "FAIL: render --path did not write frame_00000..2.png"; failures=$((failures + 1)); }
+expect 0 "p50" -- bench --backend osmesa --size 48x32 --techniques shadowmap,pcf --path sweep --path-frames 6 --warmup 2 --accuracy --out "$tmp/path.json"
+python3 - "$tmp/path.json" <<'PY' || { echo "FAIL: bench --path results"; failures=$((failures + 1)); }
+import json, sys
+rows = json.load(open(sys.argv[1]))
+assert [r["technique"] for r in rows] == ["shadowmap", "pcf"], rows
+for r in rows:
+    assert len(r["frame_ms_per_frame"]) == 6 and r["frame_ms_p5"] <= r["frame_ms_p50"] <= r["frame_ms_p95"] <= r["frame_ms_max"], r
+    assert len(r["flicker_per_frame"]) == 6 and r["flicker_mean"] >= 0 and r["popping"] >= 0, r
+print("ok: bench --path rows: per-frame times, percentiles, temporal metrics")
+PY
+printf '{"cases": [{"id": "x", "title": "t", "scene": "cube", "metric": "flicker", "threshold": 0.1, "claim": "c", "source": "s"}]}' > "$tmp/cases.json"
+expect 2 "cases.json: cases\[0\].metric: a temporal metric needs a path" -- stress --backend osmesa --cases-file "$tmp/cases.json" --out "$tmp/stress"
+expect 2 "--techniques: no technique 'nonesuch'" -- stress --backend osmesa --techniques nonesuch --out "$tmp/stress"
+expect 2 "--cases: no case 'nonesuch'" -- stress --backend osmesa --techniques shadowmap --cases nonesuch --out "$tmp/stress"
+expect 0 "stress: 2 cells" -- stress --backend osmesa --techniques shadowmap,reference --cases acne-5 --out "$tmp/stress"
+for file in README.md results.json results.csv stress.png images/shadowmap-acne-5.png; do
+    [ -s "$tmp/stress/$file" ] || { echo "FAIL: stress did not write $file"; failures=$((failures + 1)); }
+done
+
 # --- issue 13: every bad input is a clear error (exit 2 naming the file or option), never a
 # crash, a hang or an exhausted machine. Each run is bounded by `timeout`, so a hang fails.
 build=$(dirname "$shadowlab")

@@ -106,3 +106,11 @@ TEST(FuzzRegressions, TourInputsReplayCleanly) {
         return true;
     });
 }
+
+TEST(FuzzRegressions, PathInputsReplayCleanly) {
+    EXPECT_GE(replay({kFuzz / "regressions" / "path"}, [](const std::string& text) { return fuzz::fuzzPath(bytes(text), text.size()); }), 7);
+    replay({kFuzz / "corpus" / "path", kSource / "assets" / "stress"}, [](const std::string& text) {
+        EXPECT_TRUE(fuzz::fuzzPath(bytes(text), text.size())) << "a seed that is refused";
+        return true;
+    });
+}

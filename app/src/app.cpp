@@ -420,6 +420,7 @@ bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string
         out.footprint = measureTexelFootprint(gbuffer, out.mask, frame_.camera, frame_.light, loaded->host().shadowMaps());
     else
         return false;
+    out.positions = positions;
     out.referenceFloor = out.referenceStats.sampleError.empty()
                              ? 0.0
                              : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);

@@ -66,6 +66,7 @@ struct Evaluation {
     std::vector<glm::vec3> technique;   // the technique's shadow term per pixel
     std::vector<glm::vec3> reference;
     std::vector<uint8_t> mask;          // compared pixels
+    std::vector<glm::vec4> positions;   // the frame's world positions (w = 1 where drawn): temporal metrics
     int width = 0;
     int height = 0;
     double traceSeconds = 0.0;

@@ -21,6 +21,8 @@
 #include "util/strings.h"
 #include "app.h"
 #include "bench/bench.h"
+#include "bench/path_run.h"
+#include "bench/stress.h"
 #include "bench/report.h"
 #include "groundtruth/reference_technique.h"
 #include "ui/session.h"
@@ -324,10 +326,21 @@ ViewSelection parseView(const std::string& text) {
 }
 
 int commandRender(const CommonOptions& common, const std::string& out, const std::string& view, int frames,
-                  const std::string& reference, int samples, const WindowOptions& compare) {
+                  const std::string& reference, int samples, const WindowOptions& compare, const std::string& path,
+                  int pathFrames) {
     App app;
     if (int code = startApp(app, common, false)) return code;
     std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;
+    if (!path.empty()) {
+        // Every frame of a camera and light path, numbered, into the folder --out (docs/stability.md).
+        if (!compare.compare.empty()) return fail("--path: one technique at a time (without --compare)", kExitBadInput);
+        if (view == "error" || view == "reference") return fail("--path: --view " + view + " is not drawn per frame", kExitBadInput);
+        if (!app.techniques().find(technique)) return fail("--technique '" + technique + "': no such technique", kExitBadInput);
+        std::string error;
+        if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
+        const int code = renderPath(app, technique, path, pathFrames, view, out, error);
+        return code ? fail(error, code) : 0;
+    }
     // --compare A,B (or --compare B with --technique A): both techniques in one image, labelled.
     std::string other;
     if (!compare.compare.empty()) {
@@ -539,6 +552,67 @@ int commandBench(const CommonOptions& common, std::vector<BenchSpec> specs, cons
     return 0;
 }
 
+// `bench --path`: every frame of a path timed per technique and scene (docs/stability.md).
+int commandBenchPath(const CommonOptions& common, const PathBenchOptions& options, const std::string& out) {
+    {
+        // The scenes are checked before a context exists.
+        for (const std::string& scene : options.scenes) {
+            try {
+                checkScene(scene);
+            } catch (const SceneError& e) {
+                return fail(std::string("--scenes: ") + e.what(), kExitBadInput);
+            }
+        }
+    }
+    App app;
+    if (int code = startApp(app, common, false)) return code;
+    std::string error;
+    for (const std::string& scene : options.scenes.empty() ? std::vector<std::string>{app.scene().name} : options.scenes) {
+        // Each scene's path resolved up front, so a bad --path fails before the first frame.
+        Scene loaded = loadScene(scene);
+        CameraPath path;
+        BuiltinPathOptions pathOptions;
+        pathOptions.frames = options.frames;
+        if (!resolvePath(options.path, loaded, pathOptions, path, error)) return fail(error, kExitBadInput);
+    }
+    std::vector<nlohmann::json> rows;
+    auto onRow = [&](const nlohmann::json& row) {
+        std::printf("%-12s %-20s path %-8s %4d frames  frame ms p5 %.3f  p50 %.3f  p95 %.3f  max %.3f (frame %d)%s\n",
+                    row["scene"].get<std::string>().c_str(), row["technique"].get<std::string>().c_str(),
+                    row["path"].get<std::string>().c_str(), row["frames"].get<int>(), row["frame_ms_p5"].get<double>(),
+                    row["frame_ms_p50"].get<double>(), row["frame_ms_p95"].get<double>(), row["frame_ms_max"].get<double>(),
+                    row["frame_ms_max_frame"].get<int>(),
+                    row.contains("flicker_mean")
+                        ? ("  flicker " + std::to_string(row["flicker_mean"].get<double>()) + "  popping " +
+                           std::to_string(row["popping"].get<double>())).c_str()
+                        : "");
+        std::string writeError;
+        if (!writeBenchResults(out, rows, writeError)) logWarning(writeError);
+    };
+    if (int code = benchPath(app, options, rows, onRow, error)) return fail(error, code);
+    if (!writeBenchResults(out, rows, error)) return fail(error, kExitFailure);
+    logInfo("wrote " + std::to_string(rows.size()) + " rows to " + out);
+    return 0;
+}
+
+// `stress`: the failure suite (assets/stress/cases.json; docs/stability.md).
+int commandStress(const CommonOptions& common, const std::string& casesFile, const std::string& sizeText, StressOptions options) {
+    StressSuite suite;
+    std::string error;
+    if (!loadStressSuite(casesFile.empty() ? defaultStressCases() : std::filesystem::path(casesFile), suite, error))
+        return fail(error, kExitBadInput);
+    if (!sizeText.empty()) {
+        glm::ivec2 size;
+        if (!parseSize(sizeText, size, error, "--stress-size")) return fail(error, kExitBadInput);
+        options.size = size;
+    }
+    App app;
+    if (int code = startApp(app, common, false)) return code;
+    std::vector<StressCell> cells;
+    const int code = runStress(app, suite, options, cells, error);
+    return code ? fail(error, code) : 0;
+}
+
 // Hot-reload latency: the plugin library is rewritten on disk (as a rebuild does) and the time to
 // the end of the first frame drawn with the new library is measured, `trials` times.
 int commandReloadLatency(const CommonOptions& common, int trials) {
@@ -651,6 +725,12 @@ int run(int argc, char** argv) {
     render->add_option("--wipe", renderCompare.wipe, "with --compare-layout wipe: divider position, 0..1 (default 0.5)")
         ->check(CLI::Range(0.0, 1.0));
     render->add_option("--ui-scale", renderCompare.uiScale, "with --compare: size of the labels (default 1)")->check(CLI::Range(0.5, 4.0));
+    std::string renderPathText;
+    int renderPathFrames = 0;
+    render->add_option("--path", renderPathText,
+                       "camera and light path (a JSON file, a path of the scene or built-in: orbit, dolly, sweep, walk, "
+                       "static): every frame to --out FOLDER/frame_NNNNN.png (and frames.mp4 with ffmpeg)");
+    render->add_option("--path-frames", renderPathFrames, "with --path: frames along it (default: the path's own)")->check(CLI::Range(1, 100000));
 
     auto* bench = cli.add_subcommand("bench", "measure sweeps of techniques, scenes and parameters into CSV or JSON");
     BenchSpec benchSpec;
@@ -673,6 +753,22 @@ int run(int argc, char** argv) {
     bench->add_flag("--depth-floor", benchSpec.depthFloor, "add a bare depth-only pass per shadow-map resolution");
     bench->add_option("--spec", benchSpecFile, "JSON spec (one object or an array); command-line lists are ignored then");
     bench->add_option("--out,-o", benchOut, "results file: .csv or .json")->required();
+    std::string benchPathText;
+    int benchPathFrames = 0;
+    bench->add_option("--path", benchPathText,
+                      "time every frame along a camera and light path (a JSON file, a path of the scene or built-in: "
+                      "orbit, dolly, sweep, walk, static): p5/p50/p95/max per technique and scene; --accuracy adds the "
+                      "temporal metrics");
+    bench->add_option("--path-frames", benchPathFrames, "with --path: frames along it (default: the path's own)")->check(CLI::Range(1, 100000));
+
+    auto* stress = cli.add_subcommand("stress", "the failure suite: named cases where techniques fail, table, chart and images");
+    StressOptions stressOptions;
+    std::string stressTechniques, stressCases, stressCasesFile, stressOut = "out/stress", stressSize;
+    stress->add_option("--techniques", stressTechniques, "comma-separated technique ids (default: every technique found)");
+    stress->add_option("--cases", stressCases, "comma-separated case ids (default: all)");
+    stress->add_option("--cases-file", stressCasesFile, "cases file (default assets/stress/cases.json)");
+    stress->add_option("--out,-o", stressOut, "output folder (default out/stress)");
+    stress->add_option("--stress-size", stressSize, "render size WIDTHxHEIGHT (default: the cases file's, 160x120)");
 
     auto* report = cli.add_subcommand("report", "run the default sweep and write charts, images and a Markdown page");
     std::string reportSpec, reportOut = "out";
@@ -726,7 +822,45 @@ int run(int argc, char** argv) {
         tourPages.outDir = tourOut;
         return commandTour(common, tourName, tourPages);
     }
-    if (*render) return commandRender(common, renderOut, renderView, renderFrames, reference, referenceSamples, renderCompare);
+    if (*render)
+        return commandRender(common, renderOut, renderView, renderFrames, reference, referenceSamples, renderCompare,
+                             renderPathText, renderPathFrames);
+    auto split = [](const std::string& text) {
+        std::vector<std::string> items;
+        std::stringstream in(text);
+        std::string item;
+        while (std::getline(in, item, ','))
+            if (!item.empty()) items.push_back(item);
+        return items;
+    };
+    if (*stress) {
+        stressOptions.techniques = split(stressTechniques);
+        stressOptions.cases = split(stressCases);
+        stressOptions.sets = common.sets;
+        stressOptions.outDir = stressOut;
+        stressOptions.quiet = common.quiet;
+        return commandStress(common, stressCasesFile, stressSize, stressOptions);
+    }
+    if (*bench && !benchPathText.empty()) {
+        if (!benchSpecFile.empty()) return fail("--path: with the command line's lists, not --spec", kExitBadInput);
+        if (!benchSweeps.empty()) return fail("--path: times one setting per technique (no --sweep)", kExitBadInput);
+        std::string error;
+        PathBenchOptions options;
+        options.techniques = split(benchTechniques);
+        options.scenes = split(benchScenes);
+        options.sets = common.sets;
+        options.path = benchPathText;
+        options.frames = benchPathFrames;
+        options.warmupFrames = benchSpec.warmupFrames;
+        options.accuracy = benchSpec.accuracy;
+        if (benchReference == "soft") options.reference = ReferenceOptions::Mode::Soft;
+        else if (benchReference != "hard" && benchReference != "auto")
+            return fail("--reference '" + benchReference + "': with --path, hard or soft", kExitBadInput);
+        if (benchSizes.size() > 1) return fail("--path: one --size", kExitBadInput);
+        CommonOptions pathCommon = common;
+        if (!benchSizes.empty()) pathCommon.size = benchSizes.front();
+        return commandBenchPath(pathCommon, options, benchOut);
+    }
     if (*bench) {
         std::vector<BenchSpec> specs;
         std::string error;
@@ -738,14 +872,6 @@ int run(int argc, char** argv) {
             benchSpec.fromCommandLine = true;
             benchSpec.reference = benchReference;
             benchSpec.referenceSamples = benchSamples;
-            auto split = [](const std::string& text) {
-                std::vector<std::string> items;
-                std::stringstream in(text);
-                std::string item;
-                while (std::getline(in, item, ','))
-                    if (!item.empty()) items.push_back(item);
-                return items;
-            };
             benchSpec.techniques = split(benchTechniques);
             if (!benchScenes.empty()) benchSpec.scenes = split(benchScenes);
             for (const auto& sweep : benchSweeps)

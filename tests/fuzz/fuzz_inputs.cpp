@@ -8,6 +8,8 @@
 #include <string>
 
 #include "bench/bench_spec.h"
+#include "bench/stress.h"
+#include "scene/camera_path.h"
 #include "scene/scene.h"
 #include "ui/tour.h"
 #include "util/text_file.h"
@@ -195,6 +197,39 @@ bool fuzzTour(const uint8_t* data, size_t size) {
         if (tourStepJson(again) != written) broken("a written step reads back differently: " + written.dump());
     }
     return true;
+}
+
+bool fuzzPath(const uint8_t* data, size_t size) {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    std::string error;
+    nlohmann::json json;
+    if (!parseJsonText(text, "fuzz-path.json", json, error)) {
+        if (error.empty()) broken("a JSON error without a message");
+        return false;
+    }
+    bool accepted = false;
+    CameraPath path;
+    if (parsePath(json, "fuzz-path.json", path, error)) {
+        accepted = true;
+        if (path.frames < 1 || path.frames > 100000) broken("a path with a frame count out of range");
+        // Every frame samples to finite values (the first, the last and a few between).
+        for (int frame : {0, path.frames / 3, path.frames / 2, path.frames - 1}) {
+            const PathState state = samplePath(path, path.frameTime(frame));
+            for (const auto& v : {state.cameraPosition, state.cameraTarget, state.cameraOrbit, state.lightDirection, state.lightPosition})
+                if (v && !finite(*v)) broken("a path samples to a non-finite value");
+            if (state.lightSize && !std::isfinite(*state.lightSize)) broken("a path samples to a non-finite light size");
+        }
+    } else if (error.rfind("fuzz-path.json", 0) != 0) {
+        broken("the error does not name the file: " + error);
+    }
+    StressSuite suite;
+    if (parseStressSuite(json, "fuzz-cases.json", suite, error)) {
+        accepted = true;
+        if (suite.cases.empty()) broken("a stress suite without cases was accepted");
+    } else if (error.rfind("fuzz-cases.json", 0) != 0) {
+        broken("the error does not name the file: " + error);
+    }
+    return accepted;
 }
 
 } // namespace shadowlab::fuzz

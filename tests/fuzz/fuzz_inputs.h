@@ -1,4 +1,4 @@
-// The fuzzing harness's three entry points, shared by the libFuzzer targets (fuzz_*.cpp, built by
+// The fuzzing harness's entry points, shared by the libFuzzer targets (fuzz_*.cpp, built by
 // tests/fuzz/CMakeLists.txt with clang, ASan and UBSan) and by the regression test that replays
 // every file in tests/fuzz/regressions and the seed corpus in the ordinary suite
 // (tests/test_fuzz_regressions.cpp).
@@ -35,5 +35,10 @@ bool fuzzBenchSpec(const uint8_t* data, size_t size);
 // holds only known techniques and parameters in range, and its steps written back as JSON
 // (tourStepJson, a saved session) read back as the same steps.
 bool fuzzTour(const uint8_t* data, size_t size);
+
+// A camera and light path (scene/camera_path.h) and, read from the same JSON, a stress cases file
+// (bench/stress.h): each either parses, with finite keyframes and samples, or fails with a message
+// naming the source. Returns whether either accepted it.
+bool fuzzPath(const uint8_t* data, size_t size);
 
 } // namespace shadowlab::fuzz

@@ -950,6 +950,18 @@ void buildScene(const json& root, SceneBuilder& builder, const std::map<std::str
 
     if (const json* light = fields.find("light")) scene.light = readLight(*light, builder.context);
     if (const json* camera = fields.find("camera")) scene.camera = readCamera(*camera, builder.context);
+    if (const json* paths = fields.find("paths")) {
+        // Named camera and light paths for `--path NAME` (camera_path.h, docs/stability.md).
+        if (!paths->is_object()) fields.fail("paths", "expected an object of named paths, got " + describe(*paths));
+        for (const auto& item : paths->items()) {
+            CameraPath path;
+            std::string error;
+            if (!parsePath(item.value(), sourceName + ": " + childPath("paths", item.key()), path, error)) throw SceneError(error);
+            path.name = item.key();
+            if (const std::string problem = pathSceneProblem(path, scene); !problem.empty()) throw SceneError(problem);
+            scene.paths.push_back(std::move(path));
+        }
+    }
     scene.ambient = fields.vec("ambient", scene.ambient, Range::NonNegative);
     scene.background = fields.vec("background", scene.background, Range::NonNegative);
     fields.finish("a scene");

@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/camera_path.h"
 #include "shadowlab/technique.h"
 
 namespace shadowlab {
@@ -95,14 +96,7 @@ struct SceneObject {
     glm::vec4 plane{0.0f, 1.0f, 0.0f, 0.0f}; // world-space (n, d), dot(n, x) + d = 0
 };
 
-struct SceneCamera {
-    glm::vec3 position{0.0f, 3.0f, 6.0f};
-    glm::vec3 target{0.0f};
-    glm::vec3 up{0.0f, 1.0f, 0.0f};
-    float fovY = 0.7854f;                      // radians
-    float nearPlane = 0.1f;
-    float farPlane = 100.0f;
-};
+// SceneCamera: scene/camera_path.h
 
 struct Scene {
     std::string name;
@@ -115,6 +109,7 @@ struct Scene {
     std::vector<SceneObject> objects;
     LightInfo light;                           // direction normalised
     SceneCamera camera;
+    std::vector<CameraPath> paths;             // the file's "paths" (camera_path.h), by name for --path
     glm::vec3 ambient{0.08f};
     glm::vec3 background{0.02f, 0.02f, 0.03f};
 
