@@ -25,6 +25,7 @@ App::~App() {
     // GL objects go while the context still exists.
     if (techniques_) techniques_->unloadAll();
     techniques_.reset();
+    shadowMapViews_.release();
     renderer_.reset();
     timer_.reset();
     shaders_.reset();
@@ -218,6 +219,31 @@ bool App::renderAccuracyTargets(std::string& error) {
                         [&] { loaded->technique().bindMainPass(frame_, params); });
     return true;
 }
+
+ViewSelection viewFromName(const std::string& name) {
+    if (name == "lit" || name.empty()) return {};
+    if (name == "visibility") return {ViewSelection::Kind::Visibility, ""};
+    if (name == "error") return {ViewSelection::Kind::ErrorHeatmap, ""};
+    if (name == "footprint") return {ViewSelection::Kind::Footprint, ""};
+    if (name == "texel-grid") return {ViewSelection::Kind::TexelGrid, ""};
+    if (name == "coverage") return {ViewSelection::Kind::MapCoverage, ""};
+    return {ViewSelection::Kind::DebugImage, name};
+}
+
+std::string viewName(const ViewSelection& view) {
+    switch (view.kind) {
+    case ViewSelection::Kind::Lit: return "lit";
+    case ViewSelection::Kind::Visibility: return "visibility";
+    case ViewSelection::Kind::ErrorHeatmap: return "error";
+    case ViewSelection::Kind::Footprint: return "footprint";
+    case ViewSelection::Kind::TexelGrid: return "texel-grid";
+    case ViewSelection::Kind::MapCoverage: return "coverage";
+    case ViewSelection::Kind::DebugImage: return view.debugImage;
+    }
+    return "lit";
+}
+
+bool isHostViewName(const std::string& name) { return viewFromName(name).kind != ViewSelection::Kind::DebugImage; }
 
 bool App::presentView(const std::string& technique, const ViewSelection& view, GLuint framebuffer, glm::ivec2 viewport,
                       std::string& error) {

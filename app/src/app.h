@@ -51,6 +51,13 @@ struct ViewSelection {
     std::string debugImage;
 };
 
+// View names as the command line (`render --view`), tours and sessions write them: lit,
+// visibility, footprint, texel-grid, coverage, error (the heatmap); any other name is a debug image.
+ViewSelection viewFromName(const std::string& name);
+std::string viewName(const ViewSelection& view);
+// Whether `name` is one of the host's own views (not a technique's debug image).
+bool isHostViewName(const std::string& name);
+
 struct Measurement {
     std::map<std::string, TimingSummary> gpuMs;   // per pass, plus "frame"
     TimingSummary cpuMs;                          // host CPU time per frame (submission, no wait)

@@ -316,14 +316,7 @@ Image visibilityImage(const std::vector<glm::vec3>& visibility, const std::vecto
     return image;
 }
 
-ViewSelection parseView(const std::string& text) {
-    if (text == "lit" || text.empty()) return {};
-    if (text == "visibility") return {ViewSelection::Kind::Visibility, ""};
-    if (text == "footprint") return {ViewSelection::Kind::Footprint, ""};
-    if (text == "texel-grid") return {ViewSelection::Kind::TexelGrid, ""};
-    if (text == "coverage") return {ViewSelection::Kind::MapCoverage, ""};
-    return {ViewSelection::Kind::DebugImage, text};
-}
+ViewSelection parseView(const std::string& text) { return viewFromName(text); }
 
 int commandRender(const CommonOptions& common, const std::string& out, const std::string& view, int frames,
                   const std::string& reference, int samples, const WindowOptions& compare, const std::string& path,

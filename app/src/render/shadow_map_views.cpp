@@ -49,6 +49,16 @@ bool ShadowMapViews::init(ShaderLibrary& shaders, std::string& error) {
     return true;
 }
 
+void ShadowMapViews::release() {
+    if (shaders_) {
+        if (viewProgram_) shaders_->release(viewProgram_);
+        if (frustumProgram_) shaders_->release(frustumProgram_);
+    }
+    viewProgram_ = frustumProgram_ = 0;
+    uniforms_.reset();
+    emptyVao_.reset();
+}
+
 void ShadowMapViews::draw(Renderer& renderer, ShadowMapView view, const std::vector<ShadowMapInfo>& maps,
                           GLuint framebuffer, glm::ivec2 size) {
     const CameraInfo& camera = renderer.camera();

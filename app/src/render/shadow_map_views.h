@@ -25,6 +25,8 @@ public:
     // the lit image dimmed, with nothing to show.
     void draw(Renderer& renderer, ShadowMapView view, const std::vector<ShadowMapInfo>& maps, GLuint framebuffer,
               glm::ivec2 size);
+    // Deletes the GL objects (the app calls it while its context still exists).
+    void release();
 
 private:
     ShaderLibrary* shaders_ = nullptr;

@@ -46,7 +46,7 @@ struct TourStep {
     std::vector<std::pair<std::string, std::string>> parameters;
     std::optional<TourCamera> camera;                         // none: the scene's camera
     TourLight light;                                          // fields not given: the scene's light
-    std::string view = "lit";                                 // lit | visibility | error | a debug image's name
+    std::string view = "lit";                                 // lit | visibility | error | footprint | texel-grid | coverage | a debug image's name
     std::string caption;
 };
 

@@ -38,7 +38,7 @@ std::string stepImageName(size_t index) {
     return name;
 }
 
-bool isDebugView(const std::string& view) { return view != "lit" && view != "visibility" && view != "error"; }
+bool isDebugView(const std::string& view) { return !isHostViewName(view); }
 
 // A debug view exists only once its technique has drawn a frame (plugins register their images
 // when they create them): one frame of each such technique, before any step is rendered, so a

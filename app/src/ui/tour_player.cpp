@@ -9,19 +9,11 @@
 namespace shadowlab {
 
 ViewSelection viewFromStepName(const std::string& name) {
-    if (name == "lit" || name == "error" || name.empty()) return {};   // error: lit until measured
-    if (name == "visibility") return {ViewSelection::Kind::Visibility, ""};
-    return {ViewSelection::Kind::DebugImage, name};
+    if (name == "error") return {};   // lit until measured (the step's Measure command)
+    return viewFromName(name);
 }
 
-std::string stepViewName(const ViewSelection& view) {
-    // An if-chain, not a switch: views added to ViewSelection elsewhere fall back to lit here
-    // until they get a name of their own.
-    if (view.kind == ViewSelection::Kind::Visibility) return "visibility";
-    if (view.kind == ViewSelection::Kind::ErrorHeatmap) return "error";
-    if (view.kind == ViewSelection::Kind::DebugImage) return view.debugImage;
-    return "lit";
-}
+std::string stepViewName(const ViewSelection& view) { return viewName(view); }
 
 bool applyTourStep(App& app, const TourStep& step, UiState& state, std::string& error) {
     const std::map<std::string, double> overrides(step.sceneParameters.begin(), step.sceneParameters.end());
