@@ -150,8 +150,9 @@ bool runStressCell(App& app, const StressSuite& suite, const StressCase& c, cons
         if (!applyWhereDeclared(app, *info, text, error)) return false;
     for (const std::string& text : options.sets)
         if (!applyWhereDeclared(app, *info, text, error)) return false;
-    if (info->category == "reference") {
-        // The reference shows the trace the case compares with.
+    if (info->category == "reference" && info->paramIndex("mode") >= 0 && info->paramIndex("samples") >= 0) {
+        // The ray-traced reference shows the trace the case compares with (area-reference, also
+        // in the category, is a technique of its own and keeps its parameters).
         if (!app.params().set(*info, "mode", c.reference == ReferenceOptions::Mode::Hard ? "0" : "1", error) ||
             !app.params().set(*info, "samples", std::to_string(c.referenceSamples), error))
             return false;
