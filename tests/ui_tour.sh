@@ -26,8 +26,19 @@ done
 sleep 3
 xdotool windowfocus --sync "$window" 2>/dev/null || true
 xdotool mousemove 900 300   # over the view, not the panel
-for key in Right Right Left Right Home Page_Down F5 Escape; do xdotool key "$key"; sleep 1.5; done
-for _ in $(seq 50); do kill -0 $app 2>/dev/null || break; sleep 0.2; done
+# Each key waits for the app to show its effect (a new "tour step" line, or the saved session)
+# before the next one: under ASan on a loaded machine a step's scene load takes seconds.
+steps_logged() { grep -c "tour step [0-9]* of 7" app.log || true; }
+for _ in $(seq 300); do [ "$(steps_logged)" -ge 1 ] && break; sleep 0.2; done
+for key in Right Right Left Right Home Page_Down; do
+  before=$(steps_logged)
+  xdotool key "$key"
+  for _ in $(seq 300); do [ "$(steps_logged)" -gt "$before" ] && break; sleep 0.2; done
+done
+xdotool key F5
+for _ in $(seq 300); do ls sessions/*.json >/dev/null 2>&1 && break; sleep 0.2; done
+xdotool key Escape
+for _ in $(seq 300); do kill -0 $app 2>/dev/null || break; sleep 0.2; done
 if kill -0 $app 2>/dev/null; then echo "FAIL: Escape did not quit"; kill $app; exit 1; fi
 wait $app || { cat app.log; echo "FAIL: exit status $?"; exit 1; }
 
