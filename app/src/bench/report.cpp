@@ -1,5 +1,6 @@
 // The report (see report.h).
 #include "bench/report.h"
+#include "util/strings.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -15,17 +16,6 @@
 namespace shadowlab {
 namespace {
 
-std::string fixed(double value, int digits) {
-    char text[64];
-    std::snprintf(text, sizeof(text), "%.*f", digits, value);
-    return text;
-}
-
-std::string shellQuote(const std::string& text) {
-    std::string out = "'";
-    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
 
 // One technique's picture on the page: its image, its error heatmap and what the caption says.
 struct ReportImage {

@@ -48,17 +48,6 @@ std::string sceneArgument(const StressSuite& suite, const StressCase& c) {
 
 bool isTemporal(StressMetric m) { return m == StressMetric::Flicker || m == StressMetric::Popping || m == StressMetric::Noise; }
 
-std::string fixed(double value, int digits) {
-    char text[64];
-    std::snprintf(text, sizeof(text), "%.*f", digits, value);
-    return text;
-}
-
-std::string shellQuote(const std::string& text) {
-    std::string out = "'";
-    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
 
 // The temporal error image of one frame: grey where the technique changed as the truth did,
 // magenta where it darkened more (or brightened less), green the other way (errorHeatmap's colours).

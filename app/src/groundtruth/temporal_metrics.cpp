@@ -22,6 +22,42 @@ void checkFrame(const TemporalFrame& f, const char* which) {
                                     std::to_string(f.width) + " x " + std::to_string(f.height));
 }
 
+// The per-pixel sums both comparisons share: the technique's change dv against the reference's
+// change dr at one pixel, and the frame's means from them.
+class ChangeAccumulator {
+public:
+    ChangeAccumulator(size_t pixels, TemporalChanges* changes) : changes_(changes) {
+        if (!changes_) return;
+        changes_->deltaTechnique.assign(pixels, 0.0f);
+        changes_->deltaReference.assign(pixels, 0.0f);
+        changes_->valid.assign(pixels, 0);
+    }
+    void add(size_t i, double dv, double dr) {
+        ++m_.pixels;
+        sumFlicker_ += std::abs(dv - dr);
+        if (std::abs(dr) < kConstantReference) {
+            ++m_.constantPixels;
+            sumNoise_ += 0.5 * dv * dv;
+        }
+        if (changes_) {
+            changes_->deltaTechnique[i] = float(dv);
+            changes_->deltaReference[i] = float(dr);
+            changes_->valid[i] = 1;
+        }
+    }
+    TemporalFrameMetrics result() const {
+        TemporalFrameMetrics m = m_;
+        m.flicker = m.pixels ? sumFlicker_ / double(m.pixels) : 0.0;
+        m.noiseVariance = m.constantPixels ? sumNoise_ / double(m.constantPixels) : 0.0;
+        return m;
+    }
+
+private:
+    TemporalChanges* changes_;
+    TemporalFrameMetrics m_;
+    double sumFlicker_ = 0.0, sumNoise_ = 0.0;
+};
+
 } // namespace
 
 TemporalFrameMetrics compareConsecutiveFrames(const TemporalFrame& previous, const TemporalFrame& current,
@@ -33,13 +69,7 @@ TemporalFrameMetrics compareConsecutiveFrames(const TemporalFrame& previous, con
     const int w = current.width, h = current.height;
     const size_t pixels = size_t(w) * size_t(h);
     if (region && region->size() != pixels) throw std::invalid_argument("compareConsecutiveFrames: the region is not width x height");
-    if (changes) {
-        changes->deltaTechnique.assign(pixels, 0.0f);
-        changes->deltaReference.assign(pixels, 0.0f);
-        changes->valid.assign(pixels, 0);
-    }
-    TemporalFrameMetrics m;
-    double sumFlicker = 0.0, sumNoise = 0.0;
+    ChangeAccumulator sums(pixels, changes);
     for (size_t i = 0; i < pixels; ++i) {
         if (!current.mask[i] || (region && !(*region)[i])) continue;
         const glm::vec3 p = glm::vec3(current.positions[i]);
@@ -64,21 +94,9 @@ TemporalFrameMetrics compareConsecutiveFrames(const TemporalFrame& previous, con
         if (!visible) continue;
         const double dv = double(scalar(current.technique[i])) - v;
         const double dr = double(scalar(current.reference[i])) - r;
-        ++m.pixels;
-        sumFlicker += std::abs(dv - dr);
-        if (std::abs(dr) < kConstantReference) {
-            ++m.constantPixels;
-            sumNoise += 0.5 * dv * dv;
-        }
-        if (changes) {
-            changes->deltaTechnique[i] = float(dv);
-            changes->deltaReference[i] = float(dr);
-            changes->valid[i] = 1;
-        }
+        sums.add(i, dv, dr);
     }
-    m.flicker = m.pixels ? sumFlicker / double(m.pixels) : 0.0;
-    m.noiseVariance = m.constantPixels ? sumNoise / double(m.constantPixels) : 0.0;
-    return m;
+    return sums.result();
 }
 
 TemporalFrameMetrics compareAtSamePoints(const std::vector<glm::vec3>& previousTechnique,
@@ -88,32 +106,14 @@ TemporalFrameMetrics compareAtSamePoints(const std::vector<glm::vec3>& previousT
     const size_t pixels = current.mask.size();
     if (previousTechnique.size() != pixels || previousReference.size() != pixels || (region && region->size() != pixels))
         throw std::invalid_argument("compareAtSamePoints: the previous images or the region are not width x height");
-    if (changes) {
-        changes->deltaTechnique.assign(pixels, 0.0f);
-        changes->deltaReference.assign(pixels, 0.0f);
-        changes->valid.assign(pixels, 0);
-    }
-    TemporalFrameMetrics m;
-    double sumFlicker = 0.0, sumNoise = 0.0;
+    ChangeAccumulator sums(pixels, changes);
     for (size_t i = 0; i < pixels; ++i) {
         if (!current.mask[i] || (region && !(*region)[i])) continue;
         const double dv = double(scalar(current.technique[i])) - double(scalar(previousTechnique[i]));
         const double dr = double(scalar(current.reference[i])) - double(scalar(previousReference[i]));
-        ++m.pixels;
-        sumFlicker += std::abs(dv - dr);
-        if (std::abs(dr) < kConstantReference) {
-            ++m.constantPixels;
-            sumNoise += 0.5 * dv * dv;
-        }
-        if (changes) {
-            changes->deltaTechnique[i] = float(dv);
-            changes->deltaReference[i] = float(dr);
-            changes->valid[i] = 1;
-        }
+        sums.add(i, dv, dr);
     }
-    m.flicker = m.pixels ? sumFlicker / double(m.pixels) : 0.0;
-    m.noiseVariance = m.constantPixels ? sumNoise / double(m.constantPixels) : 0.0;
-    return m;
+    return sums.result();
 }
 
 TemporalSummary summarizeTemporal(const std::vector<TemporalFrameMetrics>& frames) {

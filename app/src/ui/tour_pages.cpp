@@ -1,5 +1,6 @@
 // The headless tour pages (see tour_pages.h).
 #include "ui/tour_pages.h"
+#include "util/strings.h"
 
 #include <cstdio>
 #include <memory>
@@ -25,12 +26,6 @@ struct StepPage {
     std::string image;            // file name in the output folder
     std::vector<TechniqueFigures> figures;
 };
-
-std::string fixed(double value, int digits) {
-    char text[64];
-    std::snprintf(text, sizeof(text), "%.*f", digits, value);
-    return text;
-}
 
 std::string stepImageName(size_t index) {
     char name[32];
