@@ -75,8 +75,10 @@ float adaptiveDiscPcf(sampler3D offsets, ivec2 pixel, int n, vec3 coord, vec2 ra
     float lit = 0.0;
     int taken = 0;
     earlyOut = false;
-    for (int t = 0; t < ringTexels; ++t)
-        lit += discTapPair(discOffsetPair(offsets, pixel, t), 2 * t + 1 < count, coord, radiusUv, rimBias, taken);
+    // A skipped pixel (decided by its caller) reads no taps but still votes, as agreeing.
+    if (!skip)
+        for (int t = 0; t < ringTexels; ++t)
+            lit += discTapPair(discOffsetPair(offsets, pixel, t), 2 * t + 1 < count, coord, radiusUv, rimBias, taken);
     bool agree = skip || lit == 0.0 || lit == float(taken);
     bool stop = quadCoherent ? quadAll(agree) : agree;
     if (ringTexels < texels && stop) {

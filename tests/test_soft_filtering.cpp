@@ -637,8 +637,9 @@ TEST_P(SoftAccuracy, WithinStatedBoundsOfTheSoftReference) {
 INSTANTIATE_TEST_SUITE_P(BuiltIn, SoftAccuracy, ::testing::Values("cube", "contact", "overlap"));
 
 // ---------------------------------------------------------------------------------------------
-// pcf's two samplings (pcf.glsl): the n x n taps looked up one by one, and their texels fetched
-// and compared four at a time with textureGather and weighted as the taps weight them. Without
+// pcf's three samplings (pcf.glsl): the n x n taps looked up one by one, and their texels fetched
+// and compared four at a time, with textureGather and weighted as the taps weight them (gather) or
+// with one bilinear comparison per block placed so the texture unit weights them (folded). Without
 // the cone bias the same filter: the shadow terms (as App::evaluate reads them) agree within one
 // 8-bit level on every pixel, for nearest and bilinear taps, odd and even kernels. With the cone
 // bias each 2 x 2 block compares against its farthest tap's reference, a cone at most one texel
@@ -671,49 +672,56 @@ TEST_P(PcfGather, MatchesTheTapLoopWithinOne8BitLevel) {
                     return test::evaluateTechnique(*app, "pcf", with, Mode::Hard, 1).technique;
                 };
                 const auto taps = shadow("taps");
-                const auto gather = shadow("gather");
-                ASSERT_EQ(taps.size(), gather.size());
-                double worst = 0.0, darker = 0.0, sum = 0.0;
-                int penumbra = 0, beyond = 0;
-                for (size_t i = 0; i < taps.size(); ++i) {
-                    const double difference = double(gather[i].r) - double(taps[i].r);
-                    worst = std::max(worst, std::abs(difference));
-                    darker = std::max(darker, -difference);
-                    sum += std::abs(difference);
-                    beyond += std::abs(difference) > level;
-                    penumbra += taps[i].r > 0.02f && taps[i].r < 0.98f;
-                }
-                std::printf("pcf %s: gather vs taps, largest difference %.2g (darker by %.2g), mean %.2g, %d pixels "
-                            "beyond 1/255, %d penumbra\n",
-                            label.c_str(), worst, darker, sum / double(taps.size()), beyond, penumbra);
-                if (kernel > 1 || bilinear) {
-                    EXPECT_GT(penumbra, 100) << "the comparison covers filtered edges";
-                }
-                EXPECT_LE(darker, level) << "the gather's cone is never narrower than the taps'";
-                if (!cone) {
-                    EXPECT_LE(worst, level);
-                } else {
-                    // Few pixels, lighter (measured on llvmpipe at 320x240: a mean difference over the
-                    // image of at most 8e-4 with nearest taps and 1.2e-3 with bilinear ones, whose
-                    // blocks answer for 3 x 3 taps; up to 0.5 on single pixels with a 4 x 4 kernel).
-                    EXPECT_LE(sum / double(taps.size()), 2e-3);
+                for (const char* sampling : {"gather", "folded"}) {
+                    SCOPED_TRACE(sampling);
+                    const auto blocks = shadow(sampling);
+                    ASSERT_EQ(taps.size(), blocks.size());
+                    double worst = 0.0, darker = 0.0, sum = 0.0;
+                    int penumbra = 0, beyond = 0;
+                    for (size_t i = 0; i < taps.size(); ++i) {
+                        const double difference = double(blocks[i].r) - double(taps[i].r);
+                        worst = std::max(worst, std::abs(difference));
+                        darker = std::max(darker, -difference);
+                        sum += std::abs(difference);
+                        beyond += std::abs(difference) > level;
+                        penumbra += taps[i].r > 0.02f && taps[i].r < 0.98f;
+                    }
+                    std::printf("pcf %s: %s vs taps, largest difference %.2g (darker by %.2g), mean %.2g, %d pixels "
+                                "beyond 1/255, %d penumbra\n",
+                                label.c_str(), sampling, worst, darker, sum / double(taps.size()), beyond, penumbra);
+                    if (kernel > 1 || bilinear) {
+                        EXPECT_GT(penumbra, 100) << "the comparison covers filtered edges";
+                    }
+                    EXPECT_LE(darker, level) << "the blocks' cone is never narrower than the taps'";
+                    if (!cone) {
+                        EXPECT_LE(worst, level);
+                    } else {
+                        // Few pixels, lighter (measured on llvmpipe at 320x240: a mean difference over the
+                        // image of at most 8e-4 with nearest taps and 1.2e-3 with bilinear ones, whose
+                        // blocks answer for 3 x 3 taps; up to 0.5 on single pixels with a 4 x 4 kernel).
+                        EXPECT_LE(sum / double(taps.size()), 2e-3);
+                    }
                 }
             }
 }
 
 INSTANTIATE_TEST_SUITE_P(CubeAndContact, PcfGather, ::testing::Values("cube", "contact"));
 
-TEST(SoftTechniques, PcssMinDepthMipsAreConservative) {
-    // Every texel of level k must be <= each shadow-map texel it stands for
-    // ([x 2^(k+1), (x + 1) 2^(k+1)) in each direction), or the bounded blocker search leaks light.
+class DepthRangeMips : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(DepthRangeMips, BoundEveryTexelTheyStandFor) {
+    // Every texel of level k must hold a minimum <= and a maximum >= each shadow-map texel it
+    // stands for ([x 2^(k+1), (x + 1) 2^(k+1)) in each direction), or the bounded blocker search
+    // leaks light and the fully-blocked stop darkens a penumbra.
     auto app = test::makeHeadlessApp("contact", {320, 180});
     ASSERT_TRUE(app);
-    render(*app, "pcss", {"resolution=1000"});   // not a power of two: odd sizes on the way down
+    const std::string technique = GetParam();
+    render(*app, technique, {"resolution=1000"});   // not a power of two: odd sizes on the way down
     std::string error;
     GLuint map = 0, mips = 0;
-    for (const auto& [name, allocation] : app->techniques().get("pcss", error)->host().textures()) {
-        if (allocation.label == "pcss: shadow map") map = name;
-        if (allocation.label == "pcss: min-depth mips") mips = name;
+    for (const auto& [name, allocation] : app->techniques().get(technique, error)->host().textures()) {
+        if (allocation.label == technique + ": shadow map") map = name;
+        if (allocation.label == technique + ": depth-range mips") mips = name;
     }
     ASSERT_TRUE(map && mips);
     std::vector<float> depth(1000 * 1000);
@@ -721,20 +729,73 @@ TEST(SoftTechniques, PcssMinDepthMipsAreConservative) {
     GLint levels = 0;
     glGetTextureParameteriv(mips, GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
     ASSERT_GT(levels, 5);
-    int violations = 0;
+    int violations = 0, spread = 0;
     for (int level = 0; level < levels; ++level) {
         GLint w = 0, h = 0;
         glGetTextureLevelParameteriv(mips, level, GL_TEXTURE_WIDTH, &w);
         glGetTextureLevelParameteriv(mips, level, GL_TEXTURE_HEIGHT, &h);
-        std::vector<float> texels(size_t(w) * size_t(h));
-        glGetTextureImage(mips, level, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
+        std::vector<float> texels(2 * size_t(w) * size_t(h));
+        glGetTextureImage(mips, level, GL_RG, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
         for (int y = 0; y < 1000; ++y)
             for (int x = 0; x < 1000; ++x) {
                 const int mx = std::min(x >> (level + 1), w - 1), my = std::min(y >> (level + 1), h - 1);
-                violations += texels[size_t(my) * size_t(w) + size_t(mx)] > depth[size_t(y) * 1000 + size_t(x)];
+                const size_t t = 2 * (size_t(my) * size_t(w) + size_t(mx));
+                const float d = depth[size_t(y) * 1000 + size_t(x)];
+                violations += texels[t] > d || texels[t + 1] < d;
+                spread += texels[t + 1] > texels[t];
             }
     }
     EXPECT_EQ(violations, 0);
+    EXPECT_GT(spread, 1000) << "the bounds differ where the map has edges (the mips are not flat)";
+}
+
+INSTANTIATE_TEST_SUITE_P(Users, DepthRangeMips, ::testing::Values("pcss", "adaptive-pcf"));
+
+// The depth-range decisions are exact shortcuts: pcss's fully-blocked stop (search_bound =
+// depth-range against min-depth) and adaptive-pcf's classification by the bounds (classify =
+// depth-range against ring) give the same shadow term on every pixel, with nearest and bilinear
+// taps, per-pixel and per-quad decisions, and both must decide many pixels (or they save nothing).
+TEST(SoftTechniques, DepthRangeDecisionsChangeNoPixel) {
+    using Mode = ReferenceOptions::Mode;
+    for (const char* scene : {"contact", "overlap", "dragon-like"}) {
+        auto app = test::makeHeadlessApp(scene, {320, 240});
+        ASSERT_TRUE(app);
+        struct Case {
+            const char* technique;
+            std::vector<std::string> base;
+            const char* before;
+            const char* after;
+        };
+        const std::vector<Case> cases = {
+            {"pcss", {"resolution=1024"}, "search_bound=min-depth", "search_bound=depth-range"},
+            {"pcss", {"resolution=1024", "bilinear=0"}, "search_bound=min-depth", "search_bound=depth-range"},
+            {"adaptive-pcf", {"resolution=1024"}, "classify=ring", "classify=depth-range"},
+            {"adaptive-pcf", {"resolution=1024", "hardware_filter=1", "coherent=0"}, "classify=ring", "classify=depth-range"},
+            {"adaptive-pcf", {"resolution=1024", "radius=12"}, "classify=ring", "classify=depth-range"},
+        };
+        for (const Case& c : cases) {
+            SCOPED_TRACE(std::string(scene) + " " + c.technique + " " + c.after);
+            auto shadow = [&](const char* variant) {
+                std::vector<std::string> with = c.base;
+                with.push_back(variant);
+                return test::evaluateTechnique(*app, c.technique, with, Mode::Hard, 1).technique;
+            };
+            const auto before = shadow(c.before);
+            const auto after = shadow(c.after);
+            ASSERT_EQ(before.size(), after.size());
+            double worst = 0.0;
+            int shadowed = 0, lit = 0;
+            for (size_t i = 0; i < before.size(); ++i) {
+                worst = std::max(worst, double(std::abs(after[i].r - before[i].r)));
+                shadowed += before[i].r == 0.0f;
+                lit += before[i].r == 1.0f;
+            }
+            std::printf("%s %s: %s against %s, largest difference %.3g (%d shadowed, %d lit pixels)\n", scene,
+                        c.technique, c.after, c.before, worst, shadowed, lit);
+            EXPECT_LE(worst, 1e-6);
+            EXPECT_GT(shadowed, 500) << "the view has fully shadowed pixels to decide";
+        }
+    }
 }
 
 // The accuracy condition for pcf's gather: soft MAE no worse than the taps', at the
@@ -750,10 +811,11 @@ TEST_P(PcfGatherAccuracy, SoftAccuracyNoWorseThanTheTaps) {
     for (const char* kernel : {"kernel=5", "kernel=11"}) {
         SCOPED_TRACE(kernel);
         const double taps = test::measureAccuracy(*app, "pcf", {"resolution=1024", kernel, "sampling=taps"}, Mode::Soft, 32).mae;
-        const double gather =
-            test::measureAccuracy(*app, "pcf", {"resolution=1024", kernel, "sampling=gather"}, Mode::Soft, 32).mae;
-        std::printf("pcf %s on %s: soft MAE taps %.6f, gather %.6f\n", kernel, GetParam(), taps, gather);
-        EXPECT_LE(gather, taps * 1.01 + 1e-6);
+        for (const char* sampling : {"sampling=gather", "sampling=folded"}) {
+            const double blocks = test::measureAccuracy(*app, "pcf", {"resolution=1024", kernel, sampling}, Mode::Soft, 32).mae;
+            std::printf("pcf %s on %s: soft MAE taps %.6f, %s %.6f\n", kernel, GetParam(), taps, sampling, blocks);
+            EXPECT_LE(blocks, taps * 1.01 + 1e-6) << sampling;
+        }
     }
 }
 

@@ -15,6 +15,7 @@
 #include <array>
 
 #include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/depth_range_mips.h>
 #include <shadowlab/kit/disc_offset_texture.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
@@ -47,6 +48,14 @@ constexpr ParamDesc kParams[] = {
      "shades quads (and warps) together, so a pixel that stops alone next to one that continues should save "
      "nothing; measured on an H200 it made no difference in speed and lowered the penumbra error slightly. "
      "Off gives seed 000's per-pixel decision.", nullptr},
+    {"classify", "decide lit and shadowed by", ParamType::Enum, 0, 1, 1, "",
+     "How a pixel outside any penumbra is recognised. ring: seed 000's test, the outer ring of taps all "
+     "agreeing. depth-range: first the nearest and farthest depth stored under the whole disc (depth-range "
+     "mips, one extra pass, four fetches): nearest at or behind the receiver means every tap is lit, "
+     "farthest in front of it every tap shadowed, and the ring is not read; the other pixels take the ring "
+     "test. Exactly the same image as ring (a pixel the bounds decide has a unanimous ring), fewer lookups "
+     "where most of the view is plainly lit or shadowed.",
+     "ring|depth-range"},
     {"count_early_outs", "count early outs", ParamType::Bool, 0, 1, 0, "",
      "Count the calls and early outs with two atomic counters and report the early-out rate (statistics). "
      "Every fragment increments the same counters, which costs GPU time: leave it off when timing.",
@@ -64,6 +73,7 @@ enum : uint32_t {
     kRadius = kit::paramIndex(kParams, "radius"),
     kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
     kCoherent = kit::paramIndex(kParams, "coherent"),
+    kClassify = kit::paramIndex(kParams, "classify"),
     kCountEarlyOuts = kit::paramIndex(kParams, "count_early_outs"),
     kConeBias = kit::paramIndex(kParams, "cone_bias"),
     kConstantBias = kit::paramIndex(kParams, "constant_bias"),
@@ -160,7 +170,7 @@ class AdaptivePcf final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         counters_.init(host());
         uniforms_.create(host(), "adaptive-pcf uniforms");
-        return map_.create(host(), error);
+        return map_.create(host(), error) && depthRange_.create(host(), error);
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
@@ -170,17 +180,24 @@ class AdaptivePcf final : public kit::TechniqueBase {
                             .constantBias = params.asFloat(kConstantBias),
                             .slopeBias = params.asFloat(kSlopeBias),
                             .fit = kit::readFit(params, kFit, kSnap)});
+        if (params.asInt(kClassify) == 1)
+            depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
+        else
+            depthRange_.reset();
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
         map_.bindMainPass(params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
         glBindTextureUnit(shared::adaptive_pcf::kDiscOffsetsUnit, offsets_.texture());
+        depthRange_.bindMainPass();
         uniforms_.set({{}, offsets_.n(), params.asFloat(kRadius), params.asBool(kConeBias) ? 1.0f : 0.0f,
-                       params.asBool(kCoherent) ? 1 : 0, params.asBool(kCountEarlyOuts) ? 1 : 0, 0, 0, 0});
+                       params.asBool(kCoherent) ? 1 : 0, params.asBool(kCountEarlyOuts) ? 1 : 0,
+                       params.asInt(kClassify), 0, 0});
         counters_.bindMainPass();
     }
 
     kit::DepthMap map_;
+    kit::DepthRangeMips depthRange_;
     jittered_disk::DiscOffsetTexture offsets_;
     EarlyOutCounters counters_;
     kit::UniformBlock<shared::adaptive_pcf::AdaptivePcfUniforms> uniforms_;

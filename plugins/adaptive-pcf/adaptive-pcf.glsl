@@ -6,8 +6,10 @@
 // incrementing the same two counters costs more than the filter on a GPU.
 #include "light_space.glsl"
 #include "disc_sampling.glsl"
+#include "depth_range.glsl"
 
 #include "shadowlab/kit/depth_map_shared.h"
+#include "shadowlab/kit/depth_range_mips_shared.h"
 #include "adaptive_pcf_shared.h"
 
 // The counters are side effects: without this a GPU must shade every fragment before the depth
@@ -18,6 +20,7 @@ layout(early_fragment_tests) in;
 
 layout(binding = kDepthMapUnit) uniform sampler2DShadow uShadowMap;
 layout(binding = kDiscOffsetsUnit) uniform sampler3D uDiscOffsets;
+layout(binding = kDepthRangeMipsUnit) uniform sampler2D uDepthRange;
 layout(binding = kCounterBinding, offset = 0) uniform atomic_uint uShadedCount;
 layout(binding = kCounterBinding, offset = 4) uniform atomic_uint uEarlyOutCount;
 
@@ -30,10 +33,22 @@ vec3 shadowTerm(ShadowInput s) {
     // No early return outside the map: the quad vote below needs uniform control flow.
     bool inside = insideShadowMap(coord);
     float rimBias = uConeBias * receiverDepthSlope(s.worldNormal, uLightAxis, coord.z, uLightDepth, uLightWorldSize) * uRadius;
+    // classify = depth-range: every tap lies within the disc plus the texel beyond it that a
+    // bilinear tap reads; all lit where the nearest depth there is at or behind the receiver
+    // (ref <= z <= every depth), all shadowed where the farthest is in front of the rim's reference
+    // (every depth < z - rimBias <= every tap's ref). Such a pixel's ring is unanimous too, so the
+    // ring test would stop there with the same value: the image is the ring's.
+    float decided = -1.0;
+    if (uClassify == 1 && inside) {
+        vec2 range = depthRangeIn(uDepthRange, coord.xy, vec2((uRadius + 1.0) / uLightDepth.w), uLightDepth.w);
+        if (range.x >= coord.z) decided = 1.0;
+        else if (range.y < coord.z - rimBias) decided = 0.0;
+    }
     bool earlyOut;
     // The offsets are unit-disc positions: scaled by the radius they stay texel-independent.
     float lit = adaptiveDiscPcf(uDiscOffsets, ivec2(s.fragCoord), uGrid, coord, vec2(uRadius / uLightDepth.w),
-                                rimBias, uCoherent != 0, !inside, earlyOut);
-    if (count && inside && earlyOut) atomicCounterIncrement(uEarlyOutCount);
+                                rimBias, uCoherent != 0, !inside || decided >= 0.0, earlyOut);
+    if (decided >= 0.0) lit = decided;
+    if (count && inside && (earlyOut || decided >= 0.0)) atomicCounterIncrement(uEarlyOutCount);
     return vec3(inside ? lit : 1.0);
 }

@@ -11,7 +11,7 @@ SHADOWLAB_UNIFORM_BLOCK(AdaptivePcfUniforms, 2) {
     float uConeBias;       // 0 off, else multiplier of the receiver slope
     int uCoherent;         // 1: early-out decision per 2x2 quad
     int uCountEarlyOuts;   // 1: count calls and early outs (atomic counters)
-    int uAdaptivePad0;
+    int uClassify;         // 0 ring, 1 depth-range bounds first (unit 7: kit/depth_range_mips_shared.h)
     int uAdaptivePad1;
     int uAdaptivePad2;
 };

@@ -4,8 +4,9 @@
 // turns the hard edge into a ramp, optionally with the texture unit's bilinear comparison on every
 // tap (seed 000 Fig. 3.11b without, 3.11c with). The taps are either looked up one by one or their
 // texels fetched four at a time with textureGather and weighted as the taps weight them (Castano
-// 2013, "Shadow Mapping Summary - Part 1"; derived in pcf.glsl): the same filter for about a
-// quarter of the lookups (with the cone bias, per 2 x 2 block of texels).
+// 2013, "Shadow Mapping Summary - Part 1"; derived in pcf.glsl), or each block of four read by one
+// bilinear comparison the texture unit weights (`folded`, Castano's own form): the same filter for
+// about a quarter of the lookups (with the cone bias, per 2 x 2 block of texels).
 // Known artefacts: banding (only n^2 + 1 shades without bilinear taps), visible texel steps, the
 // same penumbra width everywhere (not a soft shadow: the light's size plays no part), cost growing
 // with n^2, and acne that grows with the kernel: far taps see the receiver's own tilted surface
@@ -13,7 +14,7 @@
 // the centre and to the receiver's slope, sec. 3.2.4 last paragraph) removes that acne at the
 // price of some peter panning under large kernels.
 // Point lights: the kit's cube map (kit/cube_depth_map.h), the n x n taps laid across the ray from
-// the light (shaders/cube_shadow.glsl), with the cone bias; `sampling = gather` uses the taps there.
+// the light (shaders/cube_shadow.glsl), with the cone bias; `sampling = gather | folded` use the taps there.
 #include <shadowlab/kit/cube_depth_map.h>
 #include <shadowlab/kit/depth_map.h>
 #include <shadowlab/kit/params.h>
@@ -40,13 +41,16 @@ constexpr ParamDesc kParams[] = {
      "Each tap is the texture unit's 2x2 bilinear comparison, which removes the banding of the plain box "
      "at almost no cost (seed 000 figure 3.11c against 3.11b). Off shows the n^2 + 1 discrete shades and "
      "the texel steps.", nullptr},
-    {"sampling", "sampling", ParamType::Enum, 0, 1, 0, "",
+    {"sampling", "sampling", ParamType::Enum, 0, 2, 0, "",
      "How the n x n taps are evaluated. taps: n^2 texture lookups. gather: the texels the taps read, "
-     "fetched and compared four at a time with textureGather and weighted as the taps weight them "
-     "(Castano 2013), (n + 1)^2 / 4 lookups rounded up (36 instead of 121 at 11 x 11). The same shadow "
-     "without the cone bias; with it each 2 x 2 block compares against its farthest tap's reference, "
-     "so contacts may be a little lighter (never darker) than with the taps. Needs offset scale 1 "
-     "(neighbouring taps sharing texels); at other spacings the taps are used.", "taps|gather"},
+     "fetched and compared four at a time with textureGather and weighted in the shader as the taps weight "
+     "them, (n + 1)^2 / 4 lookups rounded up (36 instead of 121 at 11 x 11). folded: the same blocks of four "
+     "texels, each one bilinear comparison placed so that the texture unit weights them (Castano 2013's "
+     "optimised PCF): as many lookups as gather, less arithmetic. Both give the taps' shadow without the cone "
+     "bias; with it each 2 x 2 block compares against its farthest tap's reference, so contacts may be a "
+     "little lighter (never darker) than with the taps. Both need offset scale 1 (neighbouring taps sharing "
+     "texels); at other spacings, and for point lights, the taps are used.",
+     "taps|gather|folded"},
     kit::coneBiasParam(),
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
@@ -73,7 +77,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .explanation = "Shadow mapping whose depth test is repeated over an n x n box of neighbouring texels and "
                     "averaged, so edges become ramps instead of staircases. The kernel size sets the number of "
                     "tests (cost grows with n^2), the offset scale their spacing; bilinear taps remove the "
-                    "banding. Sampling by gather reads the same texels four at a time (Castano 2013) for the "
+                    "banding. Sampling by gather or folded reads the same texels four at a time (Castano 2013) for the "
                     "same result (with the cone bias, a little lighter at contacts) at about a quarter of the lookups. The ramp has the same width everywhere: this is anti-aliasing, not a physically soft "
                     "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause.",
      .shadowGlsl = "pcf.glsl",
@@ -97,15 +101,17 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
         const bool bilinear = params.asBool(kHardwareFilter);
-        const SamplerKind sampling = bilinear ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
+        // Gather and folded read the texels of taps one texel apart; other spacings use the taps.
+        const int sampling = params.asFloat(kOffsetScale) == 1.0f ? params.asInt(kSampling) : 0;
+        // Folded lookups are bilinear comparisons whatever the taps are (nearest taps: on texel corners).
+        const bool linearSampler = bilinear || sampling == 2;
+        const SamplerKind sampler = linearSampler ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
         if (frame.light.type == LightType::Point)
-            cube_.bindMainPass(sampling);
+            cube_.bindMainPass(bilinear ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
         else
-            map_.bindMainPass(sampling);
-        // The gather fetches the texels of taps one texel apart; other spacings use the taps.
-        const bool gather = params.asInt(kSampling) == 1 && params.asFloat(kOffsetScale) == 1.0f;
+            map_.bindMainPass(sampler);
         const bool coneBias = params.asBool(kConeBias);
-        uniforms_.set({{}, params.asInt(kKernel), params.asFloat(kOffsetScale), coneBias ? 1.0f : 0.0f, gather ? 1 : 0,
+        uniforms_.set({{}, params.asInt(kKernel), params.asFloat(kOffsetScale), coneBias ? 1.0f : 0.0f, sampling,
                        bilinear ? 1 : 0, 0, 0, 0});
     }
 

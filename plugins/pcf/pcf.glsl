@@ -59,32 +59,89 @@ float texelWeight(int k, float f) {
     return (k < uKernel ? 1.0 - f : 0.0) + (k > 0 ? f : 0.0);
 }
 
+// Weights of the pair of texels k0, k0 + 1 along one axis; 0 past the kernel (the last pair of an odd m).
+vec2 pairWeights(int k0, float f, int texels) {
+    return vec2(texelWeight(k0, f), k0 + 1 < texels ? texelWeight(k0 + 1, f) : 0.0);
+}
+
+// Cone-bias distance, along one axis, of the farthest tap reading the pair k0, k0 + 1: taps k0 ..
+// k0 + 1 (nearest: texel k is tap k) or k0 - 1 .. k0 + 1 (bilinear: texel k is read by taps k - 1
+// and k), within the kernel; the farthest from the centre is at one end of that range.
+float pairReach(int k0, bool bilinear, float centre) {
+    float first = float(max(k0 - (bilinear ? 1 : 0), 0));
+    float last = float(min(k0 + 1, uKernel - 1));
+    return max(abs(first - centre), abs(last - centre)) * uOffsetScale;
+}
+
+// The kernel's texels t0 + k, 0 <= k < m, per axis (see above): t0 (origin), f, m.
+struct KernelTexels {
+    vec2 origin;
+    vec2 f;
+    int texels;
+};
+
+KernelTexels kernelTexels(vec3 coord, bool bilinear) {
+    float centre = 0.5 * float(uKernel - 1);
+    vec2 start = coord.xy * uLightDepth.w - centre - (bilinear ? 0.5 : 0.0);
+    KernelTexels k;
+    k.origin = floor(start);
+    k.f = bilinear ? start - k.origin : vec2(0.0);
+    k.texels = uKernel + (bilinear ? 1 : 0);
+    return k;
+}
+
 float pcfGather(vec3 coord, float slope) {
     float resolution = uLightDepth.w;
     float centre = 0.5 * float(uKernel - 1);
     bool bilinear = uBilinear != 0;
-    vec2 start = coord.xy * resolution - centre - (bilinear ? 0.5 : 0.0);
-    vec2 origin = floor(start);                          // texel t0 in x and y
-    vec2 f = bilinear ? start - origin : vec2(0.0);
-    int texels = uKernel + (bilinear ? 1 : 0);           // m
-    int blocks = (texels + 1) / 2;
+    KernelTexels kernel = kernelTexels(coord, bilinear);
+    int blocks = (kernel.texels + 1) / 2;
     float lit = 0.0;
-    for (int b = 0; b < blocks; ++b)
+    for (int b = 0; b < blocks; ++b) {
+        vec2 wy = pairWeights(2 * b, kernel.f.y, kernel.texels);
+        float reachY = pairReach(2 * b, bilinear, centre);
+        float cornerY = (kernel.origin.y + float(2 * b + 1)) / resolution;
         for (int a = 0; a < blocks; ++a) {
-            ivec2 k0 = 2 * ivec2(a, b);                           // the block's lower-left texel
-            vec2 corner = (origin + vec2(k0 + 1)) / resolution;   // shared by its four texels
-            // Texel weights, 0 past the kernel (the last block of an odd m).
-            vec2 wx = vec2(texelWeight(k0.x, f.x), k0.x + 1 < texels ? texelWeight(k0.x + 1, f.x) : 0.0);
-            vec2 wy = vec2(texelWeight(k0.y, f.y), k0.y + 1 < texels ? texelWeight(k0.y + 1, f.y) : 0.0);
-            // Taps reading the block: k0 .. k0 + 1 (nearest: texel k is tap k) or k0 - 1 .. k0 + 1
-            // (bilinear: texel k is read by taps k - 1 and k), within the kernel; the farthest of
-            // them from the centre, per axis, is at one end of that range.
-            ivec2 first = max(k0 - (bilinear ? 1 : 0), ivec2(0));
-            ivec2 last = min(k0 + 1, ivec2(uKernel - 1));
-            vec2 reach = max(abs(vec2(first) - centre), abs(vec2(last) - centre)) * uOffsetScale;
-            vec4 visible = textureGather(uShadowMap, corner, coord.z - slope * length(reach));
+            vec2 wx = pairWeights(2 * a, kernel.f.x, kernel.texels);
+            vec2 corner = vec2((kernel.origin.x + float(2 * a + 1)) / resolution, cornerY);   // shared by the block's four texels
+            float reference = coord.z - slope * length(vec2(pairReach(2 * a, bilinear, centre), reachY));
+            vec4 visible = textureGather(uShadowMap, corner, reference);
             lit += dot(visible, vec4(wx.x * wy.y, wx.y * wy.y, wx.y * wy.x, wx.x * wy.x));
         }
+    }
+    return lit;
+}
+
+// The folded variant: the same 2 x 2 blocks of texels, each read by one bilinear comparison
+// (texture() on the GL_LINEAR comparison sampler) placed so that the texture unit's own weights are
+// the block's: a pair of texels weighted (w0, w1) along an axis is the bilinear lookup at
+// w1 / (w0 + w1) of the way from the first texel's centre to the second's, times w0 + w1; in 2D
+// the product of the two axes (Castano 2013's optimised PCF, where the texture unit also does the
+// weighting). Nearest taps put every lookup on a texel corner (weights 1/2, 1/2) or, for the last
+// pair of an odd m, on a texel centre (1, 0); bilinear taps move the two end pairs by f. The
+// texture unit holds a weight with 8 fractional bits, so off-centre end pairs may differ from the
+// taps (which are quantised the same way) by about 1/512 of their weight. Same references per
+// block as pcfGather; one lookup and two weights per block instead of four weights and a dot.
+float pcfFolded(vec3 coord, float slope) {
+    float resolution = uLightDepth.w;
+    float centre = 0.5 * float(uKernel - 1);
+    bool bilinear = uBilinear != 0;
+    KernelTexels kernel = kernelTexels(coord, bilinear);
+    int blocks = (kernel.texels + 1) / 2;
+    float lit = 0.0;
+    for (int b = 0; b < blocks; ++b) {
+        vec2 wy = pairWeights(2 * b, kernel.f.y, kernel.texels);
+        float sy = wy.x + wy.y;
+        float y = (kernel.origin.y + float(2 * b) + 0.5 + (sy > 0.0 ? wy.y / sy : 0.0)) / resolution;
+        float reachY = pairReach(2 * b, bilinear, centre);
+        for (int a = 0; a < blocks; ++a) {
+            vec2 wx = pairWeights(2 * a, kernel.f.x, kernel.texels);
+            float sx = wx.x + wx.y;
+            float x = (kernel.origin.x + float(2 * a) + 0.5 + (sx > 0.0 ? wx.y / sx : 0.0)) / resolution;
+            float reference = coord.z - slope * length(vec2(pairReach(2 * a, bilinear, centre), reachY));
+            lit += sx * sy * texture(uShadowMap, vec3(x, y, reference));
+        }
+    }
     return lit;
 }
 
@@ -93,6 +150,7 @@ vec3 shadowTerm(ShadowInput s) {
     vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
     if (!insideShadowMap(coord)) return vec3(1.0);
     float slope = uConeBias * receiverDepthSlope(s.worldNormal, uLightAxis, coord.z, uLightDepth, uLightWorldSize);
-    if (uGather != 0) return vec3(pcfGather(coord, slope) / float(uKernel * uKernel));
+    if (uSampling == 1) return vec3(pcfGather(coord, slope) / float(uKernel * uKernel));
+    if (uSampling == 2) return vec3(pcfFolded(coord, slope) / float(uKernel * uKernel));
     return vec3(boxPcfDepth(uShadowMap, coord, uLightDepth.w, uKernel, uOffsetScale, slope, uBilinear != 0));
 }

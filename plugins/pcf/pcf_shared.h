@@ -8,8 +8,8 @@ SHADOWLAB_UNIFORM_BLOCK(PcfUniforms, 2) {
     int uKernel;           // n: n x n taps
     float uOffsetScale;    // texels between neighbouring taps
     float uConeBias;       // 0 off, else multiplier of the receiver slope
-    int uGather;           // 1: the taps' texels fetched by textureGather (unit spacing only)
-    int uBilinear;         // 1: the taps are bilinear comparisons (the gather weights their texels so)
+    int uSampling;         // 0 taps, 1 gather (textureGather), 2 folded (bilinear comparisons); 1, 2: unit spacing only
+    int uBilinear;         // 1: the taps are bilinear comparisons (gather and folded weight their texels so)
     int uPcfPad0;
     int uPcfPad1;
     int uPcfPad2;

@@ -11,8 +11,10 @@
 // light-space width of tan(alpha) per unit of depth: penumbra radius (z_r - z_b) tan(alpha) world
 // units, search radius (z_r - z_near) tan(alpha), both divided by the map's world width for uv.
 // Deviation from eq. 3.18 (parameter search_bound, on by default): its n (the near plane) is
-// replaced, per pixel, by the nearest depth stored in the search region, read from min-depth mips
-// built after the shadow pass: the same cone, bounded where a blocker can actually be. With the
+// replaced, per pixel, by the nearest depth stored in the search region, read from the kit's
+// depth-range mips built after the shadow pass: the same cone, bounded where a blocker can
+// actually be. With search_bound = depth-range (the default) the same mips' farthest depth also
+// ends the pixel where the whole region is in front of it (fully shadowed, the same result). With the
 // map fitted around a large ground, a spot or point light's near plane sits almost at the light
 // and the printed formula spreads the n_s^2 search samples over half the map, missing the casters.
 // Known artefacts: the average blocker depth flattens overlapping occluders at different heights
@@ -27,6 +29,7 @@
 #include <cmath>
 
 #include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/depth_range_mips.h>
 #include <shadowlab/kit/disc_offset_texture.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
@@ -52,12 +55,15 @@ constexpr ParamDesc kParams[] = {
     {"bilinear", "bilinear taps", ParamType::Bool, 0, 1, 1, "",
      "Each filter tap compares the 2x2 nearest texels and blends them (what the texture unit's GL_LINEAR "
      "comparison does). Off: narrow penumbrae near contacts alias and the noise is coarser.", nullptr},
-    {"search_bound", "blocker search bound", ParamType::Enum, 0, 1, 1, "",
+    {"search_bound", "blocker search bound", ParamType::Enum, 0, 2, 2, "",
      "Where the blocker search assumes the nearest blocker can be. 'near plane' is eq. 3.18 as printed: "
      "fine for a tight orthographic map, but a spot or point light whose map reaches close to the light "
      "searches half the map and misses small casters (missing or blotchy shadows). 'min-depth' narrows the "
-     "search to the cone at the nearest depth stored in the region (min-depth mips, one extra pass).",
-     "near plane|min-depth"},
+     "search to the cone at the nearest depth stored in the region (depth-range mips, one extra pass). "
+     "'depth-range' also stops, without searching, where the farthest depth stored in the region is in front "
+     "of the receiver: every search and filter tap would be a blocker, so the pixel is fully shadowed (the "
+     "same image as 'min-depth', fewer lookups).",
+     "near plane|min-depth|depth-range"},
     kit::coneBiasParam(),
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
@@ -94,11 +100,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
 class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         uniforms_.create(host(), "pcss uniforms");
-        for (auto& level : levelUniforms_) level.create(host(), "pcss min-depth level");
-        minDepthFbo_ = kit::makeFramebuffer(host(), "min-depth mips");
-        return map_.create(host(), error) &&
-               minDepthProgram_.build(host(), {.vertexFile = "fullscreen.vert", .fragmentFile = "pcss_min_depth.frag"},
-                                      error);
+        return map_.create(host(), error) && depthRange_.create(host(), error);
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
@@ -110,13 +112,10 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
                             .constantBias = params.asFloat(kConstantBias),
                             .slopeBias = params.asFloat(kSlopeBias),
                             .fit = kit::readFit(params, kFit, kSnap)});
-        if (params.asInt(kSearchBound) == 1) {
-            ensureMinDepth(map_.resolution());
-            buildMinDepthMips();
-        } else {
-            minDepth_.reset();   // eq. 3.18 as printed needs no mips
-            minDepthSize_ = 0;
-        }
+        if (params.asInt(kSearchBound) >= 1)
+            depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
+        else
+            depthRange_.reset();   // eq. 3.18 as printed needs no mips
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
@@ -124,7 +123,7 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
         map_.bindMainPass(SamplerKind::Nearest);
         glBindTextureUnit(kSearchOffsetsUnit, searchOffsets_.texture());
         glBindTextureUnit(kFilterOffsetsUnit, filterOffsets_.texture());
-        glBindTextureUnit(kMinDepthUnit, minDepth_);
+        depthRange_.bindMainPass();
         glBindTextureUnit(kCompareUnit, map_.texture());
         glBindSampler(kCompareUnit, host().sampler(SamplerKind::CompareLinear));
         uniforms_.set({{}, searchOffsets_.n(), filterOffsets_.n(), params.asBool(kConeBias) ? 1.0f : 0.0f,
@@ -140,61 +139,11 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
         return std::tan(std::min(light.size, 1.4f));
     }
 
-    // Min-depth mips of the shadow map: level 0 is half the map's size, each texel the minimum of
-    // (a little more than) 2 x 2 texels below; reallocated with the map only.
-    void ensureMinDepth(int resolution) {
-        const int size = std::max(resolution / 2, 1);
-        if (minDepth_ && size == minDepthSize_) return;
-        minDepthSize_ = size;
-        minDepthLevels_ = 1;
-        while ((size >> minDepthLevels_) > 0) ++minDepthLevels_;
-        minDepth_ = kit::makeTexture(host(), {.internalFormat = GL_R32F, .width = size, .height = size,
-                                              .levels = minDepthLevels_, .label = "min-depth mips"});
-        glTextureParameteri(minDepth_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-        glTextureParameteri(minDepth_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        host().registerDebugImage("min-depth mips", minDepth_, DebugImageKind::Depth);
-        for (int level = 0; level < kMaxLevels; ++level) levelUniforms_[size_t(level)].update({{}, std::max(level - 1, 0), 0, 0, 0});
-    }
-
-    void buildMinDepthMips() {
-        GpuPass pass(host(), "min-depth mips");
-        glBindFramebuffer(GL_FRAMEBUFFER, minDepthFbo_);
-        glDisable(GL_DEPTH_TEST);
-        minDepthProgram_.use();
-        for (int level = 0; level < minDepthLevels_ && level < kMaxLevels; ++level) {
-            glNamedFramebufferTexture(minDepthFbo_, GL_COLOR_ATTACHMENT0, minDepth_, level);
-            glNamedFramebufferDrawBuffer(minDepthFbo_, GL_COLOR_ATTACHMENT0);
-            const int size = std::max(minDepthSize_ >> level, 1);
-            glViewport(0, 0, size, size);
-            // Level 0 reads the shadow map (its level 0); level k reads level k - 1 of the same
-            // texture by explicit lod: written by the previous draw (made visible by the barrier),
-            // disjoint from the level being written.
-            if (level == 0) {
-                glBindTextureUnit(shared::pcss::kMinDepthSourceUnit, map_.texture());
-                levelUniforms_[0].bind();   // uSourceLevel 0 of the shadow map (see ensureMinDepth)
-            } else {
-                glTextureBarrier();
-                glBindTextureUnit(shared::pcss::kMinDepthSourceUnit, minDepth_);
-                levelUniforms_[size_t(level)].bind();
-            }
-            host().drawFullscreenTriangle();
-        }
-        glBindTextureUnit(shared::pcss::kMinDepthSourceUnit, 0);
-    }
-
-    static constexpr int kMaxLevels = 16;   // maps up to 2^17 texels wide
     kit::DepthMap map_;
-    kit::Program minDepthProgram_;
-    kit::Framebuffer minDepthFbo_;
-    kit::Texture minDepth_;
-    int minDepthSize_ = 0;
-    int minDepthLevels_ = 0;
+    kit::DepthRangeMips depthRange_;
     jittered_disk::DiscOffsetTexture searchOffsets_;
     jittered_disk::DiscOffsetTexture filterOffsets_;
     kit::UniformBlock<shared::pcss::PcssUniforms> uniforms_;
-    // One block per mip level, written once per allocation: source level (level - 1; level 0 of
-    // the shadow map for the first).
-    kit::UniformBlock<shared::pcss::MinDepthUniforms> levelUniforms_[kMaxLevels];
 };
 
 } // namespace

@@ -7,14 +7,16 @@
 // or from the map's near plane (directional, orthographic map).
 #include "light_space.glsl"
 #include "disc_sampling.glsl"
+#include "depth_range.glsl"
 
 #include "shadowlab/kit/depth_map_shared.h"
+#include "shadowlab/kit/depth_range_mips_shared.h"
 #include "pcss_shared.h"
 
 layout(binding = kDepthMapUnit) uniform sampler2D uShadowDepth;  // raw depths: the search reads them, the filter compares
 layout(binding = kSearchOffsetsUnit) uniform sampler3D uSearchOffsets;
 layout(binding = kFilterOffsetsUnit) uniform sampler3D uFilterOffsets;
-layout(binding = kMinDepthUnit) uniform sampler2D uMinDepth;     // level k texel: min depth over 2^(k+1) x 2^(k+1) map texels
+layout(binding = kDepthRangeMipsUnit) uniform sampler2D uDepthRange;   // level k texel: (min, max) depth over 2^(k+1) x 2^(k+1) map texels
 
 layout(binding = kCompareUnit) uniform sampler2DShadow uShadowCompare;   // the same map, bilinear comparison
 
@@ -53,26 +55,6 @@ vec2 searchRadius(float zReceiver, float zNear, bool perspective) {
                        : uLightSize * (zReceiver - zNear) / uLightWorldSize;
 }
 
-// Nearest stored depth (map depth, not linear) anywhere within radiusUv of uv: the 2 x 2 texels
-// of the first min-depth level whose texels span the whole region (texel x of level k covers map
-// texels [x 2^(k+1), (x + 1) 2^(k+1)), and a little more).
-float nearestDepthIn(vec2 uv, vec2 radiusUv) {
-    float resolution = uLightDepth.w;
-    float radiusTexels = max(radiusUv.x, radiusUv.y) * resolution;
-    int top = textureQueryLevels(uMinDepth) - 1;
-    int level = clamp(int(ceil(log2(max(radiusTexels, 1.0)))), 0, top);
-    // Level sizes from level 0 (the levels halve with floor, as GL's do); llvmpipe (Mesa 22.3)
-    // returned the size of the next level down for textureSize with a non-constant lod.
-    ivec2 size = max(textureSize(uMinDepth, 0) >> level, ivec2(1));
-    int span = 2 << level;   // map texels per texel of this level
-    ivec2 lo = clamp(ivec2(floor((uv - radiusUv) * resolution)) / span, ivec2(0), size - 1);
-    ivec2 hi = clamp(ivec2(floor((uv + radiusUv) * resolution)) / span, ivec2(0), size - 1);
-    float nearest = 1.0;
-    for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x) nearest = min(nearest, texelFetch(uMinDepth, ivec2(x, y), level).r);
-    return nearest;
-}
-
 vec3 shadowTerm(ShadowInput s) {
     vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
     if (!insideShadowMap(coord)) return vec3(1.0);
@@ -89,12 +71,25 @@ vec3 shadowTerm(ShadowInput s) {
     // any blocker's depth, read from the min-depth mips). Deviation from the seed, same cone.
     float zNear = perspective ? uLightDepth.x : 0.0;
     vec2 searchUv = searchRadius(zReceiver, zNear, perspective);
-    if (uSearchBound == 1) {
+    if (uSearchBound >= 1) {
         for (int i = 0; i < 2; ++i) {
-            zNear = max(zNear, lightLinearDepth(nearestDepthIn(coord.xy, searchUv), uLightDepth));
+            zNear = max(zNear, lightLinearDepth(depthRangeIn(uDepthRange, coord.xy, searchUv, resolution).x, uLightDepth));
             if (zNear >= zReceiver) return vec3(1.0);   // nothing nearer to the light than this point
             searchUv = searchRadius(zReceiver, zNear, perspective);
         }
+    }
+    // Step 1a': fully blocked (search_bound = depth-range). Every blocker in the final region lies at
+    // or behind zNear, so the average blocker depth does too and the filter radius of step 2
+    // (decreasing in the blocker depth, by the same similar triangles as searchRadius) is at most
+    // the search radius, or one texel: every filter tap, and the texel beyond it that a bilinear
+    // tap reads, lies within max(search radius, 1 texel) + 1 texel. Where the farthest depth stored
+    // there is in front of the most biased reference (the rim's), every search sample is a
+    // blocker and every filter tap is shadowed: the full computation returns 0, and so does this.
+    if (uSearchBound == 2) {
+        float searchTexels = max(max(searchUv.x, searchUv.y) * resolution, 1.0);
+        vec2 regionUv = vec2((searchTexels + 1.0) / resolution);
+        float farthest = depthRangeIn(uDepthRange, coord.xy, regionUv, resolution).y;
+        if (farthest < coord.z - slope * searchTexels) return vec3(0.0);
     }
 
     // Step 1b: blocker search.

@@ -1,12 +1,11 @@
-// pcss's blocks and units, shared by pcss.cpp, pcss.glsl and pcss_min_depth.frag.
+// pcss's blocks and units, shared by pcss.cpp and pcss.glsl.
 #ifndef PCSS_SHARED_H
 #define PCSS_SHARED_H
 #include "shadowlab/kit/shared.h"
 SHADOWLAB_SHARED_BEGIN(pcss)
 SHADOWLAB_TEXTURE_UNIT(kSearchOffsetsUnit, 5)
 SHADOWLAB_TEXTURE_UNIT(kFilterOffsetsUnit, 6)
-SHADOWLAB_TEXTURE_UNIT(kMinDepthUnit, 7)
-SHADOWLAB_TEXTURE_UNIT(kMinDepthSourceUnit, 4)
+// unit 7: the kit's depth-range mips (kit/depth_range_mips_shared.h)
 SHADOWLAB_TEXTURE_UNIT(kCompareUnit, 8)        // the shadow map again, with the bilinear comparison sampler
 SHADOWLAB_UNIFORM_BLOCK(PcssUniforms, 2) {
     int uSearchGrid;       // n_s: n_s x n_s blocker-search samples
@@ -14,15 +13,9 @@ SHADOWLAB_UNIFORM_BLOCK(PcssUniforms, 2) {
     float uConeBias;       // 0 off, else multiplier of the receiver slope
     float uLightSize;      // perspective: world radius; orthographic: tan(angular radius)
     int uBilinear;         // filter taps: 1 bilinear comparison, 0 nearest
-    int uSearchBound;      // 0: near plane (eq. 3.18 as printed), 1: min-depth mips
+    int uSearchBound;      // 0: near plane (eq. 3.18 as printed), 1: min-depth mips, 2: and fully blocked regions stop
     int uPcssPad0;
     int uPcssPad1;
-};
-SHADOWLAB_UNIFORM_BLOCK(MinDepthUniforms, 3) {
-    int uSourceLevel;      // level of uSource read by this draw
-    int uMinDepthPad0;
-    int uMinDepthPad1;
-    int uMinDepthPad2;
 };
 SHADOWLAB_SHARED_END
 #endif
