@@ -288,53 +288,62 @@ def section_fast_passes(runs):
     tables.append(moments)
 
     gather = Table(["scene", "kernel", "bilinear taps", "cone bias", "taps term ms", "gather term ms", "gather / taps",
-                    "taps soft MAE", "gather soft MAE"],
-                   ["---", "---:", "---", "---", "---:", "---:", "---:", "---:", "---:"])
+                    "folded term ms", "folded / taps", "taps soft MAE", "gather soft MAE", "folded soft MAE"],
+                   ["---", "---:", "---", "---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"])
     for source, s in runs.items():
         rows = results.where(s, spec="pcf-gather") + results.where(s, spec="pcf-gather-bilinear")
         for r in rows:
             if results.canonical(r.get("param.sampling")) != "taps":
                 continue
             keys = {k: r.get(k) for k in ("scene", "param.kernel", "param.cone_bias", "param.hardware_filter")}
-            g = results.first([x for x in rows if results.canonical(x.get("param.sampling")) == "gather"], **keys)
-            if g is None:
-                continue
-            term_ratio = NAN
-            if results.number(r.get("shadow_term_ms")) and results.number(g.get("shadow_term_ms")) is not None:
-                term_ratio = g["shadow_term_ms"] / r["shadow_term_ms"]
+            cells = []
+            maes = []
+            for sampling in ("gather", "folded"):
+                g = results.first([x for x in rows if results.canonical(x.get("param.sampling")) == sampling], **keys)
+                term_ratio = NAN
+                if g is not None and results.number(r.get("shadow_term_ms")) and results.number(g.get("shadow_term_ms")) is not None:
+                    term_ratio = g["shadow_term_ms"] / r["shadow_term_ms"]
+                cells += [ms(g, "shadow_term_ms") if g else "", f"{term_ratio:.2f}x" if g else ""]
+                maes.append(f"{g.get('soft_mae', NAN):.5f}" if g else "")
             gather.add(source, [r["scene"], results.canonical(r.get("param.kernel")),
                                 results.canonical(r.get("param.hardware_filter")), results.canonical(r.get("param.cone_bias")),
-                                ms(r, "shadow_term_ms"), ms(g, "shadow_term_ms"), f"{term_ratio:.2f}x",
-                                f"{r.get('soft_mae', NAN):.5f}", f"{g.get('soft_mae', NAN):.5f}"])
+                                ms(r, "shadow_term_ms")] + cells + [f"{r.get('soft_mae', NAN):.5f}"] + maes)
     if gather.rows:
-        out += ["\n## PCF: the gather against the tap loop, shadow term (2048 map, 1920x1080; target at most 0.4x at 11x11)\n"]
+        out += ["\n## PCF: gather and folded against the tap loop, shadow term (2048 map, 1920x1080; target at most 0.4x at 11x11)\n"]
         out += gather.lines()
     tables.append(gather)
 
+    # A technique's variant in the pre-pass rows: the parameters those specs sweep besides the pre-pass.
+    variant_keys = ("param.classify", "param.search_bound", "param.sampling")
+
+    def variant(r):
+        values = [f"{k[len('param.'):]} = {r[k]}" for k in variant_keys if r.get(k) not in (None, "")]
+        return r["technique"] + (f" ({', '.join(values)})" if values else "")
+
     prepass = Table(["technique", "frame ms without", "frame ms with", "with / shadowmap with", "shadow term ms with",
                      "pre-pass ms"], ["---", "---:", "---:", "---:", "---:", "---:"])
-    samples = Table(["search grid", "filter grid", "frame ms", "shadow term ms", "frame / shadowmap with pre-pass"],
-                    ["---:", "---:", "---:", "---:", "---:"])
+    samples = Table(["search grid", "filter grid", "search bound", "frame ms", "shadow term ms", "frame / shadowmap with pre-pass"],
+                    ["---:", "---:", "---", "---:", "---:", "---:"])
     for source, s in runs.items():
         rows = results.where(s, spec="depth-prepass")
         base = results.first(rows, technique="shadowmap", depth_prepass=1)
-        for technique in dict.fromkeys(r["technique"] for r in rows):
-            without = results.first(rows, technique=technique, depth_prepass=0)
-            with_ = results.first(rows, technique=technique, depth_prepass=1)
+        for name in dict.fromkeys(variant(r) for r in rows):
+            without = results.first([r for r in rows if variant(r) == name], depth_prepass=0)
+            with_ = results.first([r for r in rows if variant(r) == name], depth_prepass=1)
             if without is None or with_ is None:
                 continue
             relative = f"{with_['frame_ms'] / base['frame_ms']:.2f}x" if base else "n/a"
-            prepass.add(source, [technique, ms(without, "frame_ms"), ms(with_, "frame_ms"), relative,
+            prepass.add(source, [name, ms(without, "frame_ms"), ms(with_, "frame_ms"), relative,
                                  ms(with_, "shadow_term_ms"), ms(with_, "depth_prepass_ms")])
         for r in results.where(s, spec="pcss-samples"):
             relative = f"{r['frame_ms'] / base['frame_ms']:.2f}x" if base else "n/a"
             samples.add(source, [results.canonical(r.get("param.search_grid")), results.canonical(r.get("param.filter_grid")),
-                                 ms(r, "frame_ms"), ms(r, "shadow_term_ms"), relative])
+                                 str(r.get("param.search_bound", "")), ms(r, "frame_ms"), ms(r, "shadow_term_ms"), relative])
     if prepass.rows:
         out += ["\n## Host depth pre-pass on forest (5000 trees, 1920x1080; target: every filtered technique at most 2x shadowmap with it)\n"]
         out += prepass.lines()
     if samples.rows:
-        out += ["\nPCSS's sample grids on forest with the pre-pass (its defaults: search 6, filter 8):\n"]
+        out += ["\nPCSS's sample grids on forest with the pre-pass (its defaults: search 6, filter 8, search bound depth-range):\n"]
         out += samples.lines()
     tables += [prepass, samples]
     return out, tables
