@@ -75,14 +75,14 @@ std::string framebufferStatusName(GLenum status) {
 size_t bytesPerTexel(GLenum internalFormat) {
     switch (internalFormat) {
     case GL_R8: case GL_R8UI: case GL_R8I: case GL_STENCIL_INDEX8: return 1;
-    case GL_R16: case GL_R16F: case GL_RG8: case GL_DEPTH_COMPONENT16: case GL_R16UI: return 2;
+    case GL_R16: case GL_R16F: case GL_R16_SNORM: case GL_RG8: case GL_DEPTH_COMPONENT16: case GL_R16UI: return 2;
     case GL_DEPTH_COMPONENT24: return 4;   // padded to 32 bits by every driver we know
     case GL_R32F: case GL_RG16: case GL_RG16F: case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_R32UI:
     case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: case GL_DEPTH_COMPONENT32: case GL_RGB10_A2:
-    case GL_R11F_G11F_B10F: case GL_RG16UI:
+    case GL_R11F_G11F_B10F: case GL_RG16UI: case GL_RG16_SNORM: case GL_RGBA8_SNORM:
         return 4;
     case GL_DEPTH32F_STENCIL8: return 8;   // 32-bit depth + 8-bit stencil, padded
-    case GL_RG32F: case GL_RGBA16: case GL_RGBA16F: case GL_RGBA16UI: return 8;
+    case GL_RG32F: case GL_RGBA16: case GL_RGBA16F: case GL_RGBA16UI: case GL_RGBA16_SNORM: return 8;
     case GL_RGB32F: return 12;
     case GL_RGBA32F: case GL_RGBA32UI: return 16;
     default: return 0;
