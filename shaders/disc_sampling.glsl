@@ -1,7 +1,7 @@
 // Kernel filtering of a shadow map, shared by pcf, adaptive-pcf and pcss:
 //   1. light-space depth helpers and the cone bias (receiver bias growing with the kernel offset),
 //   2. the jittered disc sets of adaptive PCF (seed 000 sec. 3.2.4; GPU Gems 2 ch. 17), stored
-//      by shadowlab/kit/jittered_disk.h in an m x m x ceil(n^2/2) RGBA8_SNORM 3D texture,
+//      by shadowlab/kit/jittered_disk.h in an m x m x ceil(n^2/2) RGBA16_SNORM 3D texture,
 //   3. the adaptive filter itself: outer ring first, stop when it agrees.
 // The uniforms stay in each technique's GLSL; everything here takes them as arguments.
 // `lightDepth` is (near, far, 1 perspective / 0 orthographic, map resolution) and `worldSize` the

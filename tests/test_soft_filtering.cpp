@@ -413,12 +413,12 @@ TEST_F(SoftCube, OffsetTexturesHaveTheDocumentedSize) {
         return bytes;
     };
     render(*app_, "adaptive-pcf", {"resolution=256", "grid=8", "sets=16"});
-    EXPECT_EQ(offsetBytes("adaptive-pcf", "disc offsets"), size_t(16 * 16 * (8 * 8 / 2)) * 4) << "m x m x n^2/2 RGBA8_SNORM";
+    EXPECT_EQ(offsetBytes("adaptive-pcf", "disc offsets"), size_t(16 * 16 * (8 * 8 / 2)) * 8) << "m x m x n^2/2 RGBA16_SNORM";
     render(*app_, "adaptive-pcf", {"grid=5", "sets=4"});
-    EXPECT_EQ(offsetBytes("adaptive-pcf", "disc offsets"), size_t(4 * 4 * 13) * 4) << "odd n rounds n^2/2 up; old one released";
+    EXPECT_EQ(offsetBytes("adaptive-pcf", "disc offsets"), size_t(4 * 4 * 13) * 8) << "odd n rounds n^2/2 up; old one released";
     render(*app_, "pcss", {"resolution=256", "search_grid=6", "filter_grid=8", "sets=16"});
-    EXPECT_EQ(offsetBytes("pcss", "search disc offsets"), size_t(16 * 16 * 18) * 4);
-    EXPECT_EQ(offsetBytes("pcss", "filter disc offsets"), size_t(16 * 16 * 32) * 4);
+    EXPECT_EQ(offsetBytes("pcss", "search disc offsets"), size_t(16 * 16 * 18) * 8);
+    EXPECT_EQ(offsetBytes("pcss", "filter disc offsets"), size_t(16 * 16 * 32) * 8);
 }
 
 TEST_F(SoftCube, AreaReferenceWithOneSampleIsAHardShadowMap) {

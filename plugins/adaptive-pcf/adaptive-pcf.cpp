@@ -1,7 +1,7 @@
 // Adaptive percentage-closer filtering with jittered disc samples (Uralsky, "Efficient Soft-Edged
 // Shadows Using Pixel Shader Branching", GPU Gems 2 ch. 17; seed 000 sections 2.2.7, 3.2.4 and
 // 4.3.2). The n x n samples of a jittered grid are mapped to a disc (eq. 3.11-3.12) and ordered
-// outermost first; m x m such sets, one per pixel modulo m, live in an m x m x n^2/2 RGBA8_SNORM 3D
+// outermost first; m x m such sets, one per pixel modulo m, live in an m x m x n^2/2 RGBA16_SNORM 3D
 // texture. The main pass tests the outer ring first and stops when it agrees (fully lit or fully
 // shadowed), so only penumbra pixels pay for all n^2 taps; the per-pixel sets turn PCF's banding
 // into fine noise. The share of pixels that stopped early is counted with atomic counters and

@@ -1,4 +1,4 @@
-// GL side of jittered_disk.h: the m x m x ceil(n^2/2) RGBA8_SNORM 3D texture of jittered disc sets,
+// GL side of jittered_disk.h: the m x m x ceil(n^2/2) RGBA16_SNORM 3D texture of jittered disc sets,
 // built on the CPU and uploaded once, again only when n or m change (adaptive-pcf, pcss). The GLSL
 // side is shaders/disc_sampling.glsl.
 #pragma once
@@ -20,13 +20,13 @@ public:
         n_ = n;
         m_ = m;
         const TextureSize size = offsetTextureSize(n, m);
-        texture_ = kit::makeTexture(host, {.target = GL_TEXTURE_3D, .internalFormat = GL_RGBA8_SNORM, .width = size.width,
+        texture_ = kit::makeTexture(host, {.target = GL_TEXTURE_3D, .internalFormat = GL_RGBA16_SNORM, .width = size.width,
                                            .height = size.height, .depth = size.depth, .label = label});
-        // Unit-disc offsets in 8-bit signed normalised texels: steps of 1/127 of the radius (0.03
-        // texels at adaptive-pcf's default radius of 4, a quantisation far below the jitter
-        // itself), a quarter of the bytes of RGBA32F for the fetch made every two taps of
-        // adaptive-pcf and pcss. Measured on forest on an H200 with the depth pre-pass:
-        // adaptive-pcf's shadow term 3.21 ms with RGBA32F, 2.93 ms with RGBA16_SNORM.
+        // Unit-disc offsets in 16-bit signed normalised texels (steps of 1/32767 of the radius):
+        // half the bytes of RGBA32F for the fetch made every two taps of adaptive-pcf and pcss.
+        // Measured on forest on an H200 with the depth pre-pass, adaptive-pcf's shadow term:
+        // 3.21 ms with RGBA32F, 2.93 ms with RGBA16_SNORM, 2.93 ms with RGBA8_SNORM (no gain for
+        // 1/127 steps, so the finer format stays; docs/results/h200-2026-12-02-issue10).
         const std::vector<glm::vec4> texels = makeOffsetTexture(n, m, seed);
         glTextureSubImage3D(texture_, 0, 0, 0, 0, size.width, size.height, size.depth, GL_RGBA, GL_FLOAT, texels.data());
         // Read with texelFetch only; the parameters keep the texture complete and never filter.

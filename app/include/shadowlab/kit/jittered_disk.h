@@ -8,7 +8,7 @@
 // Samples are stored row by row from the highest y down: the first n are the outer ring, which is
 // what the shader tests first (and stops after when they agree).
 //
-// m x m such sets tile the screen (set = pixel mod m) and are stored in one RGBA8_SNORM 3D texture of
+// m x m such sets tile the screen (set = pixel mod m) and are stored in one RGBA16_SNORM 3D texture of
 // m x m x ceil(n^2 / 2) texels: two offsets per texel (xy, zw), texel z of set (x, y) holding
 // samples 2z and 2z + 1. For odd n the last texel's zw repeats the last sample (never read as a
 // separate sample: the shader counts n^2 samples).
@@ -34,7 +34,7 @@ inline glm::vec2 squareToDisc(glm::vec2 p) {
     return {r * std::cos(phi), r * std::sin(phi)};
 }
 
-// Texels of one set in the 3D texture (two samples per RGBA8_SNORM texel).
+// Texels of one set in the 3D texture (two samples per RGBA16_SNORM texel).
 inline int texelsPerSet(int n) { return (n * n + 1) / 2; }
 // Texels the shader reads before it decides on the early out: the first n samples (outer ring),
 // rounded up to whole texels (for odd n this includes one sample of the second ring).
@@ -43,7 +43,7 @@ inline int outerRingTexels(int n) { return (n + 1) / 2; }
 struct TextureSize {
     int width, height, depth;
 };
-// The documented size: m x m x n^2/2 (rounded up for odd n), RGBA8_SNORM.
+// The documented size: m x m x n^2/2 (rounded up for odd n), RGBA16_SNORM.
 inline TextureSize offsetTextureSize(int n, int m) { return {m, m, texelsPerSet(n)}; }
 inline size_t offsetTextureBytes(int n, int m) { return size_t(m) * size_t(m) * size_t(texelsPerSet(n)) * 16u; }
 
