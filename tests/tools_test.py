@@ -33,7 +33,7 @@ except ImportError:
 ROOT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
 TOOLS = os.path.join(ROOT, "tools")
 RESULTS = os.path.join(ROOT, "docs", "results", "h100-2026-11-25")
-H200 = os.path.join(ROOT, "docs", "results", "h200-2026-12-01")   # the honest-measurement run (issue 10)
+H200 = os.path.join(ROOT, "docs", "results", "h200-2026-12-02-issue10")   # issue 10's latest run
 sys.path.insert(0, TOOLS)
 import results  # noqa: E402
 import charts  # noqa: E402
@@ -486,12 +486,12 @@ class Fixture(unittest.TestCase):
         rc, text = call(ratios, *inputs)
         self.assertEqual(rc, 0)
         for heading in ("## Moment techniques: their passes against the depth-only floor",
-                        "## PCF: the gather against the tap loop", "## Host depth pre-pass on forest",
+                        "## PCF: gather and folded against the tap loop", "## Host depth pre-pass on forest",
                         "PCSS's sample grids on forest"):
             self.assertIn(heading, text)
         self.assertNotIn("| depth-floor |", text.split("## Moment techniques")[1].split("## PCF")[0])
-        self.assertIn("| pcf | 10.140 | 5.188 | 1.63x | 1.549 | 1.182 |", text)   # the pre-pass on forest
-        self.assertIn("| cube | 11 | false | true | 6.392 | 5.559 | 0.87x |", text)  # gather against taps
+        self.assertIn("| pcf (sampling = taps) | 10.203 | 5.198 | 1.62x | 1.552 | 1.184 |", text)   # the pre-pass on forest
+        self.assertIn("| cube | 11 | false | true | 6.421 | 4.154 | 0.65x | 4.134 | 0.64x |", text)  # gather, folded against taps
         with open(os.path.join(H200, "ratios.md")) as f:
             self.assertEqual(f.read(), text)
 
