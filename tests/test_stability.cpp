@@ -288,3 +288,81 @@ TEST(StressSuite, VsmWithoutBleedingReductionFailsOverlap) {
     const StressCell bleeding = run(*app, s, "overlap", "vsm", {"light_bleeding=0"});
     EXPECT_FALSE(bleeding.pass);
 }
+
+// --- the tuned cases: each separates a technique the literature says fails from one it does not.
+// Thresholds and the figures behind them: docs/stability.md ("Tuning the thresholds").
+
+TEST(StressSuite, ASceneFitMapFailsPerspectiveNearWhereWarpsAndCascadesPass) {
+    const StressSuite s = suite();
+    auto app = test::makeHeadlessApp("cube", s.size);
+    ASSERT_TRUE(app);
+    const StressCell uniform = run(*app, s, "perspective-near", "shadowmap");
+    const StressCell lispsm = run(*app, s, "perspective-near", "lispsm");
+    const StressCell csm = run(*app, s, "perspective-near", "csm");
+    EXPECT_FALSE(uniform.pass);
+    EXPECT_TRUE(lispsm.pass);
+    EXPECT_TRUE(csm.pass);
+    // The texel footprint m says why: one texel of the scene-fit map spreads over tens of pixels
+    // in the nearest third, the warped map's over a few.
+    ASSERT_GT(uniform.footprintPixels, 0u);
+    ASSERT_GT(lispsm.footprintPixels, 0u);
+    EXPECT_GT(uniform.footprintNear, 20.0);
+    EXPECT_GT(uniform.footprintNear, 10.0 * lispsm.footprintNear);
+    EXPECT_GT(uniform.footprintNear, csm.footprintNear);
+    // A technique without maps reports no m.
+    EXPECT_EQ(run(*app, s, "perspective-near", "reference").footprintPixels, 0u);
+}
+
+TEST(StressSuite, PsmLosesCastersBehindTheCameraWhereLispsmAndAUniformMapDoNot) {
+    const StressSuite s = suite();
+    auto app = test::makeHeadlessApp("cube", s.size);
+    ASSERT_TRUE(app);
+    const StressCell psm = run(*app, s, "light-behind", "psm");
+    const StressCell lispsm = run(*app, s, "light-behind", "lispsm");
+    const StressCell uniform = run(*app, s, "light-behind", "shadowmap");   // fit=focus-body: the same B
+    EXPECT_FALSE(psm.pass);
+    EXPECT_GT(psm.falseLight, 0.02) << "the tower's shadow near the camera is lost: false light";
+    EXPECT_TRUE(lispsm.pass);
+    EXPECT_TRUE(uniform.pass);
+}
+
+TEST(StressSuite, SingleMapsLoseTheFarThirdOfAHugeDepthRangeWhereCascadesDoNot) {
+    const StressSuite s = suite();
+    auto app = test::makeHeadlessApp("cube", s.size);
+    ASSERT_TRUE(app);
+    const StressCell psm = run(*app, s, "depth-far", "psm");
+    const StressCell uniform = run(*app, s, "depth-far", "shadowmap");
+    const StressCell csm = run(*app, s, "depth-far", "csm");
+    const StressCell none = run(*app, s, "depth-far", "none");
+    EXPECT_FALSE(psm.pass);
+    EXPECT_FALSE(uniform.pass);
+    EXPECT_TRUE(csm.pass);
+    EXPECT_LT(csm.maeFar, 0.6 * none.maeFar) << "the far cascade keeps shadows in the far third";
+    EXPECT_GT(psm.maeFar, 0.9 * none.maeFar) << "psm keeps (almost) none there";
+}
+
+TEST(StressSuite, MapsRefittedToTheViewPopUnderTheOrbitAndASceneFitMapDoesNot) {
+    const StressSuite s = suite();
+    auto app = test::makeHeadlessApp("cube", s.size);
+    ASSERT_TRUE(app);
+    const StressCell focused = run(*app, s, "popping-orbit", "shadowmap");   // fit=focus-body snap=1
+    const StressCell scene = run(*app, s, "popping-orbit", "shadowmap", {"fit=scene"});
+    const StressCell lispsm = run(*app, s, "popping-orbit", "lispsm");
+    EXPECT_FALSE(focused.pass);
+    EXPECT_FALSE(lispsm.pass);
+    EXPECT_TRUE(scene.pass);
+    EXPECT_LT(scene.popping, 1e-4) << "the same map every frame: nothing jumps";
+}
+
+TEST(StressSuite, ACaseCannotClaimATechniqueBothFailsAndPasses) {
+    StressSuite s;
+    std::string error;
+    const auto node = nlohmann::json::parse(R"({"cases": [{"id": "x", "title": "t", "scene": "cube", "metric": "mae",
+        "threshold": 0.1, "expectedToFail": ["psm"], "expectedToPass": ["psm"], "claim": "c", "source": "s"}]})");
+    EXPECT_FALSE(parseStressSuite(node, "cases.json", s, error));
+    EXPECT_NE(error.find("cases[0].expectedToPass"), std::string::npos) << error;
+    const auto footprint = nlohmann::json::parse(R"({"cases": [{"id": "x", "title": "t", "scene": "cube", "metric": "mae",
+        "threshold": 0.1, "footprint": 1, "claim": "c", "source": "s"}]})");
+    EXPECT_FALSE(parseStressSuite(footprint, "cases.json", s, error));
+    EXPECT_NE(error.find("cases[0].footprint"), std::string::npos) << error;
+}

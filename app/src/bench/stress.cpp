@@ -21,6 +21,7 @@
 #include "shadowlab/kit/focus.h"
 #include "util/log.h"
 #include "util/paths.h"
+#include "util/stats.h"
 #include "util/strings.h"
 #include "util/text_file.h"
 
@@ -92,6 +93,37 @@ std::string settingsOf(App& app, const TechniqueInfo& info) {
     return text;
 }
 
+// The texel footprint m over the pixels of `region` the measure served: its median, and the median
+// over the nearest third of the visible depth range (nearest to farthest compared pixel of the
+// region, as regionMetrics' thirds), so it describes the same pixels as mae_near_third.
+struct FootprintSummary {
+    double median = 0.0, nearThird = 0.0;
+    size_t pixels = 0;
+};
+FootprintSummary footprintOver(const Evaluation& e, const std::vector<uint8_t>& region, const CameraInfo& camera) {
+    FootprintSummary out;
+    if (e.footprint.m.size() != e.mask.size()) return out;
+    std::vector<double> depths(e.mask.size(), -1.0);
+    double nearest = camera.farPlane, farthest = camera.nearPlane;
+    for (size_t i = 0; i < e.mask.size(); ++i) {
+        if (!e.mask[i] || (i < region.size() && !region[i])) continue;
+        depths[i] = -(camera.view * glm::vec4(glm::vec3(e.positions[i]), 1.0f)).z;
+        nearest = std::min(nearest, depths[i]);
+        farthest = std::max(farthest, depths[i]);
+    }
+    std::vector<double> all, nearThird;
+    const double nearEnd = nearest + (farthest - nearest) / 3.0;
+    for (size_t i = 0; i < depths.size(); ++i) {
+        if (depths[i] < 0.0 || !(e.footprint.m[i] > 0.0f)) continue;
+        all.push_back(e.footprint.m[i]);
+        if (depths[i] < nearEnd) nearThird.push_back(e.footprint.m[i]);
+    }
+    out.pixels = all.size();
+    if (!all.empty()) out.median = percentile(all, 0.5);
+    if (!nearThird.empty()) out.nearThird = percentile(nearThird, 0.5);
+    return out;
+}
+
 } // namespace
 
 std::filesystem::path defaultStressCases() { return dataRoot() / "assets" / "stress" / "cases.json"; }
@@ -102,6 +134,7 @@ bool runStressCell(App& app, const StressSuite& suite, const StressCase& c, cons
     cell.technique = technique;
     cell.caseId = c.id;
     cell.expectedFail = std::find(c.expectedToFail.begin(), c.expectedToFail.end(), technique) != c.expectedToFail.end();
+    cell.expectedPass = std::find(c.expectedToPass.begin(), c.expectedToPass.end(), technique) != c.expectedToPass.end();
     if (c.requires_ && !std::filesystem::exists(sharedAssetPath(*c.requires_))) {
         cell.skipped = true;
         cell.skipReason = sharedAssetPath(*c.requires_).string() + " is not there";
@@ -220,6 +253,14 @@ bool runStressCell(App& app, const StressSuite& suite, const StressCase& c, cons
     };
     const bool wantImage = !options.outDir.empty();
     accuracy.onFrame = [&](const PathFrameResult& frame, const Evaluation& e, const TemporalChanges* changes) {
+        // The footprint of the worst frame for m (the largest median): a still case has one frame.
+        const FootprintSummary footprint =
+            footprintOver(e, accuracy.region ? accuracy.region(e) : std::vector<uint8_t>(e.mask.size(), 1), app.lastFrame().camera);
+        if (footprint.pixels > 0 && footprint.median > cell.footprintMedian) {
+            cell.footprintMedian = footprint.median;
+            cell.footprintNear = footprint.nearThird;
+            cell.footprintPixels = footprint.pixels;
+        }
         const double value = isTemporal(c.metric) ? (changes ? frame.temporal.flicker : -1.0) : spatialValue(frame.metrics);
         if (value > worstValue) {
             worstValue = value;
@@ -338,13 +379,19 @@ int runStress(App& app, const StressSuite& suite, const StressOptions& options, 
                              elapsed);
             json row = {{"case", c->id}, {"technique", technique}, {"scene", c->scene}, {"metric", stressMetricName(c->metric)},
                         {"threshold", c->threshold}, {"skipped", cell.skipped}, {"settings", cell.settings},
-                        {"expected_to_fail", cell.expectedFail}};
+                        {"expected_to_fail", cell.expectedFail}, {"expected_to_pass", cell.expectedPass}};
             if (!cell.skipped) {
                 row.update({{"value", cell.value}, {"pass", cell.pass}, {"worst_frame", cell.worstFrame}, {"image", cell.image},
                             {"mae", cell.mae}, {"false_shadow", cell.falseShadow}, {"false_light", cell.falseLight},
                             {"mae_near_third", cell.maeNear}, {"mae_far_third", cell.maeFar}, {"flicker", cell.flicker},
                             {"popping", cell.popping}, {"noise", cell.noise}, {"pixels", cell.pixels},
                             {"frames", c->path.empty() ? 1 : c->frames}});
+                // Whether the verdict agrees with the claim: only where the claim names the technique.
+                if (cell.expectedFail || cell.expectedPass) row["agrees_with_literature"] = cell.expectedFail != cell.pass;
+                // m only where the technique reported its maps (none, planar and the references have none).
+                if (cell.footprintPixels > 0)
+                    row.update({{"footprint_median", cell.footprintMedian}, {"footprint_near_third", cell.footprintNear},
+                                {"footprint_pixels", cell.footprintPixels}});
             } else {
                 row["skip_reason"] = cell.skipReason;
             }
@@ -373,14 +420,21 @@ int runStress(App& app, const StressSuite& suite, const StressOptions& options, 
          << "Each cell is the case's metric for the technique with its defaults plus the case's settings, and the "
             "verdict against the case's threshold (pass: at most the threshold). A mark after the verdict says "
             "whether the measurement agrees with the literature's claim for that technique (the claims are below): "
-            "`(as claimed)` when a technique the claim names fails or the reference passes, `(claim: fails)` when a "
-            "named technique passes. Spatial metrics are the worst frame of the case; temporal ones the mean over "
+            "`(as claimed)` when the technique does what the claim says (a technique it names as failing fails, one it "
+            "names as doing better passes, or the reference passes), `(claim: fails)` when a technique named as failing "
+            "passes, `(claim: passes)` when one named as doing better fails; no mark where the claim names no verdict. Spatial metrics are the worst frame of the case; temporal ones the mean over "
             "its path (docs/stability.md).\n\n";
     if (chart) page << "![verdicts](stress.png)\n\n";
+    // A case with "footprint" gets a column of the texel footprint m beside it (median / nearest third).
     page << "| technique |";
-    for (const StressCase* c : cases) page << " " << c->id << " |";
+    size_t columns = 0;
+    for (const StressCase* c : cases) {
+        page << " " << c->id << " |";
+        if (c->footprint) page << " " << c->id << ": m median / near third |";
+        columns += c->footprint ? 2 : 1;
+    }
     page << "\n|---|";
-    for (size_t i = 0; i < cases.size(); ++i) page << "---:|";
+    for (size_t i = 0; i < columns; ++i) page << "---:|";
     page << "\n";
     for (const std::string& technique : techniques) {
         page << "| " << technique << " |";
@@ -388,15 +442,18 @@ int runStress(App& app, const StressSuite& suite, const StressOptions& options, 
             const auto cell = std::find_if(cells.begin(), cells.end(),
                                            [&](const StressCell& s) { return s.technique == technique && s.caseId == c->id; });
             if (cell->skipped) {
-                page << " skipped |";
+                page << (c->footprint ? " skipped | - |" : " skipped |");
                 continue;
             }
             std::string mark;
             const bool reference = app.techniques().find(technique)->category == "reference";
             if (cell->expectedFail) mark = cell->pass ? " (claim: fails)" : " (as claimed)";
+            else if (cell->expectedPass) mark = cell->pass ? " (as claimed)" : " (claim: passes)";
             else if (reference && cell->pass) mark = " (as claimed)";
             page << " " << (cell->image.empty() ? fixed(cell->value, 4) : "[" + fixed(cell->value, 4) + "](" + cell->image + ")")
                  << " " << (cell->pass ? "pass" : "**fail**") << mark << " |";
+            if (c->footprint)
+                page << " " << (cell->footprintPixels ? fixed(cell->footprintMedian, 2) + " / " + fixed(cell->footprintNear, 2) : "-") << " |";
         }
         page << "\n";
     }

@@ -46,7 +46,9 @@ struct StressCase {
     StressMetric metric = StressMetric::Mae;
     double threshold = 0.0;                  // pass: value <= threshold
     std::vector<std::string> expectedToFail; // technique ids the claim says fail here
+    std::vector<std::string> expectedToPass; // technique ids the claim says do better (must pass)
     std::string claim, source;
+    bool footprint = false;                  // the page shows the texel footprint m beside the cell
 };
 
 struct StressSuite {
@@ -68,12 +70,18 @@ struct StressCell {
     double value = 0.0;
     bool pass = false;
     bool expectedFail = false;               // the literature's claim for this technique
+    bool expectedPass = false;               // named by the claim as one that does not fail
     int worstFrame = 0;
     std::string image;                       // worst frame's error image, relative to the output folder
     std::string settings;                    // the parameters it ran with
     // Details beside the cell's metric.
     double mae = 0, falseShadow = 0, falseLight = 0, maeNear = 0, maeFar = 0, flicker = 0, popping = 0, noise = 0;
     size_t pixels = 0;
+    // Texel footprint m (texel_footprint.h) over the region's pixels, worst frame: the median over
+    // all of them and over the nearest third of the visible depth range (the thirds of maeNear).
+    // Only where the technique reported its maps (footprintPixels > 0).
+    double footprintMedian = 0, footprintNear = 0;
+    size_t footprintPixels = 0;
 };
 
 struct StressOptions {

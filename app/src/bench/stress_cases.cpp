@@ -74,7 +74,8 @@ const std::map<std::string, StressMetric>& metricNames() {
 
 StressCase parseCase(const json& node, const std::string& at) {
     known(node, at, {"id", "title", "scene", "requires", "camera", "light", "path", "frames", "texelsPerFrame", "set",
-                     "reference", "samples", "region", "metric", "threshold", "expectedToFail", "claim", "source"});
+                     "reference", "samples", "region", "metric", "threshold", "expectedToFail", "expectedToPass", "claim", "source",
+                     "footprint"});
     StressCase c;
     c.id = stringField(node, "id", at, true);
     if (c.id.empty() || c.id.size() > 64 || c.id.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-_.") != std::string::npos)
@@ -149,16 +150,26 @@ StressCase parseCase(const json& node, const std::string& at) {
     if (temporal && c.path.empty()) fail(at + ".metric", "a temporal metric needs a path");
     if (!node.contains("threshold")) fail(at + ".threshold", "missing");
     c.threshold = numberField(node, "threshold", at, 0.0, 1.0);
-    if (node.contains("expectedToFail")) {
-        const json& list = node["expectedToFail"];
-        if (!list.is_array()) fail(at + ".expectedToFail", "expected an array of technique ids");
+    auto idList = [&](const char* key, std::vector<std::string>& out) {
+        if (!node.contains(key)) return;
+        const json& list = node[key];
+        if (!list.is_array()) fail(at + "." + key, "expected an array of technique ids");
         for (const json& id : list) {
-            if (!id.is_string()) fail(at + ".expectedToFail", "expected an array of technique ids");
-            c.expectedToFail.push_back(id.get<std::string>());
+            if (!id.is_string()) fail(at + "." + key, "expected an array of technique ids");
+            out.push_back(id.get<std::string>());
         }
-    }
+    };
+    idList("expectedToFail", c.expectedToFail);
+    idList("expectedToPass", c.expectedToPass);
+    for (const std::string& id : c.expectedToPass)
+        if (std::find(c.expectedToFail.begin(), c.expectedToFail.end(), id) != c.expectedToFail.end())
+            fail(at + ".expectedToPass", "'" + id + "' is also in expectedToFail");
     c.claim = stringField(node, "claim", at, true);
     c.source = stringField(node, "source", at, true);
+    if (node.contains("footprint")) {
+        if (!node["footprint"].is_boolean()) fail(at + ".footprint", "expected true or false");
+        c.footprint = node["footprint"].get<bool>();
+    }
     return c;
 }
 
