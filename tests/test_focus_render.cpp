@@ -97,3 +97,25 @@ TEST(Forest002, FocusingLowersTheNearThirdError) {
     EXPECT_LE(focus, frustum * 1.05) << "B is no larger than the frustum's crop";
     EXPECT_LT(warped.maeByViewDepth[0], 0.8 * scene);
 }
+
+// LiSPSM's last two recipe points (seed 002 sec. 9.2.5-9.2.6) on forest-002, 2048 map: with the
+// defaults (body vector on, no virtual far plane) the near third is no worse than with the view
+// direction as the axis (the recipe up to sec. 9.2.5); a virtual far plane at a third of the view
+// (23 m) warps harder, so the near third gains and the far third (beyond it) loses.
+TEST(Forest002, LispsmBodyVectorAndVirtualFarPlane) {
+    auto app = test::makeHeadlessApp("forest-002", {256, 160});
+    ASSERT_TRUE(app);
+    auto run = [&](std::vector<std::string> sets) {
+        sets.push_back("resolution=2048");
+        return test::measureAccuracy(*app, "lispsm", sets, ReferenceOptions::Mode::Hard);
+    };
+    const AccuracyMetrics defaults = run({}), viewAxis = run({"body_vector=0"}), nearer = run({"virtual_far=23"});
+    std::printf("forest-002 lispsm near / mid / far MAE: defaults %.4f %.4f %.4f, view-direction axis %.4f %.4f %.4f, "
+                "virtual_far 23 %.4f %.4f %.4f\n",
+                defaults.maeByViewDepth[0], defaults.maeByViewDepth[1], defaults.maeByViewDepth[2],
+                viewAxis.maeByViewDepth[0], viewAxis.maeByViewDepth[1], viewAxis.maeByViewDepth[2],
+                nearer.maeByViewDepth[0], nearer.maeByViewDepth[1], nearer.maeByViewDepth[2]);
+    EXPECT_LE(defaults.maeByViewDepth[0], viewAxis.maeByViewDepth[0] * 1.02);
+    EXPECT_LT(nearer.maeByViewDepth[0], defaults.maeByViewDepth[0]);
+    EXPECT_GT(nearer.maeByViewDepth[2], defaults.maeByViewDepth[2]);
+}
