@@ -449,3 +449,91 @@ TEST(Lispsm, NoWarpWhenViewAndLightAreParallel) {
     EXPECT_FALSE(lispsm::directionalWarp(body.vertices(), light.direction, camera, 1.0f, 1.0));
     EXPECT_FALSE(lispsm::directionalWarp({}, glm::vec3(0, -1, 0), camera, 1.0f, 1.0)) << "no body";
 }
+
+// Sec. 9.2.5's virtual far plane in the optimal case above: n from the body of the frustum cut at
+// z_f' = 4 (the real far plane stays 8) is eq. 8.10 with z_f', z_n + sqrt(z_n z_f') = 3 instead of
+// 1 + sqrt(8); the error of eq. 8.9 is then equal at z_n and z_f' (it equalises up to the virtual
+// plane) and larger at the real far plane, while the map still holds the whole of B.
+TEST(Lispsm, VirtualFarPlaneTunesNOnly) {
+    const float zn = 1.0f, zf = 8.0f, zv = 4.0f;
+    const CameraInfo camera = cameraLookingDownMinusZ({0, 5, 0}, zn, zf);
+    const LightInfo light = directional({0, -1, 0});
+    const kit::ConvexBody body = kit::focusBody(camera, light, kScene, LightSpace{});
+    const kit::ConvexBody virtualBody = kit::focusBody(lispsm::virtualViewBody(camera, zv), light, kScene, LightSpace{});
+    lispsm::WarpOptions options;
+    options.bodyForN = virtualBody.vertices();
+    const auto warp = lispsm::directionalWarp(body.vertices(), light.direction, camera, zn, options);
+    ASSERT_TRUE(warp);
+    EXPECT_NEAR(warp->dForN, zv - zn, 1e-3);
+    EXPECT_NEAR(warp->d, zf - zn, 1e-3) << "P still spans B";
+    EXPECT_NEAR(warp->n, zn + std::sqrt(zn * zv), 1e-3);
+    EXPECT_NEAR(warp->n, lispsm::nOpt(zv - zn, -zn, -zv), 1e-3);
+    auto ndc = [&](glm::vec3 p) {
+        const glm::vec4 c = warp->viewProjection * glm::vec4(p, 1.0f);
+        return glm::vec3(c) / c.w;
+    };
+    for (const glm::vec3& corner : body.vertices()) {
+        const glm::vec3 q = ndc(corner);
+        EXPECT_LE(glm::max(std::abs(q.x), std::max(std::abs(q.y), std::abs(q.z))), 1.0f + 1e-4f);
+    }
+    auto error = [&](float z) {   // 1 / (z ds/dz), eq. 8.1 with cos a / cos b = 1
+        const float h = 1e-3f * z;
+        return 1.0 / (z * (ndc({0, 0, -(z + h)}).y - ndc({0, 0, -(z - h)}).y) / (2.0f * h));
+    };
+    EXPECT_NEAR(error(zn) / error(zv), 1.0, 1e-2) << "equalised between z_n and the virtual far plane";
+    EXPECT_GT(error(zf), 1.2 * error(zn)) << "beyond it the error grows";
+    // At or beyond the camera's far plane the virtual frustum is the frustum: the recipe unchanged.
+    const kit::ConvexBody same = kit::focusBody(lispsm::virtualViewBody(camera, 0.0f), light, kScene, LightSpace{});
+    lispsm::WarpOptions sameOptions;
+    sameOptions.bodyForN = same.vertices();
+    const auto plain = lispsm::directionalWarp(body.vertices(), light.direction, camera, zn, sameOptions);
+    ASSERT_TRUE(plain);
+    EXPECT_NEAR(plain->n, zn + std::sqrt(zn * zf), 1e-3);
+}
+
+// Sec. 9.2.6's body vector on a body worked out by hand: the camera on the scene's x = 0 face,
+// looking along -z, 60 degrees square, near 1, far 8, at half the height of a 1 m thin scene; the
+// light straight down. V n S is the half frustum x in [0, d tan 30], y in [0, 1], eye depth d in
+// [1, 8], and sweeping it up to S's top changes nothing, so B has the 8 corners (0, {0,1}, -1),
+// (tan 30, {0,1}, -1), (0, {0,1}, -8), (8 tan 30, {0,1}, -8). From the eye (0, 0.5, 0) their sum is
+// (2 (1 + 8) tan 30, 0, -4 (1 + 8)) = (6 sqrt 3, 0, -36): the axis turns 16.1 degrees off the view
+// direction towards the half of the frustum that is in the scene.
+TEST(Lispsm, BodyVectorPointsIntoTheMiddleOfB) {
+    const Bounds thin{{0, 0, -50}, {50, 1, 50}};
+    const CameraInfo camera = cameraLookingDownMinusZ({0, 0.5f, 0}, 1.0f, 8.0f);
+    const LightInfo light = directional({0, -1, 0});
+    const kit::ConvexBody body = kit::focusBody(camera, light, thin, LightSpace{});
+    const float t = std::tan(glm::radians(30.0f));
+    std::vector<glm::vec3> expected;
+    for (const float y : {0.0f, 1.0f})
+        for (const glm::vec3& c : {glm::vec3(0, y, -1), glm::vec3(t, y, -1), glm::vec3(0, y, -8), glm::vec3(8 * t, y, -8)})
+            expected.push_back(c);
+    ASSERT_NO_FATAL_FAILURE(expectCorners(body, expected));
+    const glm::vec3 byHand = glm::normalize(glm::vec3(6.0f * std::sqrt(3.0f), 0.0f, -36.0f));
+    const glm::vec3 vector = lispsm::bodyVector(body.corners(1e-4f), camera.position);
+    EXPECT_NEAR(glm::distance(vector, byHand), 0.0f, 1e-4f);
+    EXPECT_NEAR(glm::degrees(std::acos(glm::dot(vector, glm::vec3(0, 0, -1)))), 16.10, 0.01);
+
+    lispsm::WarpOptions options;
+    options.axisSource = vector;
+    const auto warp = lispsm::directionalWarp(body.vertices(), light.direction, camera, 1.0f, options);
+    ASSERT_TRUE(warp);
+    EXPECT_NEAR(glm::distance(warp->up, byHand), 0.0f, 1e-4f) << "u: the body vector (already across the light)";
+    EXPECT_NEAR(warp->viewAlongUp, byHand.z * -1.0f, 1e-5);
+    // d along u over the hand-computed corners, and eq. 8.13 with z1 = z0 - d (v . u) (sec. 9.2.5).
+    double lo = 1e9, hi = -1e9;
+    for (const glm::vec3& c : expected) {
+        lo = std::min(lo, double(glm::dot(byHand, c - camera.position)));
+        hi = std::max(hi, double(glm::dot(byHand, c - camera.position)));
+    }
+    EXPECT_NEAR(warp->d, hi - lo, 1e-3);
+    EXPECT_NEAR(warp->n, lispsm::nOpt(hi - lo, -1.0, -1.0 - (hi - lo) * warp->viewAlongUp), 1e-3);
+    for (const glm::vec3& c : expected) {
+        const glm::vec4 q = warp->viewProjection * glm::vec4(c, 1.0f);
+        EXPECT_LE(std::max(std::abs(q.x / q.w), std::abs(q.y / q.w)), 1.0f + 1e-4f) << "B fills the map";
+    }
+    // Without the body vector the axis is the view direction, to one side of B.
+    const auto plain = lispsm::directionalWarp(body.vertices(), light.direction, camera, 1.0f, 1.0);
+    ASSERT_TRUE(plain);
+    EXPECT_NEAR(glm::distance(plain->up, glm::vec3(0, 0, -1)), 0.0f, 1e-5f);
+}

@@ -97,3 +97,31 @@ TEST(Forest002, FocusingLowersTheNearThirdError) {
     EXPECT_LE(focus, frustum * 1.05) << "B is no larger than the frustum's crop";
     EXPECT_LT(warped.maeByViewDepth[0], 0.8 * scene);
 }
+
+// LiSPSM's last two recipe points (seed 002 sec. 9.2.5-9.2.6) on forest-002, 2048 map: with the
+// body vector the near third is no worse than with the view direction as the axis (the default,
+// the recipe up to sec. 9.2.5), and the far third is worse (why it is off by default). A virtual far plane at a third of the view
+// (23 m) is no remedy here: it warps harder, moving eq. 8.9's minimum from sqrt(z_n z_f) = 2.6 m to
+// 1.5 m, but the nearest visible receiver is about 9 m away (z_n = 0.1 is air under the camera), so
+// the visible near third gets worse. A weaker warp (n_factor 8, about n_opt with z_n at that first
+// receiver) lowers the far third instead.
+TEST(Forest002, LispsmBodyVectorAndVirtualFarPlane) {
+    auto app = test::makeHeadlessApp("forest-002", {256, 160});
+    ASSERT_TRUE(app);
+    auto run = [&](std::vector<std::string> sets) {
+        sets.push_back("resolution=2048");
+        return test::measureAccuracy(*app, "lispsm", sets, ReferenceOptions::Mode::Hard);
+    };
+    const AccuracyMetrics defaults = run({"body_vector=1"}), viewAxis = run({}), nearer = run({"body_vector=1", "virtual_far=23"}),
+                          weaker = run({"body_vector=1", "n_factor=8"});
+    std::printf("forest-002 lispsm near / mid / far MAE: body vector %.4f %.4f %.4f, view-direction axis %.4f %.4f %.4f, "
+                "virtual_far 23 %.4f %.4f %.4f, n_factor 8 %.4f %.4f %.4f\n",
+                defaults.maeByViewDepth[0], defaults.maeByViewDepth[1], defaults.maeByViewDepth[2],
+                viewAxis.maeByViewDepth[0], viewAxis.maeByViewDepth[1], viewAxis.maeByViewDepth[2],
+                nearer.maeByViewDepth[0], nearer.maeByViewDepth[1], nearer.maeByViewDepth[2],
+                weaker.maeByViewDepth[0], weaker.maeByViewDepth[1], weaker.maeByViewDepth[2]);
+    EXPECT_LE(defaults.maeByViewDepth[0], viewAxis.maeByViewDepth[0] * 1.02);
+    EXPECT_GT(defaults.maeByViewDepth[2], viewAxis.maeByViewDepth[2]) << "the body vector costs the far third";
+    EXPECT_GT(nearer.maeByViewDepth[0], defaults.maeByViewDepth[0]) << "harder warp, minimum where nothing is seen";
+    EXPECT_LT(weaker.maeByViewDepth[2], 0.8 * defaults.maeByViewDepth[2]);
+}

@@ -130,3 +130,63 @@ TEST(TexelFootprint, FocusingAndWarpingShrinkNearTexels) {
     EXPECT_LT(focus, 0.5 * scene);
     EXPECT_LT(warped, focus);
 }
+
+// Seed 002 Figs. 8.7 and 9.3 measured: the error against view depth (TexelFootprint::byViewDepth,
+// depthError: pixels per texel along the direction the ground recedes, eq. 6.1's projection term
+// divided out) on `aliasing-plane`, the seed's optimal case of sec. 8.2.1 (ground under a light
+// straight down, the camera level at h = 0.5, near 1, far 100), 64x2048 so that the ground has
+// pixel rows out to z = 100. Against the analytic curves of eq. 8.1 in pixels:
+//   dp/ds = F / (R z ds/dz) * sqrt(1 + h^2 / z^2),  F = (H / 2) / tan(30 deg) pixels, R the map,
+// the last factor being the ground's own: a ground step seen at elevation e = atan(h / z) spans
+// 1 / cos e more screen than eq. 8.1's edge perpendicular to the view ray (seed Fig. 8.5 idealises
+// it to 1; it is 1.118 at z = 1 and under 1.005 beyond z = 5).
+//   LiSPSM, eq. 8.9: ds/dz = n f / ((z - z_n + n)^2 (f - n)), f = n + d, d = z_f - z_n, n from
+//     eq. 8.10 with z_f (100, or the virtual far plane of sec. 9.2.5);
+//   uniform, eq. 8.2: ds/dz constant, so dp/ds z / sqrt(1 + h^2 / z^2) is the same at every depth.
+// Tolerance: 4% per bin (the bin's median depth stands for its pixels, 10% wide; rasterised
+// G-buffer positions), over bins of at least 64 pixels.
+TEST(TexelFootprint, ErrorAgainstViewDepthMatchesEquations8_2And8_9) {
+    const glm::ivec2 size{64, 2048};
+    auto app = test::makeHeadlessApp("aliasing-plane", size);
+    ASSERT_TRUE(app);
+    const double zn = 1.0, zf = 100.0, h = 0.5, R = 2048.0;
+    const double F = 0.5 * size.y / std::tan(glm::radians(30.0));
+    auto groundFactor = [&](double z) { return std::sqrt(1.0 + h * h / (z * z)); };
+    for (const double farForN : {100.0, 25.0}) {
+        SCOPED_TRACE(farForN);
+        const Evaluation e = test::evaluateTechnique(
+            *app, "lispsm", {"resolution=2048", "virtual_far=" + std::to_string(farForN)}, ReferenceOptions::Mode::Hard);
+        ASSERT_EQ(e.footprint.byViewDepth.size(), size_t(kFootprintDepthBins));
+        const double n = zn + std::sqrt(zn * farForN), f = n + (zf - zn);
+        int checked = 0;
+        double worst = 0.0;
+        for (const TexelFootprint::DepthBin& bin : e.footprint.byViewDepth) {
+            if (bin.pixels < 64) continue;
+            const double z = bin.depth, t = z - zn + n;
+            const double analytic = F * t * t * (f - n) / (R * n * f * z) * groundFactor(z);   // eq. 8.9 in pixels
+            EXPECT_NEAR(bin.depthError / analytic, 1.0, 0.04) << "z " << z;
+            worst = std::max(worst, std::abs(bin.depthError / analytic - 1.0));
+            ++checked;
+        }
+        std::printf("aliasing-plane lispsm (z_f for n %.0f): %d bins within %.2f%% of eq. 8.9\n", farForN, checked, 100.0 * worst);
+        EXPECT_GE(checked, 30) << "bins from z = 1 well past z = 50";
+    }
+    // Uniform (focused map, no warp): eq. 8.2's 1/z.
+    const Evaluation uniform = test::evaluateTechnique(*app, "shadowmap", {"resolution=2048", "fit=focus-body"},
+                                                       ReferenceOptions::Mode::Hard);
+    std::vector<double> scaled;
+    for (const TexelFootprint::DepthBin& bin : uniform.footprint.byViewDepth)
+        if (bin.pixels >= 64) scaled.push_back(bin.depthError * bin.depth / groundFactor(bin.depth));
+    ASSERT_GE(scaled.size(), 30u);
+    const double mid = scaled[scaled.size() / 2];
+    for (const double v : scaled) EXPECT_NEAR(v / mid, 1.0, 0.04);
+    // The figures' ordering at the ends (Fig. 8.7): uniform worst at the near plane, LiSPSM's error
+    // far below it there.
+    const Evaluation warped = test::evaluateTechnique(*app, "lispsm", {"resolution=2048"}, ReferenceOptions::Mode::Hard);
+    const auto firstFull = [](const TexelFootprint& f) {
+        for (const auto& bin : f.byViewDepth)
+            if (bin.pixels >= 64) return bin.depthError;
+        return 0.0;
+    };
+    EXPECT_LT(firstFull(warped.footprint), 0.2 * firstFull(uniform.footprint));
+}

@@ -1,11 +1,12 @@
-// The LiSPSM matrix (seed 002 ch. 8 and sec. 9.2.1-9.2.5), without GL so that tests can check it
+// The LiSPSM matrix (seed 002 ch. 8 and sec. 9.2.1-9.2.6), without GL so that tests can check it
 // (tests/test_focus.cpp): a perspective warp P in light space whose projection axis is the view
 // direction projected onto the shadow-map plane, so light rays stay parallel (light direction and
 // type unchanged) while texels are redistributed towards the viewer.
 //
 // Frame (sec. 9.2.3, with the axes named for what they do here rather than the seed's swapped y/z):
 //   side   s = l x u                          map x (as a look-at along l with up u)
-//   up     u = v projected off l, normalised  map y, the warp's axis (v: the view direction)
+//   up     u = v projected off l, normalised  map y, the warp's axis (v: the view direction, or
+//                                             the body vector of sec. 9.2.6)
 //   depth  l (the light's travel direction)   map depth
 // rooted at the eye (directional lights). A point's frame coordinates are (a, b, c) = (s, u, l) .
 // (p - eye). P's projection centre C lies on the eye's (a, c) line, n behind B's near side b_min
@@ -25,11 +26,27 @@
 // Here z0 = -z_n' with z_n' the eye depth of the nearest visible point (the camera's near plane, or
 // the nearest point of V n S when the near plane leaves the scene: the seed's e_world) and
 // z1 = z0 - d sin g: the general formula in the directional case, where it reduces to eq. 8.11.
+// With sec. 9.2.5's construction taken literally (z1's point lies d along u from z0's), z1 =
+// z0 - d (v . u): v . u = sin g when u comes from the view direction v, less when the body vector
+// (sec. 9.2.6) turns u away from v.
+//
+// Sec. 9.2.5's virtual far plane: d, z0 and z1 for n are taken from B_v, the focus body of the view
+// frustum cut at a nearer far plane z_f (virtualViewBody()), while P's frustum and the casters still
+// span B (the seed: invisible casters in the real frustum must still cast). A smaller z_f means a
+// smaller n_opt: a stronger warp, the error equalised between z_n and z_f instead of the real far.
+//
+// Sec. 9.2.6's body vector: for a directional light the warp axis comes from the sum of the vectors
+// from the eye to B's corners (bodyVector()) rather than from the view direction, so that it points
+// into the middle of B where B differs from V (the view frustum clipped by the scene). The seed sums
+// B "as a point cloud"; its true corners are used here (corners()), since the clipping leaves extra
+// vertices on edges that would weigh some parts twice (the failure the seed itself warns of).
+//
 // Where B reaches behind that nearest point along u (a light from behind the viewer), C moves back
 // by that much as well, so the warp stays centred on the viewer (my reading of sec. 9.2.5's
 // "next possible parallel plane"; the seed leaves it implicit).
 #pragma once
 
+#include <shadowlab/kit/focus.h>
 #include <shadowlab/technique.h>
 
 #include <glm/glm.hpp>
@@ -56,31 +73,60 @@ struct Warp {
     glm::mat4 frame{1.0f};      // world -> (a, b, c, 1)
     glm::mat4 projection{1.0f}; // (a, b, c, 1) -> clip: P with the normalisation folded in
     glm::mat4 viewProjection{1.0f};
+    glm::vec3 up{0.0f};         // u, the warp axis in world space
     double n = 0.0;             // C's distance to P's near plane (n_opt times the technique's factor)
     double d = 0.0;             // B's extent along the warp axis
-    double sinGamma = 0.0;
+    double dForN = 0.0;         // the extent eq. 8.13 was given: B_v's under a virtual far plane, else d
+    double sinGamma = 0.0;      // sine of the angle between the axis' source direction and the light
+    double viewAlongUp = 0.0;   // v . u: eye depth gained per unit along u (sin g without the body vector)
 };
+
+struct WarpOptions {
+    double nFactor = 1.0;       // n = nFactor * n_opt
+    // Sec. 9.2.5's virtual frustum: the vertices of B_v, the focus body of the view frustum cut at the
+    // virtual far plane z_f, from which eq. 8.13 takes d (and so z1) for n alone; P still spans B.
+    // Empty: B itself.
+    std::vector<glm::vec3> bodyForN;
+    // The direction whose projection off the light is the warp axis u: zero for the view direction
+    // (sec. 9.2.3), or sec. 9.2.6's body vector (bodyVector() of B's corners).
+    glm::vec3 axisSource{0.0f};
+    double minSinGamma = 0.05;
+};
+
+// Sec. 9.2.6's body vector: the sum of the vectors from the eye to the body's points, normalised
+// (points far from the eye weigh more, as the seed intends). Zero for no points.
+inline glm::vec3 bodyVector(const std::vector<glm::vec3>& points, glm::vec3 eye) {
+    glm::dvec3 sum(0.0);
+    for (const glm::vec3& p : points) sum += glm::dvec3(p - eye);
+    const double length = glm::length(sum);
+    return length > 0.0 ? glm::vec3(sum / length) : glm::vec3(0.0f);
+}
 
 // The warp focused on `body` (B's vertices) for a directional light travelling along
 // `lightDirection`, seen from `camera`, with `nearestDepth` the eye depth z_n' of the nearest
-// visible point and n = nFactor * n_opt. No warp (nullopt) when it would be uniform anyway or
-// ill-defined: view and light (anti)parallel within `minSinGamma`, an empty body, or n beyond
-// 100 d (n_opt grows without bound as sin g -> 0: duelling frusta, Fig. 8.11).
+// visible point. No warp (nullopt) when it would be uniform anyway or ill-defined: the axis'
+// source direction (the view direction or the body vector) and the light (anti)parallel within
+// `minSinGamma`, an empty body, or n beyond 100 d (n_opt grows without bound as sin g -> 0:
+// duelling frusta, Fig. 8.11).
 inline std::optional<Warp> directionalWarp(const std::vector<glm::vec3>& body, glm::vec3 lightDirection,
-                                           const CameraInfo& camera, float nearestDepth, double nFactor,
-                                           double minSinGamma = 0.05) {
+                                           const CameraInfo& camera, float nearestDepth, const WarpOptions& options) {
     if (body.empty()) return std::nullopt;
     const glm::vec3 l = glm::normalize(lightDirection);
     // The camera looks down its view space's -z: that axis in world space.
     const glm::vec3 view = -glm::normalize(glm::vec3(camera.view[0][2], camera.view[1][2], camera.view[2][2]));
-    const glm::vec3 across = view - glm::dot(view, l) * l;
-    const double sinGamma = glm::length(across);   // |v x l| for unit v and l
-    if (sinGamma < minSinGamma) return std::nullopt;
+    const glm::vec3 eye = camera.position;
+    const glm::vec3 source = glm::length(options.axisSource) > 0.0f ? glm::normalize(options.axisSource) : view;
+    const glm::vec3 across = source - glm::dot(source, l) * l;
+    const double sinGamma = glm::length(across);   // |source x l| for unit source and l
+    if (sinGamma < options.minSinGamma) return std::nullopt;
     const glm::vec3 u = across / float(sinGamma);
     const glm::vec3 s = glm::cross(l, u);
-    const glm::vec3 eye = camera.position;
     Warp w;
     w.sinGamma = sinGamma;
+    w.up = u;
+    // Sec. 9.2.5's z1 lies d along u from z0's point, so its eye depth grows by d (v . u): sin g for
+    // u from the view direction, less where the body vector turns u away from it.
+    w.viewAlongUp = glm::dot(view, u);
     // Rows s, u, l (glm: m[column][row]), then the eye moved to the origin.
     glm::mat4 frame(1.0f);
     for (int col = 0; col < 3; ++col) {
@@ -91,20 +137,31 @@ inline std::optional<Warp> directionalWarp(const std::vector<glm::vec3>& body, g
     frame[3] = glm::vec4(-glm::dot(s, eye), -glm::dot(u, eye), -glm::dot(l, eye), 1.0f);
     w.frame = frame;
 
-    double bMin = 1e300, bMax = -1e300;
+    auto extentAlongU = [&](const std::vector<glm::vec3>& points, double& lo, double& hi) {
+        lo = 1e300;
+        hi = -1e300;
+        for (const glm::vec3& p : points) {
+            const double b = (frame * glm::vec4(p, 1.0f)).y;
+            lo = std::min(lo, b);
+            hi = std::max(hi, b);
+        }
+    };
+    double bMin, bMax;
+    extentAlongU(body, bMin, bMax);
     std::vector<glm::dvec3> local;
-    for (const glm::vec3& p : body) {
-        const glm::dvec3 q(frame * glm::vec4(p, 1.0f));
-        local.push_back(q);
-        bMin = std::min(bMin, q.y);
-        bMax = std::max(bMax, q.y);
-    }
+    for (const glm::vec3& p : body) local.push_back(glm::dvec3(frame * glm::vec4(p, 1.0f)));
     w.d = std::max(bMax - bMin, 1e-6);
-    // Eq. 8.13 with z0 = -z_n', z1 = z0 - d sin g (see the top of this file).
+    w.dForN = w.d;
+    if (!options.bodyForN.empty()) {
+        double lo, hi;
+        extentAlongU(options.bodyForN, lo, hi);
+        w.dForN = std::clamp(hi - lo, 1e-6, w.d);   // B_v lies in B: never more than d
+    }
+    // Eq. 8.13 with z0 = -z_n', z1 = z0 - d (v . u) (see the top of this file).
     const double zNear = std::max(double(nearestDepth), 1e-4);
-    const double z0 = -zNear, z1 = z0 - w.d * sinGamma;
-    const double nearestAlongU = zNear * sinGamma;   // b of the nearest visible point on the view axis
-    w.n = nFactor * nOpt(w.d, z0, z1) + std::max(0.0, nearestAlongU - bMin);
+    const double z0 = -zNear, z1 = z0 - w.dForN * w.viewAlongUp;
+    const double nearestAlongU = zNear * w.viewAlongUp;   // b of the nearest visible point on the view axis
+    w.n = options.nFactor * nOpt(w.dForN, z0, z1) + std::max(0.0, nearestAlongU - bMin);
     if (!(w.n > 0.0) || !std::isfinite(w.n) || w.n > 100.0 * w.d) return std::nullopt;
 
     const double n = w.n, f = n + w.d, offset = n - bMin;   // t = b + offset
@@ -131,6 +188,25 @@ inline std::optional<Warp> directionalWarp(const std::vector<glm::vec3>& body, g
     w.projection = projection;
     w.viewProjection = projection * frame;
     return w;
+}
+
+// The view-direction warp with n = nFactor * n_opt from B itself (the recipe up to sec. 9.2.5).
+inline std::optional<Warp> directionalWarp(const std::vector<glm::vec3>& body, glm::vec3 lightDirection,
+                                           const CameraInfo& camera, float nearestDepth, double nFactor,
+                                           double minSinGamma = 0.05) {
+    return directionalWarp(body, lightDirection, camera, nearestDepth,
+                           WarpOptions{.nFactor = nFactor, .bodyForN = {}, .axisSource = glm::vec3(0.0f), .minSinGamma = minSinGamma});
+}
+
+// Sec. 9.2.5's virtual frustum V_v: the camera's frustum cut at eye depth `farDistance` (nothing
+// cut when it is at or beyond the camera's own far plane or not positive).
+inline kit::ConvexBody virtualViewBody(const CameraInfo& camera, float farDistance) {
+    kit::ConvexBody body = kit::frustumBody(camera.inverseViewProjection);
+    if (!(farDistance > 0.0f) || farDistance >= camera.farPlane) return body;
+    const glm::vec3 view = -glm::normalize(glm::vec3(camera.view[0][2], camera.view[1][2], camera.view[2][2]));
+    // Inside: eye depth dot(v, p - eye) <= farDistance.
+    kit::clip(body, glm::vec4(-view, glm::dot(view, camera.position) + farDistance));
+    return body;
 }
 
 // The eye depth (-z in view space) of the nearest point of a point set, at least the camera's near

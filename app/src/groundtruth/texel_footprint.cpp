@@ -54,14 +54,19 @@ int servingShadowMap(const std::vector<ShadowMapInfo>& maps, const glm::vec3& wo
 namespace {
 
 struct CameraMatrices {
-    glm::dmat4 viewProjection, inverse;
+    glm::dmat4 view, viewProjection, inverse;
     glm::dvec2 pixel;   // one pixel in NDC
     explicit CameraMatrices(const CameraInfo& camera)
-        : viewProjection(camera.viewProjection), inverse(glm::inverse(viewProjection)),
+        : view(camera.view), viewProjection(camera.viewProjection), inverse(glm::inverse(viewProjection)),
           pixel(2.0 / glm::dvec2(glm::max(camera.viewport, glm::ivec2(1)))) {}
+    double depth(const glm::dvec3& p) const { return -(view * glm::dvec4(p, 1.0)).z; }
 };
 
-float footprint(const CameraMatrices& camera, const ShadowMapInfo& map, const glm::vec3& point, const glm::vec3& normal) {
+// m, and (where `alongDepth` is given) pixels per texel along the screen direction in which the
+// view depth grows fastest (0 where the plane is seen head-on and depth does not change).
+float footprint(const CameraMatrices& camera, const ShadowMapInfo& map, const glm::vec3& point, const glm::vec3& normal,
+                float* alongDepth = nullptr) {
+    if (alongDepth) *alongDepth = 0.0f;
     const glm::dvec3 p(point), n(glm::normalize(glm::dvec3(normal)));
     const glm::dvec4 clip = camera.viewProjection * glm::dvec4(p, 1.0);
     if (clip.w <= 0.0) return 0.0f;
@@ -76,6 +81,24 @@ float footprint(const CameraMatrices& camera, const ShadowMapInfo& map, const gl
     // A maps a step in pixels to a step in texels; the worst direction has the fewest texels per
     // pixel, A's smallest singular value, so m = 1 / sigma_min pixels per texel.
     const glm::dvec2 c1 = tx - t0, c2 = ty - t0;
+    if (alongDepth) {
+        // A step of one pixel along the view-depth gradient g moves J g / |g| texels, J the
+        // derivative of texels by pixels: from rays 1/64 pixel away, since across a whole pixel
+        // of a receiver seen at a grazing angle the depth changes by a good part of itself.
+        constexpr double kStep = 1.0 / 64.0;
+        glm::dvec3 qx, qy;
+        glm::dvec2 ux, uy;
+        if (rayOnPlane(camera.inverse, ndc + glm::dvec2(kStep * camera.pixel.x, 0.0), p, n, qx) &&
+            rayOnPlane(camera.inverse, ndc + glm::dvec2(0.0, kStep * camera.pixel.y), p, n, qy) &&
+            texelOf(toClip, size, qx, ux) && texelOf(toClip, size, qy, uy)) {
+            const glm::dvec2 g(camera.depth(qx) - camera.depth(p), camera.depth(qy) - camera.depth(p));
+            const double length = glm::length(g);
+            if (length > 1e-12 * kStep * std::max(camera.depth(p), 1e-12)) {
+                const double texels = glm::length((ux - t0) * (g.x / length) + (uy - t0) * (g.y / length)) / kStep;
+                if (texels > 0.0) *alongDepth = float(std::min(1.0 / texels, 1e6));
+            }
+        }
+    }
     const double a = glm::dot(c1, c1), b = glm::dot(c1, c2), c = glm::dot(c2, c2);
     const double half = 0.5 * (a - c);
     const double lambdaMin = 0.5 * (a + c) - std::sqrt(half * half + b * b);
@@ -101,7 +124,11 @@ TexelFootprint measureTexelFootprint(const GBufferView& gbuffer, const std::vect
     out.maps = maps.size();
     out.m.assign(count, 0.0f);
     out.projection.assign(count, 0.0f);
+    out.depthError.assign(count, 0.0f);
     if (maps.empty()) return out;
+    out.byViewDepth.assign(size_t(kFootprintDepthBins), {});
+    std::vector<std::vector<size_t>> binned(static_cast<size_t>(kFootprintDepthBins));
+    const double logRange = std::log(std::max(double(camera.farPlane) / std::max(double(camera.nearPlane), 1e-9), 1.0 + 1e-9));
     CameraInfo view = camera;
     view.viewport = {gbuffer.width, gbuffer.height};
     const CameraMatrices matrices(view);
@@ -118,7 +145,8 @@ TexelFootprint measureTexelFootprint(const GBufferView& gbuffer, const std::vect
             ++out.uncoveredPixels;
             continue;
         }
-        const float m = footprint(matrices, maps[size_t(serving)], p, n);
+        float alongDepth = 0.0f;
+        const float m = footprint(matrices, maps[size_t(serving)], p, n, &alongDepth);
         if (m <= 0.0f) continue;
         out.m[i] = m;
         all.push_back(m);
@@ -132,6 +160,28 @@ TexelFootprint measureTexelFootprint(const GBufferView& gbuffer, const std::vect
         const float cosBeta = std::max(glm::dot(glm::normalize(n), glm::normalize(toLight)), 1e-6f);
         out.projection[i] = cosAlpha / cosBeta;
         projection.push_back(out.projection[i]);
+        if (alongDepth > 0.0f && out.projection[i] > 0.0f && viewDistance > 0.0f) {
+            out.depthError[i] = alongDepth / out.projection[i];
+            const int bin = int(std::floor(double(kFootprintDepthBins) * std::log(viewDistance / camera.nearPlane) / logRange));
+            if (bin >= 0 && bin < kFootprintDepthBins) binned[size_t(bin)].push_back(i);
+        }
+    }
+    for (int b = 0; b < kFootprintDepthBins; ++b) {
+        TexelFootprint::DepthBin& bin = out.byViewDepth[size_t(b)];
+        bin.begin = camera.nearPlane * std::exp(logRange * b / kFootprintDepthBins);
+        bin.end = camera.nearPlane * std::exp(logRange * (b + 1) / kFootprintDepthBins);
+        const std::vector<size_t>& pixels = binned[size_t(b)];
+        bin.pixels = pixels.size();
+        if (pixels.empty()) continue;
+        std::vector<double> depths, ms, errors;
+        for (const size_t i : pixels) {
+            depths.push_back(-(camera.view * glm::vec4(glm::vec3(gbuffer.positions[i]), 1.0f)).z);
+            ms.push_back(out.m[i]);
+            errors.push_back(out.depthError[i]);
+        }
+        bin.depth = medianOf(depths);
+        bin.m = medianOf(ms);
+        bin.depthError = medianOf(errors);
     }
     out.measuredPixels = all.size();
     if (all.empty()) return out;
@@ -161,7 +211,7 @@ Image footprintHeatmap(const TexelFootprint& footprint) {
 }
 
 std::string footprintToJson(const TexelFootprint& f, int indent) {
-    const nlohmann::json out = {{"median", f.median},
+    nlohmann::json out = {{"median", f.median},
                                 {"p95", f.p95},
                                 {"max", f.max},
                                 {"undersampledFraction", f.undersampledFraction},
@@ -171,6 +221,10 @@ std::string footprintToJson(const TexelFootprint& f, int indent) {
                                 {"measuredPixels", f.measuredPixels},
                                 {"uncoveredPixels", f.uncoveredPixels},
                                 {"maps", f.maps}};
+    nlohmann::json& bins = out["byViewDepth"] = nlohmann::json::array();
+    for (const TexelFootprint::DepthBin& b : f.byViewDepth)
+        bins.push_back({{"begin", b.begin}, {"end", b.end}, {"depth", b.depth}, {"m", b.m}, {"depthError", b.depthError},
+                        {"pixels", b.pixels}});
     return out.dump(indent);
 }
 

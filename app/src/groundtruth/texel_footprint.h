@@ -27,6 +27,11 @@ struct TexelFootprint {
     // the pixel, or the tangent plane is seen edge-on).
     std::vector<float> m;
     std::vector<float> projection;
+    // Per pixel: seed 002's one-dimensional error of sec. 8.2 (eq. 8.2-8.9): pixels per texel along
+    // the screen direction in which the receiver recedes from the viewer (where view depth grows
+    // fastest), with eq. 6.1's projection term cos(alpha) / cos(beta) divided out, as eq. 8.2-8.9
+    // assume it 1. 0 where not measured.
+    std::vector<float> depthError;
     // Over measured pixels: percentiles of m, the fraction undersampled (m > 1), and the
     // median of m in the near, mid and far thirds of the camera's [near, far] view depth.
     double median = 0.0;
@@ -40,7 +45,19 @@ struct TexelFootprint {
     // Compared pixels that no reported map covers (a cascade that misses its slice shows here).
     size_t uncoveredPixels = 0;
     size_t maps = 0;
+    // The error against view depth (seed 002 Figs. 8.7 and 9.3): measured pixels in
+    // kFootprintDepthBins bins, log-spaced over the camera's [near, far]; empty bins kept (pixels 0).
+    struct DepthBin {
+        double begin = 0.0, end = 0.0;   // view-depth range of the bin
+        double depth = 0.0;              // median view depth of its pixels
+        double m = 0.0;                  // median m
+        double depthError = 0.0;         // median depthError
+        size_t pixels = 0;
+    };
+    std::vector<DepthBin> byViewDepth;
 };
+
+inline constexpr int kFootprintDepthBins = 48;
 
 // The map that serves a world point at camera view distance `viewDistance`: the first in order
 // whose view-distance range holds it and whose clip volume holds the point; -1 when none does.
@@ -60,7 +77,8 @@ TexelFootprint measureTexelFootprint(const GBufferView& gbuffer, const std::vect
 // m = 1, red m >= 16 (texels far too large); dark grey where not measured.
 Image footprintHeatmap(const TexelFootprint& footprint);
 
-// One JSON object of the summary fields; indent < 0: one line.
+// One JSON object of the summary fields (with "byViewDepth": an array of {begin, end, depth, m,
+// depthError, pixels}); indent < 0: one line.
 std::string footprintToJson(const TexelFootprint& footprint, int indent = -1);
 
 } // namespace shadowlab

@@ -380,9 +380,9 @@ inline bool contains(const ConvexBody& body, glm::vec3 p, float tolerance = 1e-4
 // (point and spot lights: hull with the light's position; directional lights: swept towards the
 // light across S); clipped to S again, and for point and spot lights to the light's frustum L
 // (`lightSpace`, the map being focused). Empty when the camera sees nothing of S.
-inline ConvexBody focusBody(const CameraInfo& camera, const LightInfo& light, const Bounds& scene,
-                            const LightSpace& lightSpace) {
-    ConvexBody body = frustumBody(camera.inverseViewProjection);
+// This form takes any view body in place of V (seed 002 sec. 9.2.5: LiSPSM's virtual frustum V_v);
+// the next takes the camera's frustum.
+inline ConvexBody focusBody(ConvexBody body, const LightInfo& light, const Bounds& scene, const LightSpace& lightSpace) {
     clip(body, scene);
     if (body.empty()) return body;
     if (light.type == LightType::Directional) {
@@ -394,6 +394,11 @@ inline ConvexBody focusBody(const CameraInfo& camera, const LightInfo& light, co
     clip(body, scene);
     if (light.type != LightType::Directional) clip(body, frustumBody(glm::inverse(lightSpace.viewProjection)));
     return body;
+}
+
+inline ConvexBody focusBody(const CameraInfo& camera, const LightInfo& light, const Bounds& scene,
+                            const LightSpace& lightSpace) {
+    return focusBody(frustumBody(camera.inverseViewProjection), light, scene, lightSpace);
 }
 
 // ---------------------------------------------------------------------------------------------
