@@ -1,5 +1,6 @@
 // Shared by the filterable shadow maps (vsm, esm, evsm, msm): where a point falls in the moment
-// map and at which depth, and the Chebyshev bound with its light-bleeding reduction.
+// map (or, for point lights, the moment cube) and at which depth, and the Chebyshev bound with its
+// light-bleeding reduction.
 //
 // Depth convention: every moment map stores a depth that is LINEAR in world space along the light's
 // viewing axis, mapped to [0, 1] over the depth range of the shadow casters and some room behind
@@ -20,7 +21,10 @@ float linearLightDepth(vec3 worldPos) {
 }
 
 #ifndef MOMENT_DEPTH_PASS
+#include "shadowlab/kit/cube_depth_map_shared.h"   // point lights: uCubeLight (position, far)
+
 layout(binding = kMomentMapUnit) uniform sampler2D uMomentMap;
+layout(binding = kCubeMomentMapUnit) uniform samplerCube uMomentCube;   // point lights (kit/cube_moment_map.h)
 
 struct MomentSample {
     vec4 moments;   // filtered moments (mipmapped and bilinear where enabled)
@@ -30,9 +34,18 @@ struct MomentSample {
 
 // Samples unconditionally (the lookup needs screen-space derivatives for mipmapping, so it must not
 // sit behind a non-uniform branch); callers choose the result with `inside`.
+// Point lights: the moment cube by the direction from the light, the receiver's distance / far
+// as its depth (the cube stores that, linear in every direction); every direction is inside.
 MomentSample sampleMoments(vec3 worldPos) {
-    vec3 coord = shadowMapCoord(uShadowMatrix, worldPos);
     MomentSample m;
+    if (lightType() == LIGHT_POINT) {   // a uniform: the lookup stays in uniform control flow
+        vec3 toPoint = worldPos - uCubeLight.xyz;
+        m.moments = texture(uMomentCube, toPoint);
+        m.depth = clamp(length(toPoint) / uCubeLight.w, 0.0, 1.0);
+        m.inside = true;
+        return m;
+    }
+    vec3 coord = shadowMapCoord(uShadowMatrix, worldPos);
     m.moments = texture(uMomentMap, coord.xy);
     m.depth = linearLightDepth(worldPos);
     m.inside = all(greaterThanEqual(coord.xy, vec2(0.0))) && all(lessThanEqual(coord.xy, vec2(1.0)));

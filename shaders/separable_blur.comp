@@ -41,23 +41,41 @@ const ivec2 kAxis = ivec2(0, 1);
 
 shared vec4 sTile[(kAlong + 2 * kMaxReach) * kAcross];
 
+#ifdef MOMENT_CUBE
+// The cube moment map (kit/cube_moment_map.h): one face per work group layer (z), each blurred as
+// an image of its own (the kernel does not cross seams; texels beyond a face's edge repeat it).
+// Along x: the six depth layers -> the scratch array; along y: the scratch -> the cube's faces.
+layout(binding = kBlurSourceUnit) uniform sampler2DArray uSource;
+#if MOMENT_BLUR_AXIS == 0
+layout(binding = kBlurDestinationImageUnit) writeonly uniform image2DArray uDestination;
+#else
+layout(binding = kBlurDestinationImageUnit) writeonly uniform imageCube uDestination;
+#endif
+ivec2 sourceSize() { return textureSize(uSource, 0).xy; }
+vec4 fetchSource(ivec2 texel) { return texelFetch(uSource, ivec3(texel, int(gl_WorkGroupID.z)), 0); }
+void storeDestination(ivec2 texel, vec4 value) { imageStore(uDestination, ivec3(texel, int(gl_WorkGroupID.z)), value); }
+#else
 layout(binding = kBlurSourceUnit) uniform sampler2D uSource;   // moments, or the depth buffer
 layout(binding = kBlurDestinationImageUnit) writeonly uniform image2D uDestination;   // format of the map
+ivec2 sourceSize() { return textureSize(uSource, 0); }
+vec4 fetchSource(ivec2 texel) { return texelFetch(uSource, texel, 0); }
+void storeDestination(ivec2 texel, vec4 value) { imageStore(uDestination, texel, value); }
+#endif
 
 vec4 loadSource(ivec2 texel) {
 #ifdef MOMENT_PASS_COMPUTE
     if (uBlurSource != 0) {
-        vec4 moments = momentsFromDepth(texelFetch(uSource, texel, 0).r);
+        vec4 moments = momentsFromDepth(fetchSource(texel).r);
         // The fragment path stores the moments in the map before blurring them: round as that
         // RGBA16 (unorm) target would, so both paths blur the same values.
         return uRoundToUnorm16 != 0 ? round(clamp(moments, 0.0, 1.0) * 65535.0) / 65535.0 : moments;
     }
 #endif
-    return texelFetch(uSource, texel, 0);
+    return fetchSource(texel);
 }
 
 void main() {
-    ivec2 size = textureSize(uSource, 0);
+    ivec2 size = sourceSize();
     ivec2 origin = ivec2(gl_WorkGroupID.xy * gl_WorkGroupSize.xy);
     // Reach of the kernel: (N - 1) / 2 texels for odd N, N / 2 for even N (the outer taps' far texel).
     int reach = min(uKernelSize / 2, kMaxReach);
@@ -95,5 +113,5 @@ void main() {
         sum += w * tap;
         weightSum += w;
     }
-    imageStore(uDestination, texel, sum / weightSum);
+    storeDestination(texel, sum / weightSum);
 }

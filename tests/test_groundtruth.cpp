@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -924,4 +925,35 @@ TEST(GroundTruthSoftError, HardReferenceHasNoSamplingError) {
     EXPECT_TRUE(stats.sampleError.empty());
     EXPECT_EQ(stats.refinedPixels, stats.tracedPixels);
     EXPECT_GT(stats.tracedPixels, 0u);
+}
+
+// A G-buffer texel with a NaN normal or position (a texel no pass wrote, or NaN from a shader)
+// faces no light and traces no ray: as a NaN shadow ray, Embree's robust traversal spun forever
+// (seen on `point-light`, lispsm evaluated after csm). The other pixels keep their values.
+TEST(GroundTruth, NonFiniteGBufferTexelsTraceNoRay) {
+    auto groundTruth = loadOrFail();
+    ASSERT_TRUE(groundTruth);
+    groundTruth->setScene(boxOnPlane());
+    GBuffer g = primary(*groundTruth, View{});
+    const LightInfo sun = directional({0.5f, -1.0f, 0.35f}, 0.0f);
+    std::vector<glm::vec3> clean;
+    groundTruth->trace(g.view(), sun, ReferenceOptions{}, clean);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    size_t poisoned = 0;
+    std::vector<size_t> lit;
+    for (size_t i = 0; i < g.positions.size(); ++i)
+        if (clean[i].x == 1.0f && g.positions[i].w != 0.0f) lit.push_back(i);
+    ASSERT_GT(lit.size(), 100u);
+    for (size_t k = 0; k < lit.size(); k += 7, ++poisoned) {
+        if (k % 2) g.normals[lit[k]] = glm::vec4(nan, nan, nan, 0.0f);
+        else g.positions[lit[k]].x = nan;
+    }
+    EXPECT_FALSE(facesLight(glm::vec4(0, 0, 0, 1), glm::vec4(nan, 1, 0, 0), sun));
+    std::vector<glm::vec3> traced;
+    groundTruth->trace(g.view(), sun, ReferenceOptions{}, traced);   // returns (it hung before)
+    size_t changed = 0, dark = 0;
+    for (size_t i = 0; i < clean.size(); ++i) changed += traced[i] != clean[i];
+    for (size_t k = 0; k < lit.size(); k += 7) dark += traced[lit[k]] == glm::vec3(0.0f);
+    EXPECT_EQ(changed, poisoned) << "only the poisoned texels change";
+    EXPECT_EQ(dark, poisoned) << "and they trace no light";
 }

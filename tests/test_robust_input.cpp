@@ -578,7 +578,7 @@ TEST(RobustBench, EveryValueIsCheckedBeforeTheRunNamingTheOption) {
 }
 
 TEST(RobustBench, TheShippedSpecsPassTheCheck) {
-    for (const char* name : {"default.json", "quick.json", "seed000.json", "seed001.json", "fast-passes.json"}) {
+    for (const char* name : {"default.json", "quick.json", "seed000.json", "seed001.json", "fast-passes.json", "point-light.json"}) {
         SCOPED_TRACE(name);
         std::vector<BenchSpec> specs;
         std::string error;

@@ -104,6 +104,52 @@ TEST(RobustDescriptor, TranslucencyModelIsReadOnlyWhereTheDescriptorHasIt) {
     EXPECT_EQ(validateDescriptor(bad.desc), "") << "not covered by structSize: not read";
 }
 
+// Flag conditions (added after translucencyModel): a flag that holds only for some values of a
+// parameter; checked against the descriptor's own flags and parameters, read only when covered.
+TEST(RobustDescriptor, FlagConditionsNarrowTheFlagsByParameterValue) {
+    const FlagCondition onlyFor32F[] = {{kTechniqueNeedsCameraPrepass, "format", "24|32F"}};
+    SampleDescriptor s;
+    s.desc.flags = kTechniqueNeedsCameraPrepass;
+    s.desc.flagConditions = onlyFor32F;
+    s.desc.flagConditionCount = 1;
+    EXPECT_EQ(validateDescriptor(s.desc), "");
+    const TechniqueInfo info = copyDescriptor(s.desc, {});
+    ASSERT_EQ(info.flagRules.size(), 1u);
+    // Values in descriptor order: format (index 3) 0 = "16", 1 = "24", 2 = "32F".
+    EXPECT_EQ(info.flagsFor({2048, 0.5, 0, 2}), uint32_t(kTechniqueNeedsCameraPrepass));
+    EXPECT_EQ(info.flagsFor({2048, 0.5, 0, 1}), uint32_t(kTechniqueNeedsCameraPrepass));
+    EXPECT_EQ(info.flagsFor({2048, 0.5, 0, 0}), 0u);
+    // Numbers for numeric parameters; a flag no condition names holds always.
+    const FlagCondition onBias[] = {{kTechniqueNeedsCameraPrepass, "bias", "0.5|1"}};
+    s.desc.flagConditions = onBias;
+    const TechniqueInfo byBias = copyDescriptor(s.desc, {});
+    EXPECT_EQ(byBias.flagsFor({2048, 1.0, 0, 0}), uint32_t(kTechniqueNeedsCameraPrepass));
+    EXPECT_EQ(byBias.flagsFor({2048, 2.0, 0, 0}), 0u);
+    s.desc.flagConditionCount = 0;
+    EXPECT_EQ(copyDescriptor(s.desc, {}).flagsFor({2048, 2.0, 0, 0}), uint32_t(kTechniqueNeedsCameraPrepass));
+
+    auto problem = [](const FlagCondition& condition, uint32_t flags = kTechniqueNeedsCameraPrepass) {
+        SampleDescriptor broken;
+        broken.desc.flags = flags;
+        broken.desc.flagConditions = &condition;
+        broken.desc.flagConditionCount = 1;
+        return validateDescriptor(broken.desc);
+    };
+    EXPECT_MENTIONS(problem({kTechniqueNeedsCameraPrepass, "fit", "sdsm"}), "flagConditions[0]: 'fit' is not one of");
+    EXPECT_MENTIONS(problem({kTechniqueNeedsCameraPrepass, "format", "16|48"}), "flagConditions[0]: parameter 'format'");
+    EXPECT_MENTIONS(problem({kTechniqueNeedsCameraPrepass, "bias", "9"}), "flagConditions[0]: parameter 'bias'");
+    EXPECT_MENTIONS(problem({kTechniqueNeedsCameraPrepass, "format", ""}), "values is empty");
+    EXPECT_MENTIONS(problem({kTechniqueNeedsCameraPrepass, nullptr, "16"}), "param is null");
+    EXPECT_MENTIONS(problem({kTechniqueNeedsCameraPrepass, "format", "16"}, 0), "not a non-empty subset");
+    SampleDescriptor nullConditions;
+    nullConditions.desc.flagConditionCount = 2;
+    EXPECT_MENTIONS(validateDescriptor(nullConditions.desc), "flagConditions is null");
+    // An older descriptor (ending at translucencyModel) has none, whatever follows it.
+    nullConditions.desc.structSize = offsetof(TechniqueDesc, flagConditions);
+    EXPECT_EQ(validateDescriptor(nullConditions.desc), "");
+    EXPECT_TRUE(copyDescriptor(nullConditions.desc, {}).flagRules.empty());
+}
+
 TEST(RobustDescriptor, TheScanRefusesEveryBrokenPluginByNameAndKeepsTheGoodOne) {
     const fs::path dir = fs::temp_directory_path() / ("shadowlab-robust-scan-" + std::to_string(::getpid()));
     fs::remove_all(dir);

@@ -179,7 +179,10 @@ bool App::renderFrame(const std::string& technique, std::string& error, FrameOut
     frame_.light = light_;
 
     renderer_->setView(frame_.camera, light_);
-    if (loaded->info().flags & kTechniqueNeedsCameraPrepass) {
+    // The flags this frame's parameter values allow (csm asks for the pre-pass only for sdsm).
+    const uint32_t flags = loaded->info().flagsFor(values);
+    loaded->host().setFrameFlags(flags);
+    if (flags & kTechniqueNeedsCameraPrepass) {
         timer_->begin("camera pre-pass");
         renderer_->cameraPrepass();
         timer_->end();

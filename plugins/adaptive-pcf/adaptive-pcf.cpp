@@ -12,8 +12,11 @@
 // bad bias also costs speed (acne pixels look like penumbra and take the full kernel).
 // The shadow map is the kit's depth map, the disc sets the kit's (jittered_disk.h,
 // disc_offset_texture.h; GLSL in shaders/disc_sampling.glsl), shared with pcss.
+// Point lights: the kit's cube map (kit/cube_depth_map.h), the same disc laid across the ray from
+// the light with the radius as an angle (radius texels of a face at its centre; adaptive-pcf.glsl).
 #include <array>
 
+#include <shadowlab/kit/cube_depth_map.h>
 #include <shadowlab/kit/depth_map.h>
 #include <shadowlab/kit/depth_range_mips.h>
 #include <shadowlab/kit/disc_offset_texture.h>
@@ -171,33 +174,41 @@ class AdaptivePcf final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         counters_.init(host());
         uniforms_.create(host(), "adaptive-pcf uniforms");
-        return map_.create(host(), error) && depthRange_.create(host(), error);
+        return map_.create(host(), error) && cube_.create(host(), error) && depthRange_.create(host(), error);
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         offsets_.ensure(host(), params.asInt(kGrid), params.asInt(kSets), "disc offsets (m x m x n^2/2)");
         counters_.beginFrame();
-        map_.render(frame, {.resolution = params.asInt(kResolution),
-                            .constantBias = params.asFloat(kConstantBias),
-                            .slopeBias = params.asFloat(kSlopeBias),
-                            .fit = kit::readFit(params, kFit, kSnap)});
+        const kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
+                                         .constantBias = params.asFloat(kConstantBias),
+                                         .slopeBias = params.asFloat(kSlopeBias),
+                                         .fit = kit::readFit(params, kFit, kSnap)};
+        if (frame.light.type == LightType::Point) return cube_.render(frame, config);
+        map_.render(frame, config);
+        // classify = depth-range reads mips of the 2D map (the cube path takes the ring test).
         if (params.asInt(kClassify) == 1)
             depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
         else
             depthRange_.reset();
     }
 
-    void bindMainPass(const FrameContext&, const ParamValues& params) override {
-        map_.bindMainPass(params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+    void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
+        const SamplerKind sampling = params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
+        if (frame.light.type == LightType::Point)
+            cube_.bindMainPass(sampling);
+        else
+            map_.bindMainPass(sampling);
         glBindTextureUnit(shared::adaptive_pcf::kDiscOffsetsUnit, offsets_.texture());
         depthRange_.bindMainPass();
         uniforms_.set({{}, offsets_.n(), params.asFloat(kRadius), params.asBool(kConeBias) ? 1.0f : 0.0f,
                        params.asBool(kCoherent) ? 1 : 0, params.asBool(kCountEarlyOuts) ? 1 : 0,
-                       params.asInt(kClassify), 0, 0});
+                       frame.light.type == LightType::Point ? 0 : params.asInt(kClassify), 0, 0});
         counters_.bindMainPass();
     }
 
     kit::DepthMap map_;
+    kit::CubeDepthMap cube_;
     kit::DepthRangeMips depthRange_;
     jittered_disk::DiscOffsetTexture offsets_;
     EarlyOutCounters counters_;

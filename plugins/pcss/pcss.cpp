@@ -25,9 +25,14 @@
 // assumes blocker, receiver and light planar and parallel.
 // The shadow map and the disc sets are the kit's (depth_map.h, disc_offset_texture.h, shared with
 // pcf and adaptive-pcf); GLSL in shaders/disc_sampling.glsl.
+// Point lights: the kit's cube map (kit/cube_depth_map.h) and the same three steps in cube space
+// (pcss.glsl, pcssCube): offsets as tangents of angles across the ray from the light, the search
+// cone and the penumbra by the same similar triangles with radial distances, and min-depth mips
+// per face (a 2D array of six layers built from the cube) whose lookups may cross face seams.
 #include <algorithm>
 #include <cmath>
 
+#include <shadowlab/kit/cube_depth_map.h>
 #include <shadowlab/kit/depth_map.h>
 #include <shadowlab/kit/depth_range_mips.h>
 #include <shadowlab/kit/disc_offset_texture.h>
@@ -100,7 +105,10 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
 class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         uniforms_.create(host(), "pcss uniforms");
-        return map_.create(host(), error) && depthRange_.create(host(), error);
+        minDepthFbo_ = kit::makeFramebuffer(host(), "cube min-depth mips");
+        return map_.create(host(), error) && cube_.create(host(), error) && depthRange_.create(host(), error) &&
+               cubeMinDepthProgram_.build(host(), {.vertexFile = "fullscreen.vert", .fragmentFile = "pcss_cube_min_depth.frag"},
+                                          error);
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
@@ -108,10 +116,23 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
         searchOffsets_.ensure(host(), params.asInt(kSearchGrid), sets, "search disc offsets (m x m x n_s^2/2)", 2);
         filterOffsets_.ensure(host(), params.asInt(kFilterGrid), sets, "filter disc offsets (m x m x n_f^2/2)");
         // Raw depths: the blocker search reads them (sampled without comparison).
-        map_.render(frame, {.resolution = params.asInt(kResolution),
-                            .constantBias = params.asFloat(kConstantBias),
-                            .slopeBias = params.asFloat(kSlopeBias),
-                            .fit = kit::readFit(params, kFit, kSnap)});
+        const kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
+                                         .constantBias = params.asFloat(kConstantBias),
+                                         .slopeBias = params.asFloat(kSlopeBias),
+                                         .fit = kit::readFit(params, kFit, kSnap)};
+        if (frame.light.type == LightType::Point) {
+            cube_.render(frame, config);
+            // The cube path bounds its search with min-depth mips per face (search_bound >= 1).
+            if (params.asInt(kSearchBound) >= 1) {
+                ensureCubeMinDepth(cube_.resolution());
+                buildCubeMinDepthMips();
+            } else {
+                cubeMinDepth_.reset();
+                cubeMinDepthSize_ = 0;
+            }
+            return;
+        }
+        map_.render(frame, config);
         if (params.asInt(kSearchBound) >= 1)
             depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
         else
@@ -120,7 +141,14 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
         using namespace shared::pcss;
-        map_.bindMainPass(SamplerKind::Nearest);
+        if (frame.light.type == LightType::Point) {
+            cube_.bindMainPass(SamplerKind::CompareLinear);   // the bilinear taps
+            glBindTextureUnit(kCubeRawUnit, cube_.texture());
+            glBindSampler(kCubeRawUnit, host().sampler(SamplerKind::Nearest));
+            glBindTextureUnit(kCubeMinDepthUnit, cubeMinDepth_);
+        } else {
+            map_.bindMainPass(SamplerKind::Nearest);
+        }
         glBindTextureUnit(kSearchOffsetsUnit, searchOffsets_.texture());
         glBindTextureUnit(kFilterOffsetsUnit, filterOffsets_.texture());
         depthRange_.bindMainPass();
@@ -135,12 +163,64 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     // an orthographic map (directional light) tan(angular radius), the light's width per unit of
     // depth in the limit described at the top of this file. Capped below 90 degrees.
     float lightSizeInLightSpace(const LightInfo& light) const {
-        if (map_.lightSpace().perspective) return light.size;
+        if (light.type == LightType::Point || map_.lightSpace().perspective) return light.size;
         return std::tan(std::min(light.size, 1.4f));
+    }
+
+    // The cube's min-depth mips: a 2D array of six layers (face i of the cube in layer i), level 0
+    // half the face's size; reallocated with the cube only.
+    void ensureCubeMinDepth(int resolution) {
+        const int size = std::max(resolution / 2, 1);
+        if (cubeMinDepth_ && size == cubeMinDepthSize_) return;
+        cubeMinDepthSize_ = size;
+        cubeMinDepthLevels_ = 1;
+        while ((size >> cubeMinDepthLevels_) > 0) ++cubeMinDepthLevels_;
+        cubeMinDepth_ = kit::makeTexture(host(), {.target = GL_TEXTURE_2D_ARRAY, .internalFormat = GL_R32F, .width = size,
+                                                  .height = size, .depth = 6, .levels = cubeMinDepthLevels_,
+                                                  .label = "min-depth mips (cube faces)"});
+        glTextureParameteri(cubeMinDepth_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+        glTextureParameteri(cubeMinDepth_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+
+    // Level by level, face by face (one draw into one layer of one level each: 6 per level); the
+    // source level and face are plain uniforms of this program (locations 16-18).
+    void buildCubeMinDepthMips() {
+        GpuPass pass(host(), "min-depth mips");
+        glBindFramebuffer(GL_FRAMEBUFFER, minDepthFbo_);
+        glDisable(GL_DEPTH_TEST);
+        const GLuint program = cubeMinDepthProgram_.use();
+        glProgramUniform1i(program, 18, cube_.resolution());
+        glBindTextureUnit(shared::pcss::kCubeMinDepthSourceUnit, cube_.texture());
+        glBindSampler(shared::pcss::kCubeMinDepthSourceUnit, host().sampler(SamplerKind::Nearest));
+        glBindTextureUnit(shared::pcss::kMinDepthSourceUnit, cubeMinDepth_);
+        glBindSampler(shared::pcss::kMinDepthSourceUnit, 0);
+        for (int level = 0; level < cubeMinDepthLevels_; ++level) {
+            // Level k reads level k - 1 by explicit lod, written by the previous draws (see
+            // buildMinDepthMips), disjoint from the level being written.
+            if (level > 0) glTextureBarrier();
+            glProgramUniform1i(program, 16, level - 1);
+            const int size = std::max(cubeMinDepthSize_ >> level, 1);
+            glViewport(0, 0, size, size);
+            for (int face = 0; face < 6; ++face) {
+                glNamedFramebufferTextureLayer(minDepthFbo_, GL_COLOR_ATTACHMENT0, cubeMinDepth_, level, face);
+                glNamedFramebufferDrawBuffer(minDepthFbo_, GL_COLOR_ATTACHMENT0);
+                glProgramUniform1i(program, 17, face);
+                host().drawFullscreenTriangle();
+            }
+        }
+        glBindTextureUnit(shared::pcss::kCubeMinDepthSourceUnit, 0);
+        glBindSampler(shared::pcss::kCubeMinDepthSourceUnit, 0);
+        glBindTextureUnit(shared::pcss::kMinDepthSourceUnit, 0);
     }
 
     kit::DepthMap map_;
     kit::DepthRangeMips depthRange_;
+    kit::CubeDepthMap cube_;
+    kit::Program cubeMinDepthProgram_;
+    kit::Texture cubeMinDepth_;
+    int cubeMinDepthSize_ = 0;
+    int cubeMinDepthLevels_ = 0;
+    kit::Framebuffer minDepthFbo_;
     jittered_disk::DiscOffsetTexture searchOffsets_;
     jittered_disk::DiscOffsetTexture filterOffsets_;
     kit::UniformBlock<shared::pcss::PcssUniforms> uniforms_;

@@ -7,6 +7,12 @@ SHADOWLAB_TEXTURE_UNIT(kSearchOffsetsUnit, 5)
 SHADOWLAB_TEXTURE_UNIT(kFilterOffsetsUnit, 6)
 // unit 7: the kit's depth-range mips (kit/depth_range_mips_shared.h)
 SHADOWLAB_TEXTURE_UNIT(kCompareUnit, 8)        // the shadow map again, with the bilinear comparison sampler
+// Point lights (the kit's cube at unit 15 compares): the cube's raw distances for the blocker
+// search, and its min-depth mips, per face, as a 2D array of six layers.
+SHADOWLAB_TEXTURE_UNIT(kCubeRawUnit, 9)
+SHADOWLAB_TEXTURE_UNIT(kCubeMinDepthUnit, 10)
+SHADOWLAB_TEXTURE_UNIT(kCubeMinDepthSourceUnit, 9)   // building level 0: the cube (levels 1+: kMinDepthSourceUnit)
+SHADOWLAB_TEXTURE_UNIT(kMinDepthSourceUnit, 4)       // building the cube's min-depth levels 1+: the array itself
 SHADOWLAB_UNIFORM_BLOCK(PcssUniforms, 2) {
     int uSearchGrid;       // n_s: n_s x n_s blocker-search samples
     int uFilterGrid;       // n_f: n_f x n_f filter samples

@@ -78,7 +78,8 @@ private:
 // What a technique asks of the host (TechniqueDesc::flags).
 enum TechniqueFlag : uint32_t {
     // The host renders the camera's depth, world position, normal and object id of the opaque
-    // surfaces before renderShadows (extension kExtCameraPrepass), once for every technique asking.
+    // surfaces before renderShadows (extension kExtCameraPrepass), once for every technique asking;
+    // on the frames its flagConditions allow, when it has any (csm: only for fit = sdsm).
     kTechniqueNeedsCameraPrepass = 1u << 0,
 };
 
@@ -96,6 +97,17 @@ enum class TranslucencyModel : uint32_t {
 };
 constexpr uint32_t kTranslucencyModelCount = 5;
 
+// A flag that holds only for some values of one parameter (TechniqueDesc::flagConditions): its
+// bits apply while parameter `param` has one of `values` ("sdsm", "a|b": Enum labels or numbers,
+// as --set takes them) and are dropped otherwise. The host evaluates the conditions with the
+// current values every frame, so a parameter change takes effect on the frame it is made; a flag
+// named by no condition holds always. E.g. csm: the camera pre-pass only while fit = sdsm.
+struct FlagCondition {
+    uint32_t flags = 0;                // TechniqueFlag bits (a subset of TechniqueDesc::flags)
+    const char* param = nullptr;       // a parameter id of this descriptor
+    const char* values = nullptr;      // "label|label|number"
+};
+
 struct TechniqueDesc {
     uint32_t structSize = sizeof(TechniqueDesc);
     const char* id = nullptr;          // matches the folder name under plugins/
@@ -108,6 +120,10 @@ struct TechniqueDesc {
     uint32_t flags = 0;                // TechniqueFlag bits
     // Added in ABI 3 after flags: read only when structSize covers it (older plugins: Opaque).
     TranslucencyModel translucencyModel = TranslucencyModel::Opaque;
+    // Added in ABI 3 after translucencyModel, read only when structSize covers them (older
+    // plugins: none, their flags hold always). `flags` stays what the technique may ask for.
+    const FlagCondition* flagConditions = nullptr;
+    uint32_t flagConditionCount = 0;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -248,7 +264,8 @@ using GlLoader = GlProc (*)(const char* name);
 using ProgramId = uint32_t;                  // host handle; stays valid across shader hot reloads
 
 // Extension "shadowlab.camera-prepass/1": the host's camera pre-pass of this frame, for
-// techniques whose descriptor has kTechniqueNeedsCameraPrepass (null otherwise). Textures are
+// techniques whose descriptor has kTechniqueNeedsCameraPrepass and whose flagConditions allow it
+// this frame (null otherwise: no pre-pass was rendered for it). Textures are
 // host-owned and read-only for techniques: sample them, or attach `depth` to a framebuffer with
 // depth writes off. Same size as the main target, single-sample, opaque objects only, the same
 // vertex transform as the main pass (so depths match it exactly).

@@ -96,7 +96,8 @@ bool measurePath(App& app, const std::string& technique, const CameraPath& path,
     const TechniqueInfo* techniqueInfo = app.techniques().find(technique);
     // Exact: the previous frame's maps and light at the current pixels. Techniques with the camera
     // pre-pass hold a per-pixel term of their own view, so they are reprojected as images instead.
-    const bool samePoints = techniqueInfo && !(techniqueInfo->flags & kTechniqueNeedsCameraPrepass);
+    const bool samePoints =
+        techniqueInfo && !(techniqueInfo->flagsFor(app.params().values(*techniqueInfo)) & kTechniqueNeedsCameraPrepass);
     std::vector<glm::vec3> previousTechnique, previousReference;
     for (int frame = 0; frame < path.frames; ++frame) {
         if (frame > 0 && samePoints) {

@@ -188,6 +188,11 @@ inline glm::vec3 directionToLight(const LightInfo& light, glm::vec3 p) {
 // Drawn geometry whose (unflipped) normal faces the light, inside the cone of a spot light.
 inline bool facesLight(const glm::vec4& position, const glm::vec4& normal, const LightInfo& light) {
     if (position.w == 0.0f) return false;
+    // A non-finite position or normal (a G-buffer texel no pass wrote, or NaN from a shader) would
+    // become a NaN shadow ray, on which Embree's robust traversal was seen to spin forever
+    // (`point-light`, lispsm after csm): such a pixel faces no light and traces no ray.
+    for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(position[c]) || !std::isfinite(normal[c])) return false;
     const glm::vec3 p(position);
     const glm::vec3 l = directionToLight(light, p);
     if (glm::dot(glm::vec3(normal), l) <= 0.0f) return false;

@@ -65,6 +65,16 @@ int TechniqueInfo::paramIndex(const std::string& paramId) const {
     return -1;
 }
 
+uint32_t TechniqueInfo::flagsFor(const std::vector<double>& values) const {
+    uint32_t result = flags;
+    for (const FlagRule& rule : flagRules) {
+        const bool holds = rule.param >= 0 && size_t(rule.param) < values.size() &&
+                           std::find(rule.values.begin(), rule.values.end(), values[size_t(rule.param)]) != rule.values.end();
+        if (!holds) result &= ~rule.flags;
+    }
+    return result;
+}
+
 TechniqueInfo copyDescriptor(const TechniqueDesc& desc, const std::filesystem::path& library) {
     auto text = [](const char* s) { return std::string(s ? s : ""); };
     TechniqueInfo info;
@@ -86,6 +96,20 @@ TechniqueInfo copyDescriptor(const TechniqueDesc& desc, const std::filesystem::p
         info.params.push_back({text(p.id), text(p.label), p.type, p.minValue, p.maxValue, p.defaultValue,
                                text(p.unit), text(p.help), splitLabels(p.type == ParamType::Enum ? p.enumLabels : nullptr)});
     }
+    // Conditions were checked by validateDescriptor; one that still does not resolve is dropped.
+    if (has(offsetof(TechniqueDesc, flagConditionCount), sizeof(desc.flagConditionCount)) && desc.flagConditions)
+        for (uint32_t i = 0; i < desc.flagConditionCount; ++i) {
+            const FlagCondition& c = desc.flagConditions[i];
+            TechniqueInfo::FlagRule rule;
+            rule.flags = c.flags & info.flags;
+            rule.param = info.paramIndex(text(c.param));
+            if (rule.param < 0 || !rule.flags) continue;
+            for (const std::string& value : splitLabels(c.values)) {
+                std::string ignored;
+                if (auto v = parseParamValue(info.params[size_t(rule.param)], value, ignored)) rule.values.push_back(*v);
+            }
+            info.flagRules.push_back(std::move(rule));
+        }
     return info;
 }
 

@@ -36,6 +36,18 @@ struct TechniqueInfo {
     TranslucencyModel translucencyModel = TranslucencyModel::Opaque; // Opaque unless the descriptor covers it
     uint32_t descriptorSize = sizeof(TechniqueDesc);
     std::filesystem::path library;    // the .so it came from (empty for host-provided entries)
+    // The descriptor's flagConditions, resolved: `flags` hold only while parameter `param` has
+    // one of `values`.
+    struct FlagRule {
+        uint32_t flags = 0;
+        int param = -1;
+        std::vector<double> values;
+    };
+    std::vector<FlagRule> flagRules;
+
+    // The flags that hold for these parameter values (descriptor order): `flags` less those of
+    // every rule whose parameter has none of its values.
+    uint32_t flagsFor(const std::vector<double>& values) const;
 
     const ParamSpec* findParam(const std::string& paramId) const;
     int paramIndex(const std::string& paramId) const;

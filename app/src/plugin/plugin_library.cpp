@@ -97,6 +97,44 @@ std::string validateDescriptor(const TechniqueDesc& desc) {
                        " labels need min 0 and max " + std::to_string(labels - 1) + ")";
         }
     }
+    // Flag conditions (after translucencyModel, optional): each names declared flags, one of the
+    // descriptor's parameters and values that parameter can take.
+    if (desc.structSize >= offsetof(TechniqueDesc, flagConditionCount) + sizeof(desc.flagConditionCount) &&
+        desc.flagConditionCount > 0) {
+        if (!desc.flagConditions)
+            return "flagConditionCount is " + std::to_string(desc.flagConditionCount) + " but flagConditions is null";
+        if (desc.flagConditionCount > kMaxParams)
+            return "flagConditionCount " + std::to_string(desc.flagConditionCount) + " is more than " + std::to_string(kMaxParams);
+        // The parameters as the host parses them (the struct is complete here: it reaches the
+        // last field), without the conditions not yet checked.
+        TechniqueDesc withoutConditions = desc;
+        withoutConditions.flagConditionCount = 0;
+        const TechniqueInfo info = copyDescriptor(withoutConditions, {});
+        for (uint32_t i = 0; i < desc.flagConditionCount; ++i) {
+            const FlagCondition& c = desc.flagConditions[i];
+            const std::string name = "flagConditions[" + std::to_string(i) + "]";
+            if (c.flags == 0 || (c.flags & ~desc.flags) != 0)
+                return name + ": flags " + std::to_string(c.flags) + " are not a non-empty subset of the descriptor's flags " +
+                       std::to_string(desc.flags);
+            if (std::string problem = checkText(c.param, kMaxIdLength, true, true); !problem.empty())
+                return name + ": param " + problem;
+            const ParamSpec* spec = info.findParam(c.param);
+            if (!spec) return name + ": '" + std::string(c.param) + "' is not one of the descriptor's parameters";
+            if (std::string problem = checkText(c.values, kMaxTextLength, false, true); !problem.empty() || !*c.values)
+                return name + ": values " + (problem.empty() ? std::string("is empty") : problem);
+            std::string value;
+            for (const char* p = c.values;; ++p) {
+                if (*p && *p != '|') {
+                    value += *p;
+                    continue;
+                }
+                std::string error;
+                if (!parseParamValue(*spec, value, error)) return name + ": " + error;
+                value.clear();
+                if (!*p) break;
+            }
+        }
+    }
     return "";
 }
 

@@ -82,6 +82,11 @@ public:
     // cleared by beginFrame() before each renderShadows, so a technique that stops reporting has none.
     const std::vector<ShadowMapInfo>& shadowMaps() const { return shadowMaps_; }
     void beginFrame() { shadowMaps_.clear(); }
+    // The flags that hold this frame (TechniqueInfo::flagsFor the current parameters), set by the
+    // frame loop before renderShadows: the camera pre-pass extension answers only when it was
+    // rendered for this technique.
+    void setFrameFlags(uint32_t flags) { flags_ = flags; }
+    uint32_t frameFlags() const { return flags_; }
     // Deletes every tracked object and program still alive; returns how many were left over.
     int releaseAll();
 

@@ -3,7 +3,8 @@
 // geometry-stage invocations writing gl_Layer into the layered cube attachment), each storing the
 // linear distance to the light over the far distance (shaders/cube_depth.frag), so the main pass
 // looks it up by direction and compares distances (shaders/cube_shadow.glsl). The plumbing of the
-// point-light path of shadowmap, pcf and csm; a single frustum cannot see all around a lamp (the
+// point-light path of shadowmap, pcf, adaptive-pcf, pcss and csm (kit/cube_moment_map.h holds the
+// moment techniques' cube); a single frustum cannot see all around a lamp (the
 // host's fitLightSpace clamps a point light's map to 80 degrees either side).
 // Bias: glPolygonOffset does not reach a depth written by the fragment stage, so the fragment
 // stage adds the same offset (slope factor and constant units); culling as the 2D map's.
@@ -49,6 +50,20 @@ inline glm::vec2 cubeDepthRange(glm::vec3 lightPosition, const Bounds& scene) {
     return {farPlane * 1e-3f, farPlane};
 }
 
+// The six faces to the host (SHADOWLAB_EXT_SHADOW_MAPS): each serves every view depth, a point
+// picking the face its direction from the light falls in.
+inline void reportCubeFaces(IHost& host, const std::array<glm::mat4, 6>& faces, int resolution) {
+    static const char* kLabels[6] = {"+x face", "-x face", "+y face", "-y face", "+z face", "-z face"};
+    std::array<ShadowMapInfo, 6> maps;
+    for (int i = 0; i < 6; ++i) {
+        maps[size_t(i)].worldToClip = faces[size_t(i)];
+        maps[size_t(i)].size = glm::ivec2(resolution);
+        maps[size_t(i)].layer = uint32_t(i);
+        maps[size_t(i)].label = kLabels[i];
+    }
+    reportShadowMaps(host, maps.data(), uint32_t(maps.size()));
+}
+
 class CubeDepthMap {
 public:
     bool create(IHost& host, std::string& error) {
@@ -90,19 +105,7 @@ public:
         uniforms_.bind();
     }
 
-    // The six faces to the host (SHADOWLAB_EXT_SHADOW_MAPS): each serves every view depth, a point
-    // picking the face its direction from the light falls in.
-    void report() const {
-        static const char* kLabels[6] = {"+x face", "-x face", "+y face", "-y face", "+z face", "-z face"};
-        std::array<ShadowMapInfo, 6> maps;
-        for (int i = 0; i < 6; ++i) {
-            maps[size_t(i)].worldToClip = faces_[size_t(i)];
-            maps[size_t(i)].size = glm::ivec2(resolution_);
-            maps[size_t(i)].layer = uint32_t(i);
-            maps[size_t(i)].label = kLabels[i];
-        }
-        reportShadowMaps(*host_, maps.data(), uint32_t(maps.size()));
-    }
+    void report() const { reportCubeFaces(*host_, faces_, resolution_); }
 
     // (Re)allocates the cube (six faces, counted so by the host) when resolution or format change.
     // The block's buffer comes with the first cube, so a technique that never meets a point light

@@ -1,4 +1,5 @@
-// The GL side shared by the filterable shadow maps (vsm, esm, evsm, msm): render the casters from
+// The GL side shared by the filterable shadow maps (vsm, esm, evsm, msm; point lights:
+// kit/cube_moment_map.h, which MomentTechnique below picks for them): render the casters from
 // the light, turn their depth into the technique's moments, blur them with a separable filter,
 // optionally build mipmaps, and bind the result for the main pass. Each technique supplies only
 // its moment file (a GLSL function `vec4 momentsFromDepth(float depth)`, see
@@ -32,9 +33,11 @@
 #include "shadowlab/kit/handles.h"
 #include "shadowlab/kit/shadow_map_report.h"
 #include "shadowlab/kit/moment_light_space.h"
+#include "shadowlab/kit/moment_map_config.h"
 #include "shadowlab/kit/moment_map_shared.h"
 #include "shadowlab/kit/params.h"
 #include "shadowlab/kit/technique_base.h"
+#include "shadowlab/kit/cube_moment_map.h"
 
 namespace shadowlab::kit {
 
@@ -43,23 +46,6 @@ using shared::moment_map::kBlurDestinationImageUnit;
 using shared::moment_map::kBlurSourceUnit;
 using shared::moment_map::kMomentMapUnit;
 using shared::moment_map::MomentMapUniforms;
-
-enum class BlurPath : int { Fragment = 0, Compute = 1 };   // the `blur` parameter's values
-
-struct MomentMapConfig {
-    int resolution = 1024;
-    GLenum format = GL_RG32F;    // GL_R32F, GL_RG32F, GL_RGBA32F or GL_RGBA16 (unorm)
-    bool mipmaps = false;        // trilinear lookups; mipmaps are rebuilt after the blur
-    int kernelSize = 1;          // taps per direction; 1 = no blur
-    bool gaussian = false;       // blur weights: false box, true Gaussian (sigma = kernel / 6)
-    glm::vec4 clearValue{1.0f};  // moments of an empty texel: depth 1, nothing occludes there (the
-                                 // fragment path clears to it; the compute path derives it from the
-                                 // cleared depth 1, so it must equal momentsFromDepth(1))
-    BlurPath blur = BlurPath::Compute;
-    bool momentsNeedDerivatives = false;   // momentsFromDepth uses dFdx/dFdy now: the moments are
-                                           // rendered as colour on both paths (blurred in compute)
-    FitConfig fit{};             // the `fit` and `snap` parameters; default: the whole scene
-};
 
 // Parameters every filterable map shares: each plugin's descriptor starts with these seven (same ids,
 // ranges and help in vsm, esm, evsm and msm), then lists its own from index kCommonParamCount.
@@ -299,20 +285,26 @@ public:
 protected:
     bool setup(std::string& error) override {
         uniforms_.create(host(), "technique uniforms");
-        return map_.create(host(), momentFile_, error);
+        return map_.create(host(), momentFile_, error) && cube_.create(host(), momentFile_, error);
     }
+    // Point lights: the cube moment map (kit/cube_moment_map.h), the 2D map otherwise.
     void render(const FrameContext& frame, const MomentMapConfig& config, const Block& block) {
         uniforms_.set(block);
-        map_.render(frame, config);
+        if (frame.light.type == LightType::Point)
+            cube_.render(frame, config);
+        else
+            map_.render(frame, config);
     }
-    void bindMainPass(const FrameContext&, const ParamValues&) override {
-        map_.bindMainPass();
+    void bindMainPass(const FrameContext& frame, const ParamValues&) override {
+        map_.bindMainPass();   // its block is read (not used) by the 2D branch of moment_shadows.glsl
+        if (frame.light.type == LightType::Point) cube_.bindMainPass();
         uniforms_.bind();
     }
 
 private:
     const char* momentFile_;
     MomentMap map_;
+    CubeMomentMap cube_;
     UniformBlock<Block> uniforms_;
 };
 

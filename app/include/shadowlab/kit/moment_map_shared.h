@@ -7,6 +7,7 @@
 SHADOWLAB_SHARED_BEGIN(moment_map)
 SHADOWLAB_TEXTURE_UNIT(kMomentMapUnit, 4)
 SHADOWLAB_TEXTURE_UNIT(kBlurSourceUnit, 4)
+SHADOWLAB_TEXTURE_UNIT(kCubeMomentMapUnit, 14)      // point lights: the cube moment map (kit/cube_moment_map.h)
 SHADOWLAB_IMAGE_UNIT(kBlurDestinationImageUnit, 0)   // the compute blur's output (image unit 0)
 SHADOWLAB_UNIFORM_BLOCK(MomentMapUniforms, 1) {
     mat4 uShadowMatrix;       // light view-projection
