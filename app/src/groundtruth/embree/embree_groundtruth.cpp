@@ -304,6 +304,11 @@ struct SurfaceRecord {
     int texture = -1;                 // transmission texture (index into textures_): replaces both per texel
 };
 
+// kStreamFlags: every ray stream is traced with the default (incoherent) context flags. With
+// RTC_INTERSECT_CONTEXT_FLAG_COHERENT, Embree 3.13.5 (Debian 12) spent minutes in one
+// rtcOccluded1M call on `point-light` (lispsm's G-buffer after csm's, finite rays; seen in gdb) and
+// made PointLight.CubeMapShadowsAgainstTheReference time out at 600 s; incoherent, the whole test
+// takes about a second.
 void initRay(RTCRay& ray, glm::vec3 origin, const ShadowRay& shadowRay, unsigned mask) {
     ray.org_x = origin.x;
     ray.org_y = origin.y;
@@ -507,8 +512,7 @@ public:
         parallelRows(threadCount(0, height), [&](std::atomic<int>& nextRow) {
             std::vector<RTCRayHit> rayHits(static_cast<size_t>(std::max(width, 1)));
             RTCIntersectContext context;
-            rtcInitIntersectContext(&context);
-            context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+            rtcInitIntersectContext(&context);   // incoherent: see kStreamFlags
             for (int row; (row = nextRow++) < height;) {
                 for (int x = 0; x < width; ++x) {
                     // NDC z = 1 is the far plane in both GL (-1..1) and zero-to-one depth conventions.
@@ -553,8 +557,8 @@ private:
             std::vector<int> rayPixel(rays.size());
             RTCIntersectContext context;
             rtcInitIntersectContext(&context);
-            // Hard rays of a row to one light are coherent: Embree traces the stream as packets.
-            context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+            // Hard rays of a row to one light are coherent, but the coherent stream mode is not
+            // used (see kStreamFlags).
             for (int row; (row = nextRow++) < height;) {
                 const size_t rowStart = static_cast<size_t>(row) * static_cast<size_t>(width);
                 int count = 0;
@@ -686,8 +690,7 @@ private:
         std::atomic<uint64_t> rays{0};
 
         auto context = [](RTCIntersectContext& c) {
-            rtcInitIntersectContext(&c);
-            c.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+            rtcInitIntersectContext(&c);   // incoherent: see kStreamFlags
         };
         if (adaptive) {
             parallelRows(threads, [&](std::atomic<int>& nextRow) {
