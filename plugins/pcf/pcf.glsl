@@ -3,7 +3,7 @@
 // point's map position, keeping its depth z (optionally minus the cone bias). With GL_LINEAR
 // each tap is itself the texture unit's 2x2 bilinear comparison (Fig. 3.11c).
 //
-// Two ways to evaluate the filter (the `sampling` parameter; the same filter without the cone
+// Three ways to evaluate the filter (the `sampling` parameter; the same filter without the cone
 // bias, and with it the same up to a cone at most one texel diagonal wider, see pcfGather):
 //   taps    the loop of n^2 lookups (boxPcfDepth, shaders/box_pcf.glsl), one texture() per tap;
 //   gather  the texels the taps read, four at a time with textureGather (pcfGather), each weighted
@@ -12,6 +12,8 @@
 //           folds the bilinear taps of a kernel onto its texels and fetches them with the fewest
 //           lookups; here the weights are chosen to reproduce this box of taps exactly rather than
 //           a wider tent, and the comparisons stay in the texture unit.
+//   folded  the same 2 x 2 blocks, each one bilinear comparison the texture unit weights
+//           (pcfFolded: Castano's own form).
 #include "light_space.glsl"
 #include "light_depth.glsl"
 #include "box_pcf.glsl"
@@ -51,8 +53,9 @@ layout(binding = kDepthMapUnit) uniform sampler2DShadow uShadowMap;   // compari
 // taps and darker at contacts on llvmpipe: tests/test_soft_filtering.cpp), where an exact
 // per-tap comparison would need raw depths and up to 16 shader comparisons per block. On an H200
 // that exact version was 1.3-1.5x slower than the taps (build c84cf6c); this one needs four weights
-// and one gather per block, and measured 0.84-0.88x the taps' shadow term at 11 x 11 and 1.09-1.20x
-// at 5 x 5 (docs/results/h200-2026-12-01): there each gather costs about three taps.
+// and one gather per block, and measured 0.62-0.65x the taps' shadow term at 11 x 11 and 0.89-0.95x
+// at 5 x 5, folded the same (docs/results/h200-2026-12-02-issue10): there each 2 x 2 lookup costs
+// 2.1-2.5 taps, whatever the arithmetic around it (the cone bias off changes nothing).
 
 // Weight of texel k of the kernel along one axis (nearest taps: f = 0 and k < n).
 float texelWeight(int k, float f) {

@@ -161,9 +161,9 @@ vec3 shadowTerm(ShadowInput s) {
 
     // Step 1a: the search region. eq. 3.18 as printed takes n = the near plane. Where the map's near
     // plane sits close to the light (spot and point lights fitted around a large ground), that
-    // region covers half the map and n_s^2 samples miss the casters; with search_bound = 1 the
+    // region covers half the map and n_s^2 samples miss the casters; with search_bound >= 1 the
     // region shrinks twice to the cone at the nearest depth stored within it (a lower bound on
-    // any blocker's depth, read from the min-depth mips). Deviation from the seed, same cone.
+    // any blocker's depth, read from the kit's depth-range mips). Deviation from the seed, same cone.
     float zNear = perspective ? uLightDepth.x : 0.0;
     vec2 searchUv = searchRadius(zReceiver, zNear, perspective);
     if (uSearchBound >= 1) {
