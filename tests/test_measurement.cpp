@@ -98,7 +98,9 @@ TEST(HonestMeasurement, AMeasuredFrameGivesTheFiguresOfTheGBufferOnEveryFrame) {
     const Figures before[] = {{"shadowmap", 4.597701149425287e-05, 0.0067806350362081035},
                               {"pcf", 0.0007726854346264368, 0.015803700220240007},
                               {"vsm", 0.001812903130191496, 0.02343645202120128},
-                              {"pcss", 0.00032626775078389836, 0.010051991914774393}};
+                              // pcss re-measured the same way after 9d872e8 and 9aaf4a1 (tighter min-depth
+                              // bounds, disc offsets in RGBA16_SNORM: a few penumbra pixels move by under 1e-6).
+                              {"pcss", 0.00032626846329919225, 0.010051994318722186}};
     auto app = test::makeHeadlessApp("cube", {320, 180});
     ASSERT_TRUE(app);
     std::string error;
