@@ -303,3 +303,40 @@ TEST(TranslucentShadows, TintReceiversBehindTheFirstLayerWithLayersFartherFromTh
 }
 
 } // namespace shadowlab
+
+namespace shadowlab {
+
+// Seed 001 sec. 5.1 refits its light to the camera frustum every frame; here that is `fit`
+// (kit/focus.h) on the coloured techniques too. On glass-field (a 40 m ground, the camera seeing
+// part of it) at a small map the crop puts the texels where the camera looks, so each technique's
+// error against its own model is lower than with the map around the whole scene.
+TEST(GlassField, CroppingTheMapToTheViewLowersEveryColouredTechniquesError) {
+    auto app = test::makeHeadlessApp("glass-field", {256, 160});
+    ASSERT_TRUE(app);
+    struct Case {
+        const char* technique;
+        TranslucencyModel model;
+        std::vector<std::string> sets;
+    };
+    const Case cases[] = {
+        {"translucent-shadows", TranslucencyModel::ModifiedTranslucent, {"variant=modified"}},
+        {"cssm2", TranslucencyModel::Physical, {"kernel=5", "noise=per-surface"}},
+        {"stochastic-sm", TranslucencyModel::Coverage, {"kernel=5", "noise=per-surface"}},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.technique);
+        auto error = [&](const char* fit) {
+            std::vector<std::string> sets = c.sets;
+            sets.push_back("resolution=512");
+            sets.push_back(std::string("fit=") + fit);
+            sets.push_back("snap=0");
+            return test::measureAccuracy(*app, c.technique, sets, ReferenceOptions::Mode::Hard, 1, c.model).mae;
+        };
+        const double scene = error("scene"), frustum = error("frustum"), body = error("focus-body");
+        std::printf("%s: MAE fit=scene %.4f, frustum %.4f, focus-body %.4f\n", c.technique, scene, frustum, body);
+        EXPECT_LT(frustum, scene);
+        EXPECT_LT(body, scene);
+    }
+}
+
+} // namespace shadowlab

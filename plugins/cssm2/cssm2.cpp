@@ -16,6 +16,7 @@
 // Format and clear value are not stated in seed 001: the map must hold depths, so 32F and 1.
 // Known artefacts: noise, worst where much light gets through with little saturation (sec.
 // 5.3.2); blurred edges from the wide kernels the noise needs; kernel cost without hardware PCF.
+#include <shadowlab/kit/focus.h>
 #include <shadowlab/kit/handles.h>
 #include <shadowlab/kit/light_target.h>
 #include <shadowlab/kit/params.h>
@@ -51,6 +52,8 @@ constexpr ParamDesc kParams[] = {
      "applied in the shader). Zero leaves acne on tilted surfaces; large values push shadows off grazing "
      "contacts.",
      nullptr},
+    kit::fitParam(),
+    kit::snapParam(),
 };
 enum : uint32_t {
     kResolution = kit::paramIndex(kParams, "resolution"),
@@ -59,6 +62,8 @@ enum : uint32_t {
     kConeBias = kit::paramIndex(kParams, "cone_bias"),
     kConstantBias = kit::paramIndex(kParams, "constant_bias"),
     kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
+    kFit = kit::paramIndex(kParams, "fit"),
+    kSnap = kit::paramIndex(kParams, "snap"),
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -102,7 +107,8 @@ class ColouredStochasticShadowMaps final : public kit::TechniqueBase {
             host().registerDebugImage("cssm2 colour map", target_.colour(), DebugImageKind::Color);
         }
         GpuPass pass(host(), "shadow map");
-        const LightSpace lightSpace = host().fitLightSpace(frame.light, DrawSet::All);
+        const kit::FocusedLightSpace focused = kit::focusLightSpace(host(), frame, kit::readFit(params, kFit, kSnap), resolution);
+        const LightSpace& lightSpace = focused.light;
         mapUniforms_.set(kit::lightSpaceUniforms(lightSpace, resolution));
         kit::reportShadowMap(host(), lightSpace.viewProjection, {resolution, resolution});
         passUniforms_.set({{}, frame.randomSeed, params.asInt(kNoise), params.asFloat(kSlopeBias), params.asFloat(kConstantBias)});
@@ -110,12 +116,12 @@ class ColouredStochasticShadowMaps final : public kit::TechniqueBase {
         const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};
         glClearBufferfv(GL_COLOR, 0, far);
         glClearBufferfv(GL_DEPTH, 0, far);
-        host().drawScene(DrawSet::OpaqueCasters, opaqueProgram_.use());
+        host().drawScene(kit::culledDraw(DrawSet::OpaqueCasters, focused.cullPlanes), opaqueProgram_.use());
         glDepthMask(GL_FALSE);
         glEnable(GL_BLEND);
         glBlendEquation(GL_MIN);   // factors are ignored by MIN (seed 001: ONE, ONE)
         glBlendFunc(GL_ONE, GL_ONE);
-        host().drawScene(DrawSet::TranslucentCasters, translucentProgram_.use());
+        host().drawScene(kit::culledDraw(DrawSet::TranslucentCasters, focused.cullPlanes), translucentProgram_.use());
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {

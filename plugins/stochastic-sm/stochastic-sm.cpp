@@ -11,6 +11,7 @@
 // Known artefacts: noise under translucent casters, which only wide kernels (blurring every edge)
 // average away; no colour (a red glass casts a grey shadow); the `per-texel` noise lets stacked
 // surfaces through as 1 - max a instead of prod (1 - a_i).
+#include <shadowlab/kit/focus.h>
 #include <shadowlab/kit/handles.h>
 #include <shadowlab/kit/light_target.h>
 #include <shadowlab/kit/params.h>
@@ -39,6 +40,8 @@ constexpr ParamDesc kParams[] = {
     kit::coneBiasParam(),
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
+    kit::fitParam(),
+    kit::snapParam(),
 };
 enum : uint32_t {
     kResolution = kit::paramIndex(kParams, "resolution"),
@@ -48,6 +51,8 @@ enum : uint32_t {
     kConeBias = kit::paramIndex(kParams, "cone_bias"),
     kConstantBias = kit::paramIndex(kParams, "constant_bias"),
     kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
+    kFit = kit::paramIndex(kParams, "fit"),
+    kSnap = kit::paramIndex(kParams, "snap"),
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -84,7 +89,8 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
         if (target_.ensure({.resolution = resolution}))
             host().registerDebugImage("stochastic shadow map", target_.depth(), DebugImageKind::Depth);
         GpuPass pass(host(), "shadow map");
-        const LightSpace lightSpace = host().fitLightSpace(frame.light, DrawSet::All);
+        const kit::FocusedLightSpace focused = kit::focusLightSpace(host(), frame, kit::readFit(params, kFit, kSnap), resolution);
+        const LightSpace& lightSpace = focused.light;
         mapUniforms_.set(kit::lightSpaceUniforms(lightSpace, resolution));
         kit::reportShadowMap(host(), lightSpace.viewProjection, {resolution, resolution});
         passUniforms_.set({{}, frame.randomSeed, params.asInt(kNoise), 0.0f, 0.0f});
@@ -92,9 +98,9 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
         glClear(GL_DEPTH_BUFFER_BIT);
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(params.asFloat(kSlopeBias), params.asFloat(kConstantBias));
-        host().drawScene(DrawSet::OpaqueCasters, opaqueProgram_.use());
+        host().drawScene(kit::culledDraw(DrawSet::OpaqueCasters, focused.cullPlanes), opaqueProgram_.use());
         // The same depth test and writes: a kept translucent fragment is an opaque one.
-        host().drawScene(DrawSet::TranslucentCasters, translucentProgram_.use());
+        host().drawScene(kit::culledDraw(DrawSet::TranslucentCasters, focused.cullPlanes), translucentProgram_.use());
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {

@@ -19,6 +19,7 @@
 // colour (a green plane over a green pot, Fig. 4.2.1.A); modified: (1 - a) t does not tend to 1
 // as a -> 0 (it is 1 - a only where t = 1), so it differs from the physical model even under one
 // layer ("only superficially corrected", sec. 2.1.3 footnote 1).
+#include <shadowlab/kit/focus.h>
 #include <shadowlab/kit/handles.h>
 #include <shadowlab/kit/light_target.h>
 #include <shadowlab/kit/params.h>
@@ -45,6 +46,8 @@ constexpr ParamDesc kParams[] = {
      nullptr},
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
+    kit::fitParam(),
+    kit::snapParam(),
 };
 enum : uint32_t {
     kResolution = kit::paramIndex(kParams, "resolution"),
@@ -52,6 +55,8 @@ enum : uint32_t {
     kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
     kConstantBias = kit::paramIndex(kParams, "constant_bias"),
     kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
+    kFit = kit::paramIndex(kParams, "fit"),
+    kSnap = kit::paramIndex(kParams, "snap"),
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -95,7 +100,8 @@ class TranslucentShadows final : public kit::TechniqueBase {
             host().registerDebugImage("translucent depth D_t", translucentDepth_.depth(), DebugImageKind::Depth);
             host().registerDebugImage("shadow colour C", shadowColour_.colour(), DebugImageKind::Color);
         }
-        const LightSpace lightSpace = host().fitLightSpace(frame.light, DrawSet::All);
+        const kit::FocusedLightSpace focused = kit::focusLightSpace(host(), frame, kit::readFit(params, kFit, kSnap), resolution);
+        const LightSpace& lightSpace = focused.light;
         mapUniforms_.set(kit::lightSpaceUniforms(lightSpace, resolution));
         kit::reportShadowMap(host(), lightSpace.viewProjection, {resolution, resolution});
         glEnable(GL_POLYGON_OFFSET_FILL);
@@ -104,14 +110,14 @@ class TranslucentShadows final : public kit::TechniqueBase {
             GpuPass pass(host(), "opaque depth");
             opaqueDepth_.bind();
             glClear(GL_DEPTH_BUFFER_BIT);
-            host().drawScene(DrawSet::OpaqueCasters, depthProgram_.use());
+            host().drawScene(kit::culledDraw(DrawSet::OpaqueCasters, focused.cullPlanes), depthProgram_.use());
         }
         {
             GpuPass pass(host(), "translucent depth");
             translucentDepth_.bind();
             glClear(GL_DEPTH_BUFFER_BIT);
             glDepthFunc(GL_LEQUAL);
-            host().drawScene(DrawSet::TranslucentCasters, depthProgram_.use());
+            host().drawScene(kit::culledDraw(DrawSet::TranslucentCasters, focused.cullPlanes), depthProgram_.use());
         }
         {
             GpuPass pass(host(), "shadow colour");
@@ -124,7 +130,9 @@ class TranslucentShadows final : public kit::TechniqueBase {
             glEnable(GL_BLEND);
             glBlendFunc(GL_DST_COLOR, GL_ZERO);
             colourPassUniforms_.set({{}, params.asInt(kVariant), 0, 0, 0});
-            host().drawScene(kit::frontToBackFromLight(DrawSet::TranslucentCasters, frame.light), colourProgram_.use());
+            host().drawScene(kit::culledDraw(DrawSet::TranslucentCasters, focused.cullPlanes,
+                                             kit::frontToBackFromLight(DrawSet::TranslucentCasters, frame.light)),
+                             colourProgram_.use());
         }
     }
 

@@ -539,4 +539,12 @@ inline FocusedLightSpace focusLightSpace(const IHost& host, const FrameContext& 
                            host.bounds(DrawSet::All), config, resolution);
 }
 
+// A draw of `set` culled against a focused map's volume (FocusedLightSpace::cullPlanes; none: all).
+inline DrawRequest culledDraw(DrawSet set, const std::vector<glm::vec4>& cullPlanes, DrawRequest request = {}) {
+    request.set = set;
+    request.cullPlanes = cullPlanes.data();
+    request.cullPlaneCount = uint32_t(cullPlanes.size());
+    return request;
+}
+
 } // namespace shadowlab::kit
