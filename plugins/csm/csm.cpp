@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <optional>
 #include <vector>
 
@@ -127,8 +128,16 @@ constexpr int kRingSize = 3;
 
 class CascadedShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
-        if (!depthProgram_.build(host(), {.vertexFile = "world_position.vert", .geometryFile = "csm_cascades.geom"}, error))
-            return false;
+        // One program per cascade count: the geometry stage runs `invocations` instances per
+        // triangle, a compile-time constant, and unused instances still cost (on an H200 one
+        // cascade through the 8-instance stage took 2.0x shadowmap's pass for the same map).
+        for (int count = 1; count <= kit::kMaxCascades; ++count) {
+            const std::string defines = "CSM_CASCADES " + std::to_string(count);
+            if (!depthPrograms_[size_t(count - 1)].build(
+                    host(), {.vertexFile = "world_position.vert", .geometryFile = "csm_cascades.geom", .defines = defines.c_str()},
+                    error))
+                return false;
+        }
         if (!reduceProgram_.build(host(), {.computeFile = "csm_depth_bounds.comp"}, error)) return false;
         framebuffer_ = kit::makeFramebuffer(host(), "cascades");
         uniforms_.create(host(), "csm uniforms");
@@ -182,7 +191,7 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
         request.set = DrawSet::OpaqueCasters;
         request.cullPlanes = cullPlanes_.data();
         request.cullPlaneCount = uint32_t(cullPlanes_.size());
-        host().drawScene(request, depthProgram_.use());
+        host().drawScene(request, depthPrograms_[size_t(count - 1)].use());
         report(count);
     }
 
@@ -330,7 +339,7 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
         uint64_t serial = 0;
     };
 
-    kit::Program depthProgram_;
+    std::array<kit::Program, kit::kMaxCascades> depthPrograms_;   // [n - 1]: the geometry stage for n cascades
     kit::Program reduceProgram_;
     kit::Framebuffer framebuffer_;
     kit::Texture maps_;
