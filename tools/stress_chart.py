@@ -19,6 +19,7 @@ import argparse
 import json
 import os
 import sys
+import textwrap
 
 import matplotlib
 
@@ -91,9 +92,11 @@ def draw(rows):
     ax.set_xticklabels(cases, rotation=45, ha="right", fontsize=7)
     ax.set_yticks([i + 0.5 for i in range(len(techniques))])
     ax.set_yticklabels(techniques, fontsize=7)
-    title = ("stress: value, multiple of the threshold and the claim (green pass, magenta fail; framed where the "
-             "literature names the technique: solid fails, dashed does better; orange: the measurement disagrees)\n"
-             "%d of %d cells the claims name agree with them" % (agree, agree + disagree))
+    legend = ("stress: value, multiple of the threshold and the claim (green pass, magenta fail; framed where the "
+              "literature names the technique: solid fails, dashed does better; orange: the measurement disagrees)")
+    # Wrapped to the grid's width (about 14 characters a column at this font size).
+    title = "\n".join(textwrap.wrap(legend, width=max(50, 14 * len(cases))))
+    title += "\n%d of %d cells the claims name agree with them" % (agree, agree + disagree)
     ax.set_title(title, fontsize=7)
     ax.tick_params(length=0)
     for side in ax.spines.values():
