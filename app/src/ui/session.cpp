@@ -224,6 +224,7 @@ int App::runInteractive(const InteractiveOptions& options) {
         }
         case UiCommand::Kind::LoadScene:
             state.sceneError = loadScene(command.argument, {}, error) ? "" : error;
+            if (state.sceneError.empty()) state.path.reset();   // a step's path belongs to its scene
             break;
         case UiCommand::Kind::TourStep: {
             if (!state.tour || state.tour->steps.empty()) break;
