@@ -8,8 +8,6 @@
 #include <map>
 
 #include "bench/path_run.h"
-#include "render/light_space.h"
-#include "shadowlab/kit/focus.h"
 
 namespace shadowlab {
 
@@ -72,32 +70,6 @@ bool applyTourStep(App& app, const TourStep& step, UiState& state, std::string& 
     return true;
 }
 
-namespace {
-
-// The world size of one texel of the technique's map at the path's first frame, as the stress
-// suite's shimmer case computes it (runStressCell): the technique's fit, snap and resolution
-// (seed 000 eq. 3.9-3.10 for the frustum crop); 0 (the dolly's default, 2048 texels over the
-// scene) for a technique without those parameters or a perspective map.
-double dollyTexel(App& app, const std::string& technique, const SceneCamera& camera, const LightInfo& light) {
-    const TechniqueInfo* info = app.techniques().find(technique);
-    if (!info) return 0.0;
-    const auto& values = app.params().values(*info);
-    const int resolutionIndex = info->paramIndex("resolution"), fitIndex = info->paramIndex("fit"),
-              snapIndex = info->paramIndex("snap");
-    const int resolution = resolutionIndex >= 0 ? int(values[size_t(resolutionIndex)]) : 2048;
-    kit::FitConfig fit;
-    if (fitIndex >= 0) fit.fit = kit::Fit(int(values[size_t(fitIndex)]));
-    if (snapIndex >= 0) fit.snap = values[size_t(snapIndex)] != 0.0;
-    const Bounds bounds = app.scene().worldBounds(DrawSet::All);
-    CameraController controller;
-    controller.reset(camera);
-    const LightSpace sceneFit = fitLightSpace(light, bounds);
-    const auto focused = kit::focusLightSpace(sceneFit, controller.info(app.renderer().size()), light, bounds, fit, resolution);
-    return focused.light.perspective ? 0.0 : double(focused.light.worldSizeAtUnitDepth.x) / resolution;
-}
-
-} // namespace
-
 // A debug view exists only once its technique has drawn a frame (plugins register their images
 // when they create them): one frame of each such technique, before any step is rendered, so a
 // view no technique has is refused before the first slide.
@@ -133,7 +105,9 @@ bool resolveTourPath(App& app, const TourStep& step, const SceneCamera& camera, 
         options.frames = step.pathFrames;
         options.camera = camera;
         options.light = light;
-        if (step.path == "dolly") options.texelWorldSize = dollyTexel(app, step.technique, camera, light);
+        // The dolly moves by a quarter of the step technique's own texel, as the shimmer case.
+        if (const TechniqueInfo* info = app.techniques().find(step.technique); info && step.path == "dolly")
+            options.texelWorldSize = techniqueTexelWorldSize(app, *info, camera, light, app.renderer().size());
         if (!builtinPath(step.path, scene, options, path, error)) return false;
     } else {
         if (!loadPathFile(step.path, path, error)) return false;
