@@ -229,6 +229,25 @@ tour_step "$tmp/tour-view.json" '{"title": "two", "scene": "cube", "technique": 
 expect_bounded 2 "tour-view.json: steps\[1\].*view 'moments': pcf has no such image" -- tour --backend osmesa --size 64x48 "$tmp/tour-view.json" --out "$tmp/tour"
 [ ! -e "$tmp/tour/step-01.png" ] || { echo "FAIL: a slide was drawn before the tour was refused"; failures=$((failures + 1)); }
 expect 2 "no-such-tour: no such tour file" -- tour no-such-tour --out "$tmp/tour"
+# A step's path (issue 12's paths): a built-in name or a file relative to the tour, checked before
+# the first slide, in `tour` and in the window.
+tour_step "$tmp/tour-pathname.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "path": "dolyy", "caption": "c"}'
+expect 2 "tour-pathname.json: steps\[1\] (\"two\"): path 'dolyy': not a built-in path (orbit, dolly, sweep, walk, static)" -- tour "$tmp/tour-pathname.json" --out "$tmp/tour"
+expect 2 "--tour: .*tour-pathname.json: steps\[1\].*path 'dolyy'" -- --backend osmesa --tour "$tmp/tour-pathname.json" --frames 2 --screenshot "$tmp/s.png"
+tour_step "$tmp/tour-pathfile.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "path": "paths/missing.json", "caption": "c"}'
+expect 2 "tour-pathfile.json: steps\[1\] (\"two\"): path '$tmp/paths/missing.json'" -- tour "$tmp/tour-pathfile.json" --out "$tmp/tour"
+mkdir -p "$tmp/paths"
+echo '{"keyframes": [{"time": 0, "light": {"position": [0, 5, 0]}}, {"time": 1, "light": {"position": [1, 5, 0]}}]}' > "$tmp/paths/lamp.json"
+tour_step "$tmp/tour-pathlight.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "path": "paths/lamp.json", "caption": "c"}'
+expect 2 "tour-pathlight.json: steps\[1\].*paths/lamp.json': moves the light by position, but scene 'cube' has a directional light" -- tour "$tmp/tour-pathlight.json" --out "$tmp/tour"
+echo '{"keyframes": [{"time": 0, "camra": {}}]}' > "$tmp/paths/typo.json"
+tour_step "$tmp/tour-pathtypo.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "path": "paths/typo.json", "caption": "c"}'
+expect 2 "tour-pathtypo.json: steps\[1\].*typo.json.*camra" -- tour "$tmp/tour-pathtypo.json" --out "$tmp/tour"
+tour_step "$tmp/tour-patherror.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "path": "orbit", "view": "error", "caption": "c"}'
+expect 2 "tour-patherror.json: steps\[1\].*path 'orbit': the error view" -- tour "$tmp/tour-patherror.json" --out "$tmp/tour"
+# The window checks a step's debug view when the tour is loaded, before the first step is shown.
+expect_bounded 2 "tour-view.json: steps\[1\].*view 'moments': pcf has no such image" -- --backend osmesa --size 64x48 --tour "$tmp/tour-view.json" --frames 2 --screenshot "$tmp/s-view.png"
+[ ! -e "$tmp/s-view.png" ] || { echo "FAIL: the window drew the tour before refusing its view"; failures=$((failures + 1)); }
 # The window's --tour and --session, with and without a display.
 expect 2 "--tour: .*tour-range.json: steps\[1\]" -- --backend osmesa --tour "$tmp/tour-range.json" --frames 2 --screenshot "$tmp/s.png"
 tour_step "$tmp/tour-ok.json" '{"title": "two", "scene": "hover", "technique": "pcf", "caption": "c"}'

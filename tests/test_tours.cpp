@@ -279,3 +279,215 @@ TEST(Sessions, ASavedSessionIsATourStepAndRestoresTheSameFrame) {
     EXPECT_EQ(saved["parameters"].value("kernel", 0), 9);
     EXPECT_EQ(saved["parameters"].value("offset_scale", 0.0), 1.37) << "written in full precision";
 }
+
+// --- A step that plays a camera or light path (issue 12's paths, issue 14) -------------------
+
+namespace {
+
+struct TempDir {
+    std::filesystem::path path;
+    TempDir() {
+        char folder[] = "/tmp/shadowlab-tour-path-XXXXXX";
+        if (mkdtemp(folder)) path = folder;
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+    std::string write(const std::string& name, const std::string& text) const {
+        std::filesystem::create_directories((path / name).parent_path());
+        std::ofstream(path / name) << text;
+        return (path / name).string();
+    }
+};
+
+// The mean absolute difference of two images, in 8-bit levels over the RGB channels.
+double meanLevels(const Texture& a, const Texture& b) {
+    if (a.rgba.size() != b.rgba.size() || a.rgba.empty()) return 1e9;
+    double sum = 0.0;
+    size_t count = 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4)
+        for (size_t c = 0; c < 3; ++c, ++count) sum += std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c]));
+    return sum / double(count);
+}
+
+} // namespace
+
+TEST(Tours, APathStepIsReadRelativeToItsTourCheckedAndRoundTrips) {
+    TempDir dir;
+    ASSERT_FALSE(dir.path.empty());
+    dir.write("paths/slide.json", R"({"frames": 6, "keyframes": [
+        {"time": 0, "camera": {"position": [3, 2, 4], "target": [0, 0.5, 0]}},
+        {"time": 1, "camera": {"position": [1, 2, 4], "target": [-2, 0.5, 0]}}]})");
+    const std::string file = dir.write("lesson.json", R"({"title": "t", "steps": [
+        {"title": "dolly", "scene": "cube", "technique": "shadowmap", "parameters": {"fit": "frustum"},
+         "path": "dolly", "pathFrames": 12, "caption": "c"},
+        {"title": "file", "scene": "cube", "technique": "pcf", "path": "paths/slide.json", "caption": "c"}]})");
+    Tour tour;
+    std::string error;
+    ASSERT_TRUE(loadTour(file, realTechniques(), tour, error)) << error;
+    EXPECT_EQ(tour.steps[0].path, "dolly");
+    EXPECT_EQ(tour.steps[0].pathFrames, 12);
+    EXPECT_EQ(tour.steps[1].path, (dir.path / "paths" / "slide.json").lexically_normal().string())
+        << "a path file is relative to the tour file";
+    EXPECT_EQ(tour.steps[1].pathFrames, 0);
+    for (const TourStep& step : tour.steps) {
+        TourStep again;
+        ASSERT_TRUE(parseTourStep(tourStepJson(step), "again", {}, again, error)) << error;
+        EXPECT_EQ(again.path, step.path);
+        EXPECT_EQ(again.pathFrames, step.pathFrames);
+    }
+}
+
+TEST(Tours, ABadPathIsNamedWithItsFileStepAndPath) {
+    TempDir dir;
+    ASSERT_FALSE(dir.path.empty());
+    const std::string lamp = dir.write("lamp.json", R"({"keyframes": [{"time": 0, "light": {"position": [0, 5, 0]}},
+                                                                      {"time": 1, "light": {"position": [1, 5, 0]}}]})");
+    const std::string typo = dir.write("typo.json", R"({"keyframes": [{"time": 0, "camra": {}}]})");
+    const std::pair<json, std::string> cases[] = {
+        {{{"path", "dolyy"}}, "path 'dolyy': not a built-in path (orbit, dolly, sweep, walk, static) nor a path file"},
+        {{{"path", dir.path.string() + "/missing.json"}}, "path '" + dir.path.string() + "/missing.json': "},
+        {{{"path", lamp}}, "path '" + lamp + "': moves the light by position, but scene 'hover' has a directional light"},
+        {{{"path", typo}}, "camra"},
+        {{{"path", "orbit"}, {"view", "error"}}, "path 'orbit': the error view"},
+        {{{"path", 3}}, "path: expected a string"},
+        {{{"path", ""}}, "path: must not be empty"},
+        {{{"pathFrames", 12}}, "pathFrames: needs 'path'"},
+        {{{"path", "dolly"}, {"pathFrames", 1}}, "pathFrames: expected a whole number from 2 to 10000"},
+    };
+    for (const auto& [patch, expected] : cases) {
+        SCOPED_TRACE(patch.dump());
+        const std::string error = errorOf(patch);
+        EXPECT_NE(error.find("t.json: steps[1]"), std::string::npos) << error;
+        EXPECT_NE(error.find(expected), std::string::npos) << error;
+    }
+    EXPECT_EQ(errorOf({{"path", "sweep"}, {"pathFrames", 8}}), "") << "a built-in path is valid";
+}
+
+// In the window, the step plays its path one path frame per frame from the step's camera: frame k
+// of the step is the frame a still step with the path's camera at frame k draws; applying the
+// step again (Restart step) starts the path again.
+TEST(TourPlayer, APathStepPlaysItsPathFrameByFrameAndRestarts) {
+    auto app = test::makeHeadlessApp("cube", {192, 108});
+    ASSERT_TRUE(app);
+    TempDir dir;
+    ASSERT_FALSE(dir.path.empty());
+    // Five frames from (3, 2, 4) to (0.6, 2, 4), eye and target together: the scene slides right.
+    dir.write("slide.json", R"({"frames": 5, "keyframes": [
+        {"time": 0, "camera": {"position": [3, 2, 4], "target": [0, 0.4, 0]}},
+        {"time": 1, "camera": {"position": [0.6, 2, 4], "target": [-2.4, 0.4, 0]}}]})");
+    const std::string file = dir.write("t.json", R"({"title": "t", "steps": [
+        {"title": "moving", "scene": "cube", "technique": "shadowmap", "path": "slide.json", "caption": "c",
+         "camera": {"position": [3, 2, 4], "target": [0, 0.4, 0], "fov": 45}},
+        {"title": "end", "scene": "cube", "technique": "shadowmap", "caption": "c",
+         "camera": {"position": [0.6, 2, 4], "target": [-2.4, 0.4, 0], "fov": 45}},
+        {"title": "middle", "scene": "cube", "technique": "shadowmap", "caption": "c",
+         "camera": {"position": [1.8, 2, 4], "target": [-1.2, 0.4, 0], "fov": 45}},
+        {"title": "start", "scene": "cube", "technique": "shadowmap", "caption": "c",
+         "camera": {"position": [3, 2, 4], "target": [0, 0.4, 0], "fov": 45}}]})");
+    auto tour = std::make_shared<Tour>();
+    std::string error;
+    ASSERT_TRUE(loadTour(file, realTechniques(), *tour, error)) << error;
+    auto shot = [&](const std::string& name) { return (dir.path / name).string(); };
+    auto run = [&](int step, int frames, const std::vector<std::pair<int, std::string>>& at, const std::string& last) {
+        InteractiveOptions options;
+        options.technique = "shadowmap";
+        options.tour = tour;
+        options.tourStep = step;
+        options.frames = frames;
+        options.showUi = false;
+        options.screenshot = shot(last);
+        for (const auto& [frame, name] : at) options.screenshotsAt.emplace_back(frame, shot(name));
+        EXPECT_EQ(app->runInteractive(options), 0);
+    };
+    auto image = [&](const std::string& name) { return loadPngTexture(shot(name), 1.0f, uint64_t(64) << 20); };
+    run(0, 5, {{0, "path-0.png"}, {2, "path-2.png"}}, "path-4.png");
+    EXPECT_LT(glm::distance(app->camera().pose().position, glm::vec3(0.6f, 2.0f, 4.0f)), 1e-4f)
+        << "after the last frame the camera is the path's last keyframe";
+    run(1, 1, {}, "end.png");
+    run(2, 1, {}, "middle.png");
+    run(3, 1, {}, "start.png");
+    const Texture first = image("path-0.png"), middle = image("path-2.png"), last = image("path-4.png");
+    ASSERT_EQ(first.width, 192);
+    // The step's frames follow the path: each equals the still frame from the path's camera there...
+    EXPECT_LT(meanLevels(first, image("start.png")), 0.5);
+    EXPECT_LT(meanLevels(middle, image("middle.png")), 0.5);
+    EXPECT_LT(meanLevels(last, image("end.png")), 0.5);
+    // ...and the path really moves the view: the first and last frames differ, the middle between.
+    const double travelled = meanLevels(first, last);
+    EXPECT_GT(travelled, 5.0);
+    EXPECT_GT(meanLevels(first, middle), 1.0);
+    EXPECT_GT(meanLevels(middle, last), 1.0);
+
+    // Restart: the step applied again starts its path from frame 0 and the step's camera.
+    UiState state;
+    ASSERT_TRUE(applyTourStep(*app, tour->steps[0], state, error)) << error;
+    ASSERT_TRUE(state.path);
+    EXPECT_EQ(state.path->frames, 5);
+    state.pathFrame = 3;
+    app->camera().zoom(2.0f);
+    ASSERT_TRUE(applyTourStep(*app, tour->steps[0], state, error)) << error;
+    EXPECT_EQ(state.pathFrame, 0);
+    EXPECT_LT(glm::distance(state.pathCamera.position, glm::vec3(3.0f, 2.0f, 4.0f)), 1e-4f);
+    ASSERT_TRUE(applyTourStep(*app, tour->steps[1], state, error)) << error;
+    EXPECT_FALSE(state.path) << "a step without a path stops the last one";
+}
+
+// The built-in dolly moves by a fraction of the step technique's own texel (as the stress suite's
+// shimmer case): twice the resolution, half the step; the steps are equal along the path.
+TEST(TourPlayer, TheDollyOfAStepMovesByAQuarterOfItsMapsTexel) {
+    auto app = test::makeHeadlessApp("cube", {160, 90});
+    ASSERT_TRUE(app);
+    auto stepOf = [&](int resolution) {
+        Tour tour;
+        std::string error;
+        json object = json::parse(R"({"title": "t", "steps": [
+            {"title": "dolly", "scene": "cube", "technique": "shadowmap", "parameters": {"fit": "frustum", "snap": false},
+             "camera": {"position": [2.4, 1.6, 2.2], "target": [0.6, 0.0, -0.6]}, "path": "dolly", "pathFrames": 12,
+             "caption": "c"}]})");
+        object["steps"][0]["parameters"]["resolution"] = resolution;
+        EXPECT_TRUE(parseTour(object, "t.json", {}, tour, error)) << error;
+        EXPECT_TRUE(checkTour(tour, realTechniques(), error)) << error;
+        UiState state;
+        EXPECT_TRUE(applyTourStep(*app, tour.steps[0], state, error)) << error;
+        if (!state.path) return 0.0f;
+        EXPECT_EQ(state.path->frames, 12);
+        const PathState start = samplePath(*state.path, state.path->frameTime(0));
+        const PathState next = samplePath(*state.path, state.path->frameTime(1));
+        const PathState end = samplePath(*state.path, state.path->frameTime(11));
+        if (!start.cameraPosition || !next.cameraPosition || !end.cameraPosition) return 0.0f;
+        const float step = glm::distance(*start.cameraPosition, *next.cameraPosition);
+        EXPECT_NEAR(glm::distance(*start.cameraPosition, *end.cameraPosition), 11.0f * step, 1e-4f);
+        return step;
+    };
+    const float coarse = stepOf(256), fine = stepOf(512);
+    EXPECT_GT(coarse, 1e-5f);
+    EXPECT_LT(coarse, 0.1f) << "a quarter texel of a 256-texel crop of the cube's view";
+    EXPECT_NEAR(coarse / fine, 2.0f, 0.02f) << "the dolly's step follows the map's texel";
+}
+
+// The window checks every step's debug view when the tour is loaded, not when the step comes up.
+TEST(TourPlayer, TheWindowRefusesAMissingDebugViewBeforeTheFirstStep) {
+    auto app = test::makeHeadlessApp("cube", {96, 54});
+    ASSERT_TRUE(app);
+    auto tour = std::make_shared<Tour>();
+    std::string error;
+    ASSERT_TRUE(parseTour(json::parse(R"({"title": "t", "steps": [
+        {"title": "fine", "scene": "cube", "technique": "shadowmap", "caption": "c"},
+        {"title": "no such view", "scene": "cube", "technique": "pcf", "view": "moments", "caption": "c"}]})"),
+                          "t.json", {}, *tour, error)) << error;
+    ASSERT_TRUE(checkTour(*tour, realTechniques(), error)) << error;   // the view exists only once pcf draws
+    EXPECT_FALSE(checkTourDebugViews(*app, *tour, error));
+    EXPECT_NE(error.find("t.json: steps[1] (\"no such view\"): view 'moments': pcf has no such image"), std::string::npos)
+        << error;
+    TempDir dir;
+    InteractiveOptions options;
+    options.tour = tour;
+    options.tourStep = 0;
+    options.frames = 2;
+    options.showUi = false;
+    options.screenshot = (dir.path / "never.png").string();
+    EXPECT_EQ(app->runInteractive(options), 2);
+    EXPECT_FALSE(std::filesystem::exists(options.screenshot)) << "a frame was drawn before the tour was refused";
+}

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Tests of the result tools (tools/results.py, charts.py, ratios.py, table41.py), run by ctest.
+"""Tests of the result tools (tools/results.py, charts.py, ratios.py, table41.py, stress_chart.py), run by ctest.
 
     python3 tests/tools_test.py [-v]
 
@@ -39,6 +39,7 @@ import results  # noqa: E402
 import charts  # noqa: E402
 import ratios  # noqa: E402
 import table41  # noqa: E402
+import stress_chart  # noqa: E402
 from matplotlib.collections import PathCollection  # noqa: E402
 from matplotlib.markers import MarkerStyle  # noqa: E402
 
@@ -495,6 +496,91 @@ class Fixture(unittest.TestCase):
         self.assertIn("| cube | 11 | false | true | 6.421 | 4.154 | 0.65x | 4.134 | 0.64x |", text)  # gather, folded against taps
         with open(os.path.join(H200, "ratios.md")) as f:
             self.assertEqual(f.read(), text)
+
+
+def stress_row(technique, case, value, threshold, fail=False, better=False, skipped=False):
+    """A row of `shadowlab stress`'s results.json (the fields the chart reads)."""
+    row = {"case": case, "technique": technique, "threshold": threshold, "skipped": skipped,
+           "expected_to_fail": fail, "expected_to_pass": better}
+    if not skipped:
+        row.update({"value": value, "pass": value <= threshold})
+        if fail or better:
+            row["agrees_with_literature"] = fail != (value <= threshold)
+    return row
+
+
+class StressChart(unittest.TestCase):
+    """tools/stress_chart.py says, per cell, whether the verdict agrees with the case's claim."""
+
+    def rows(self):
+        return [
+            stress_row("shadowmap", "shimmer-dolly", 0.0009, 0.0003, fail=True),        # fails, as claimed
+            stress_row("shadowmap", "overlap", 0.0001, 0.0006),                       # no claim
+            stress_row("vsm", "shimmer-dolly", 0.0001, 0.0003, fail=True),            # passes: claim: fails
+            stress_row("vsm", "overlap", 0.0013, 0.0006, fail=True),                  # fails, as claimed
+            stress_row("psm", "shimmer-dolly", 0.81, 0.02, better=True),              # fails: claim: passes
+            stress_row("psm", "overlap", 0, 0, skipped=True),
+            stress_row("lispsm", "shimmer-dolly", 0.0144, 0.02, better=True),         # passes, as claimed
+            stress_row("lispsm", "overlap", 0.0002, 0.0006),
+            stress_row("reference", "shimmer-dolly", 0.0, 0.0003),
+            stress_row("reference", "overlap", 0.0, 0.0006),
+        ]
+
+    def test_marks_frames_and_count_follow_the_claim(self):
+        fig, drawn, (agree, disagree) = stress_chart.draw(self.rows())
+        expect = {
+            ("shadowmap", "shimmer-dolly"): ("as claimed", True, stress_chart.FAIL, "solid"),
+            ("shadowmap", "overlap"): ("", None, stress_chart.PASS, None),
+            ("vsm", "shimmer-dolly"): ("claim: fails", False, stress_chart.PASS, "solid"),
+            ("vsm", "overlap"): ("as claimed", True, stress_chart.FAIL, "solid"),
+            ("psm", "shimmer-dolly"): ("claim: passes", False, stress_chart.FAIL, "dashed"),
+            ("psm", "overlap"): ("", None, stress_chart.SKIPPED, None),
+            ("lispsm", "shimmer-dolly"): ("as claimed", True, stress_chart.PASS, "dashed"),
+            ("reference", "shimmer-dolly"): ("as claimed", True, stress_chart.PASS, None),
+        }
+        for key, (mark, agrees, colour, style) in expect.items():
+            cell = drawn[key]
+            self.assertEqual(cell["mark"], mark, key)
+            self.assertEqual(cell["agrees"], agrees, key)
+            self.assertEqual(cell["colour"], colour, key)
+            if style is None:
+                self.assertIsNone(cell["frame"], key)
+            else:
+                self.assertEqual(cell["frame"]["style"], style, key)
+                self.assertEqual(cell["frame"]["colour"], stress_chart.AGREES if agrees else stress_chart.DISAGREES, key)
+            if mark:
+                self.assertIn(mark, cell["text"], key)
+        # The reference is not counted: 3 named cells agree (shadowmap, vsm overlap, lispsm), 2 do not.
+        self.assertEqual((agree, disagree), (3, 2))
+        texts = [t.get_text() for t in fig.axes[0].texts]
+        self.assertEqual(sum("claim: fails" in t for t in texts), 1)
+        self.assertEqual(sum("claim: passes" in t for t in texts), 1)
+        self.assertIn("3 of 5 cells the claims name agree", fig.axes[0].get_title())
+        stress_chart.plt.close(fig)
+
+    def test_png_written_and_agreement_matches_the_committed_run(self):
+        with tempfile.TemporaryDirectory(prefix="shadowlab-stress-chart-") as out:
+            path = os.path.join(out, "results.json")
+            with open(path, "w") as f:
+                json.dump(self.rows(), f)
+            rc, printed = call(stress_chart, path, "--out", out, "--dpi", "40")
+            self.assertEqual(rc, 0)
+            with open(printed.strip(), "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+        # On the committed GPU run (rows written before agrees_with_literature existed), the chart
+        # agrees where the suite's rule (stress.cpp: expected_to_fail != pass) says so.
+        committed = os.path.join(ROOT, "docs", "results", "h200-2026-12-02-seed002", "stress", "results.json")
+        with open(committed) as f:
+            rows = json.load(f)
+        named = [r for r in rows if not r.get("skipped") and (r.get("expected_to_fail") or r.get("expected_to_pass"))]
+        self.assertGreater(len(named), 5)
+        for row in named:
+            rule = row.get("agrees_with_literature", bool(row.get("expected_to_fail")) != bool(row["pass"]))
+            self.assertEqual(stress_chart.claim_mark(row)[1], rule, (row["technique"], row["case"]))
+        fig, _, (agree, disagree) = stress_chart.draw(rows)
+        self.assertEqual(agree + disagree, len(named))
+        self.assertEqual(disagree, sum(1 for r in named if bool(r.get("expected_to_fail")) == bool(r["pass"])))
+        stress_chart.plt.close(fig)
 
 
 if __name__ == "__main__":

@@ -63,7 +63,9 @@ def read(name):
 
 good = read('check.dom')
 assert good.checked, 'the load handler did not run (page not loaded?)'
-assert len(good.images) == len(captions), f'{len(good.images)} images for {len(captions)} steps'
+# A step with a path shows its first frame, then its middle and last frames beside it.
+path_steps = [i for i, s in enumerate(tour['steps']) if s.get('path')]
+assert len(good.images) == len(captions) + 2 * len(path_steps), f'{len(good.images)} images for {len(captions)} steps'
 for src, width in good.images:
     assert os.path.exists(os.path.join(folder, src)), f'{src} is not in the folder'
     assert width is not None and int(width) > 0, f'{src} did not load in the browser (naturalWidth {width})'
@@ -82,6 +84,25 @@ assert len(rows) == len(captions) + steps_with_compare, f'{len(rows)} figure row
 for name, reference, mae, ms in rows:
     assert reference in ('hard', 'soft'), (name, reference)
     assert 0.0 <= float(mae) <= 1.0 and float(ms) > 0.0, (name, mae, ms)
+# Path steps: the strip's frames differ (the path moves the camera), and the page gives the
+# temporal error of each; on large-scenes the unsnapped crop under the dolly flickers, snapped not.
+page_text = open(os.path.join(folder, 'index.html')).read()
+flicker = {}
+for i in path_steps:
+    from PIL import Image
+    first, last = (Image.open(os.path.join(folder, f'step-{i + 1:02d}{suffix}.png')).convert('RGB')
+                   for suffix in ('', '-last'))
+    diff = sum(abs(a - b) for p, q in zip(first.getdata(), last.getdata()) for a, b in zip(p, q))
+    assert diff / (3 * first.width * first.height) > 1.0, f'step {i + 1}: the path did not move the view'
+    section = page_text.split(f'<section id="step-{i + 1}">')[1].split('</section>')[0]
+    found = re.search(r'temporal error \(flicker\) ([0-9.]+) mean', section)
+    assert found, f'step {i + 1}: no temporal error on the page'
+    flicker[tour['steps'][i]['title']] = float(found.group(1))
+if tour['title'] == 'Large scenes':
+    unsnapped = flicker['Shimmer: the crop slides under a sub-texel dolly']
+    snapped = flicker['The same dolly with snapping']
+    assert unsnapped > 1e-4 and unsnapped > 2 * snapped, f'dolly flicker: unsnapped {unsnapped}, snapped {snapped}'
+    print(f'dolly: temporal error unsnapped {unsnapped}, snapped {snapped}')
 print(f'ok: {os.path.basename(folder)}: {len(good.images)} images loaded in Chromium, {len(captions)} captions, '
       f'{len(rows)} rows of figures')
 PY

@@ -187,21 +187,7 @@ bool runStressCell(App& app, const StressSuite& suite, const StressCase& c, cons
     BuiltinPathOptions pathOptions;
     pathOptions.frames = c.frames;
     pathOptions.texelsPerFrame = c.texelsPerFrame;
-    {
-        const auto& values = app.params().values(*info);
-        const int resolutionIndex = info->paramIndex("resolution"), fitIndex = info->paramIndex("fit"),
-                  snapIndex = info->paramIndex("snap");
-        const int resolution = resolutionIndex >= 0 ? int(values[size_t(resolutionIndex)]) : 2048;
-        kit::FitConfig fit;
-        if (fitIndex >= 0) fit.fit = kit::Fit(int(values[size_t(fitIndex)]));
-        if (snapIndex >= 0) fit.snap = values[size_t(snapIndex)] != 0.0;
-        const Bounds bounds = app.scene().worldBounds(DrawSet::All);
-        CameraController controller;
-        controller.reset(camera);
-        const LightSpace sceneFit = fitLightSpace(light, bounds);
-        const auto focused = kit::focusLightSpace(sceneFit, controller.info(size), light, bounds, fit, resolution);
-        if (!focused.light.perspective) pathOptions.texelWorldSize = double(focused.light.worldSizeAtUnitDepth.x) / resolution;
-    }
+    pathOptions.texelWorldSize = techniqueTexelWorldSize(app, *info, camera, light, size);
     pathOptions.camera = camera;   // the built-in paths start from the case's view and light
     pathOptions.light = light;
     if (!builtinPath(c.path.empty() ? "static" : c.path, app.scene(), pathOptions, path, error)) return false;

@@ -14,6 +14,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include "bench/path_run.h"
 #include "ui/tour_player.h"
 #include "ui/ui.h"
 #include "util/log.h"
@@ -117,6 +118,12 @@ int App::runInteractive(const InteractiveOptions& options) {
         logError("the offscreen window needs a number of frames to draw (--frames N)");
         return 2;
     }
+    // --tour: every step's debug view checked before anything is drawn (a view would otherwise
+    // only be found missing when its step comes up in class).
+    if (std::string error; options.tour && !checkTourDebugViews(*this, *options.tour, error)) {
+        logError(error);
+        return 2;
+    }
     Ui ui;
     if (!ui.init(window, options.uiScale)) {
         logError("could not initialise the user interface");
@@ -217,6 +224,7 @@ int App::runInteractive(const InteractiveOptions& options) {
         }
         case UiCommand::Kind::LoadScene:
             state.sceneError = loadScene(command.argument, {}, error) ? "" : error;
+            if (state.sceneError.empty()) state.path.reset();   // a step's path belongs to its scene
             break;
         case UiCommand::Kind::TourStep: {
             if (!state.tour || state.tour->steps.empty()) break;
@@ -242,7 +250,9 @@ int App::runInteractive(const InteractiveOptions& options) {
         }
         case UiCommand::Kind::LoadTour: {
             auto tour = std::make_shared<Tour>();
-            if (!loadTour(command.argument, techniques_->techniques(), *tour, error)) {
+            // Checked whole before its first step is shown, debug views included.
+            if (!loadTour(command.argument, techniques_->techniques(), *tour, error) ||
+                !checkTourDebugViews(*this, *tour, error)) {
                 state.tourStatus = error;
                 state.tourStatusIsError = true;
                 logError(error);
@@ -341,6 +351,13 @@ int App::runInteractive(const InteractiveOptions& options) {
                 state.compareLayout = CompareLayout::SideBySide;
                 state.commands.push_back({UiCommand::Kind::Measure, ""});
             }
+        }
+
+        // The step's path: one path frame per window frame, looping (camera and light set before
+        // the frame is drawn, so frame k of a step shows path frame k).
+        if (state.path && state.pathPlaying && state.path->frames > 0) {
+            state.pathFrame %= state.path->frames;
+            setPathFrame(*this, *state.path, state.pathFrame, state.pathCamera, state.pathLight);
         }
 
         // --measure: late enough for the GPU timings (read kFramesInFlight frames late), early
@@ -452,6 +469,11 @@ int App::runInteractive(const InteractiveOptions& options) {
         std::vector<UiCommand> commands;
         commands.swap(state.commands);
         if (finalShot) commands.insert(commands.begin(), UiCommand{UiCommand::Kind::Screenshot, options.screenshot});
+        if (options.frames > 0)
+            for (const auto& [at, file] : options.screenshotsAt)
+                if (at == frame && !(finalShot && file == options.screenshot))
+                    commands.insert(commands.begin(), UiCommand{UiCommand::Kind::Screenshot, file});
+        if (state.path && state.pathPlaying) ++state.pathFrame;   // a step applied by a command below starts at 0
         for (const UiCommand& command : commands) runCommand(command);
         backend_->swapBuffers();
         ++frame;

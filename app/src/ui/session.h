@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app.h"
@@ -24,6 +25,7 @@ struct InteractiveOptions {
     float wipe = 0.5f;                             // Wipe: divider across the view, 0..1
     int frames = 0;                                // > 0: draw that many, save `screenshot`, return
     std::string screenshot;                        // with frames
+    std::vector<std::pair<int, std::string>> screenshotsAt;   // with frames: also (frame from 0, file), a path's strip
     bool cycle = false;                            // smoke test: every technique and view in turn
     bool measure = false;                          // measure accuracy after a few frames (slides of the heatmap)
     bool showUi = true;                            // false: the view (and comparison labels) only

@@ -125,6 +125,17 @@ const TechniqueInfo* findTechnique(const std::vector<TechniqueInfo>& techniques,
     return nullptr;
 }
 
+// A step's path names a file (rather than a built-in path) when it holds a '/', ends in .json or
+// names a file that exists (relative to `baseDir` when given), as --path's rule.
+bool tourPathIsFile(const std::string& text, const std::filesystem::path& baseDir = {}) {
+    const auto& names = builtinPathNames();
+    if (std::find(names.begin(), names.end(), text) != names.end()) return false;
+    std::error_code ignored;
+    const std::filesystem::path file = baseDir.empty() || std::filesystem::path(text).is_absolute() ? std::filesystem::path(text)
+                                                                                                     : baseDir / text;
+    return text.find('/') != std::string::npos || text.ends_with(".json") || std::filesystem::exists(file, ignored);
+}
+
 } // namespace
 
 bool parseTourStep(const json& object, const std::string& where, const std::filesystem::path& baseDir, TourStep& step,
@@ -136,7 +147,7 @@ bool parseTourStep(const json& object, const std::string& where, const std::file
     }
     if (!rejectUnknownKeys(object,
                            {"title", "scene", "sceneParameters", "technique", "compare", "layout", "wipe", "parameters",
-                            "camera", "light", "view", "caption"},
+                            "camera", "light", "view", "path", "pathFrames", "caption"},
                            where, error))
         return false;
     if (!readString(object, "title", where, step.title, error, true, 200)) return false;
@@ -247,6 +258,23 @@ bool parseTourStep(const json& object, const std::string& where, const std::file
     }
     if (!readString(object, "view", where, step.view, error, false, 128)) return false;
     if (step.view.empty()) step.view = "lit";
+    if (object.contains("path")) {
+        if (!readString(object, "path", where, step.path, error, true)) return false;
+        if (tourPathIsFile(step.path, baseDir) && std::filesystem::path(step.path).is_relative() && !baseDir.empty())
+            step.path = (baseDir / step.path).lexically_normal().string();
+    }
+    if (object.contains("pathFrames")) {
+        const json& frames = object["pathFrames"];
+        if (!frames.is_number_integer() || frames.get<long long>() < 2 || frames.get<long long>() > 10000) {
+            error = where + ".pathFrames: expected a whole number from 2 to 10000";
+            return false;
+        }
+        if (step.path.empty()) {
+            error = where + ".pathFrames: needs 'path'";
+            return false;
+        }
+        step.pathFrames = int(frames.get<long long>());
+    }
     if (!readString(object, "caption", where, step.caption, error, true, kMaxCaptionBytes)) return false;
     return true;
 }
@@ -284,6 +312,8 @@ json tourStepJson(const TourStep& step) {
         out["light"] = light;
     }
     out["view"] = step.view;
+    if (!step.path.empty()) out["path"] = step.path;
+    if (step.pathFrames > 0) out["pathFrames"] = step.pathFrames;
     out["caption"] = step.caption;
     return out;
 }
@@ -370,6 +400,49 @@ bool checkTourStep(const TourStep& step, const std::string& where, const std::ve
     if (step.view.empty()) {
         error = name + ": view: must not be empty";
         return false;
+    }
+    if (!step.path.empty()) {
+        const std::string at = name + ": path '" + step.path + "'";
+        if (step.view == "error") {
+            error = at + ": the error view is measured once and goes stale as soon as the path moves the camera "
+                         "(use lit, visibility or a debug view)";
+            return false;
+        }
+        if (tourPathIsFile(step.path)) {
+            CameraPath path;
+            std::string problem;
+            if (!loadPathFile(step.path, path, problem)) {
+                error = at + ": " + problem;
+                return false;
+            }
+            // pathSceneProblem's checks, against the scene's light type (no scene is built here).
+            if (path.lightForm == CameraPath::LightForm::Position && scene.lightType == LightType::Directional) {
+                error = at + ": moves the light by position, but scene '" + scene.name + "' has a directional light";
+                return false;
+            }
+            if ((path.lightForm == CameraPath::LightForm::Direction || path.lightForm == CameraPath::LightForm::Angles) &&
+                scene.lightType == LightType::Point) {
+                error = at + ": turns the light, but scene '" + scene.name + "' has a point light";
+                return false;
+            }
+            for (const glm::dvec3& size : path.lightSize.values)
+                if (const std::string p = lightSizeProblem(scene.lightType, size.x); !p.empty()) {
+                    error = at + ": light size: " + p;
+                    return false;
+                }
+        } else {
+            const auto& names = builtinPathNames();
+            if (std::find(names.begin(), names.end(), step.path) == names.end()) {
+                std::string known;
+                for (const std::string& n : names) appendListItem(known, n);
+                error = at + ": not a built-in path (" + known + ") nor a path file (a .json file, relative to the tour file)";
+                return false;
+            }
+            if (step.path == "sweep" && scene.lightType == LightType::Point) {
+                error = at + ": turns the light, but scene '" + scene.name + "' has a point light";
+                return false;
+            }
+        }
     }
     return true;
 }

@@ -47,6 +47,12 @@ struct TourStep {
     std::optional<TourCamera> camera;                         // none: the scene's camera
     TourLight light;                                          // fields not given: the scene's light
     std::string view = "lit";                                 // lit | visibility | error | footprint | texel-grid | coverage | a debug image's name
+    // A camera and light path the step plays (issue 12's paths, scene/camera_path.h): a built-in
+    // path (orbit, dolly, sweep, walk, static), one of the scene's "paths", or a JSON file
+    // (relative to the tour file). It starts from the step's camera and light; the window loops
+    // it (restarting the step starts it again), `tour --out` draws its first, middle and last frame.
+    std::string path;                                         // "": no path
+    int pathFrames = 0;                                       // 0: the path's own number of frames
     std::string caption;
 };
 

@@ -2,11 +2,14 @@
 #include "ui/tour_pages.h"
 #include "util/strings.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <sstream>
 
+#include "bench/path_run.h"
 #include "ui/session.h"
+#include "ui/tour_player.h"
 #include "util/log.h"
 #include "util/text_file.h"
 
@@ -20,44 +23,28 @@ struct TechniqueFigures {
     double frameMs = 0.0;         // median GPU ms of a timed frame
     double gpuMiB = 0.0;
     AccuracyMetrics metrics;
+    // A step with a path: the temporal error (flicker, docs/stability.md) over its first frames.
+    int temporalFrames = 0;
+    TemporalSummary temporal;
 };
 
 struct StepPage {
-    std::string image;            // file name in the output folder
+    std::string image;            // file name in the output folder (a path step: its first frame)
+    std::vector<std::pair<std::string, int>> strip;   // a path step: (image, path frame) of its first, middle and last frame
+    int pathFrames = 0;
     std::vector<TechniqueFigures> figures;
 };
+
+std::string stepImageName(size_t index, const char* suffix) {
+    char name[48];
+    std::snprintf(name, sizeof(name), "step-%02zu-%s.png", index + 1, suffix);
+    return name;
+}
 
 std::string stepImageName(size_t index) {
     char name[32];
     std::snprintf(name, sizeof(name), "step-%02zu.png", index + 1);
     return name;
-}
-
-bool isDebugView(const std::string& view) { return !isHostViewName(view); }
-
-// A debug view exists only once its technique has drawn a frame (plugins register their images
-// when they create them): one frame of each such technique, before any step is rendered, so a
-// view no technique has is refused before the first slide.
-bool checkDebugViews(App& app, const Tour& tour, std::string& error) {
-    for (size_t i = 0; i < tour.steps.size(); ++i) {
-        const TourStep& step = tour.steps[i];
-        if (!isDebugView(step.view)) continue;
-        if (!app.renderFrame(step.technique, error)) return false;
-        LoadedTechnique* loaded = app.techniques().get(step.technique, error);
-        if (!loaded) return false;
-        std::string names = "lit, visibility, error";
-        bool found = false;
-        for (const DebugImage& image : loaded->host().debugImages()) {
-            found |= image.name == step.view;
-            names += ", " + image.name;
-        }
-        if (!found) {
-            error = tour.source + ": steps[" + std::to_string(i) + "] (\"" + step.title + "\"): view '" + step.view +
-                    "': " + step.technique + " has no such image (views: " + names + ")";
-            return false;
-        }
-    }
-    return true;
 }
 
 bool measureTechnique(App& app, const std::string& id, const TourPageOptions& options, TechniqueFigures& out,
@@ -87,6 +74,47 @@ bool measureTechnique(App& app, const std::string& id, const TourPageOptions& op
     out.reference = hard ? "hard" : "soft";
     out.metrics = evaluation.metrics;
     return true;
+}
+
+// The temporal error of `id` along the first `frames` frames of the step's path (the path's own
+// spacing kept, so the dolly still moves a fraction of a texel a frame), against the reference of
+// measureTechnique's kind: measurePath (bench/path_run.h), each frame traced twice.
+bool measurePathTemporal(App& app, const std::string& id, const CameraPath& path, const SceneCamera& camera,
+                         const LightInfo& light, const TourPageOptions& options, TechniqueFigures& out, std::string& error) {
+    if (id == "reference" || options.pathMeasureFrames < 2) return true;
+    const TechniqueInfo* info = app.techniques().find(id);
+    if (!info) {
+        error = "no technique '" + id + "'";
+        return false;
+    }
+    CameraPath first = path;
+    first.frames = std::min(path.frames, options.pathMeasureFrames);
+    first.endTime = path.frameTime(first.frames - 1);
+    PathAccuracyOptions accuracy;
+    const bool hard = info->category == "hard" || info->category == "baseline";
+    accuracy.reference.mode = hard ? ReferenceOptions::Mode::Hard : ReferenceOptions::Mode::Soft;
+    accuracy.reference.samplesPerPixel = options.referenceSamples;
+    accuracy.reference.adaptive = true;
+    accuracy.reference.model = TranslucencyModel::Physical;
+    PathAccuracy result;
+    if (!app.setRenderSize(options.size, error)) return false;
+    if (!measurePath(app, id, first, camera, light, accuracy, result, error)) return false;
+    out.temporalFrames = first.frames;
+    out.temporal = result.temporal;
+    return true;
+}
+
+std::string temporalLine(const StepPage& page, const TourStep& step) {
+    std::string line = "Path " + step.path + ", " + std::to_string(page.pathFrames) + " frames (above: frames";
+    for (const auto& [image, frame] : page.strip) line += " " + std::to_string(frame + 1);
+    line += ").";
+    for (const TechniqueFigures& f : page.figures) {
+        if (f.temporalFrames < 2) continue;
+        line += " " + f.technique + ": temporal error (flicker) " + fixed(f.temporal.meanFlicker, 5) + " mean, " +
+                fixed(f.temporal.maxFlicker, 5) + " max over its first " + std::to_string(f.temporalFrames) + " frames;";
+    }
+    if (line.back() == ';') line.back() = '.';
+    return line;
 }
 
 // What each column means: said once, on both pages.
@@ -135,8 +163,15 @@ std::string htmlPage(const Tour& tour, const std::vector<StepPage>& pages, const
         const TourStep& step = tour.steps[i];
         html << "<section id=\"step-" << i + 1 << "\">\n<h2>" << i + 1 << ". " << htmlEscape(step.title) << "</h2>\n"
              << "<figure>\n<img src=\"" << pages[i].image << "\" width=\"" << options.size.x << "\" height=\""
-             << options.size.y << "\" alt=\"" << htmlEscape(step.title) << "\">\n<figcaption>" << htmlEscape(step.caption)
-             << "</figcaption>\n</figure>\n<table>\n<tr>";
+             << options.size.y << "\" alt=\"" << htmlEscape(step.title) << "\">\n";
+        // A path step: its middle and last frames beside the first, at a third of the width.
+        for (size_t k = 1; k < pages[i].strip.size(); ++k)
+            html << "<img src=\"" << pages[i].strip[k].first << "\" width=\"" << options.size.x / 2 << "\" height=\""
+                 << options.size.y / 2 << "\" alt=\"" << htmlEscape(step.title) << ", path frame " << pages[i].strip[k].second + 1
+                 << "\">\n";
+        html << "<figcaption>" << htmlEscape(step.caption) << "</figcaption>\n</figure>\n";
+        if (!step.path.empty()) html << "<p class=\"path\">" << htmlEscape(temporalLine(pages[i], step)) << "</p>\n";
+        html << "<table>\n<tr>";
         for (const auto& column : kColumns) html << "<th>" << column[0] << "</th>";
         html << "</tr>\n";
         for (const TechniqueFigures& f : pages[i].figures) {
@@ -160,8 +195,12 @@ std::string markdownPage(const Tour& tour, const std::vector<StepPage>& pages, c
     md << "\n";
     for (size_t i = 0; i < tour.steps.size(); ++i) {
         const TourStep& step = tour.steps[i];
-        md << "## " << i + 1 << ". " << step.title << "\n\n![" << step.title << "](" << pages[i].image << ")\n\n"
-           << step.caption << "\n\n|";
+        md << "## " << i + 1 << ". " << step.title << "\n\n![" << step.title << "](" << pages[i].image << ")";
+        for (size_t k = 1; k < pages[i].strip.size(); ++k)
+            md << " ![" << step.title << ", path frame " << pages[i].strip[k].second + 1 << "](" << pages[i].strip[k].first << ")";
+        md << "\n\n" << step.caption << "\n\n";
+        if (!step.path.empty()) md << temporalLine(pages[i], step) << "\n\n";
+        md << "|";
         for (const auto& column : kColumns) md << " " << column[0] << " |";
         md << "\n|---|";
         for (int c = 1; c < kColumnCount; ++c) md << "---:|";
@@ -200,28 +239,52 @@ int writeTourPages(App& app, const Tour& tour, const TourPageOptions& options, s
         error = options.outDir.string() + ": cannot create the folder (" + ec.message() + ")";
         return 1;
     }
-    if (!checkDebugViews(app, tour, error)) return 2;
-    const auto shared = std::make_shared<const Tour>(tour);
+    if (!checkTourDebugViews(app, tour, error)) return 2;
     std::vector<StepPage> pages(tour.steps.size());
     for (size_t i = 0; i < tour.steps.size(); ++i) {
         const TourStep& step = tour.steps[i];
         // The slide: the window's own frame loop with the step applied by its UiCommand, panel hidden.
         InteractiveOptions slide;
         slide.technique = step.technique;
-        slide.tour = shared;
-        slide.tourStep = int(i);
+        // The step alone (its views were checked above; the window checks a tour's views again).
+        auto alone = std::make_shared<Tour>(Tour{tour.source, tour.title, tour.description, {step}});
+        slide.tour = alone;
+        slide.tourStep = 0;
         slide.showUi = false;
         slide.frames = std::max(options.frames, step.view == "error" ? 3 : 1);   // error: measured after frame 1
         pages[i].image = stepImageName(i);
         slide.screenshot = (options.outDir / pages[i].image).string();
+        // A path step: window frame k shows path frame k; its first, middle and last frame are saved.
+        CameraPath path;
+        SceneCamera pathCamera;
+        LightInfo pathLight;
+        if (!step.path.empty()) {
+            UiState probe;
+            if (!applyTourStep(app, step, probe, error) || !probe.path) {
+                error = tour.source + ": steps[" + std::to_string(i) + "] (\"" + step.title + "\"): path '" + step.path + "': " + error;
+                return 2;
+            }
+            path = *probe.path;
+            pathCamera = probe.pathCamera;
+            pathLight = probe.pathLight;
+            pages[i].pathFrames = path.frames;
+            const int middle = path.frames / 2, lastFrame = path.frames - 1;
+            pages[i].strip = {{pages[i].image, 0}, {stepImageName(i, "middle"), middle}, {stepImageName(i, "last"), lastFrame}};
+            slide.frames = path.frames;
+            slide.screenshotsAt = {{0, slide.screenshot}, {middle, (options.outDir / pages[i].strip[1].first).string()}};
+            slide.screenshot = (options.outDir / pages[i].strip[2].first).string();   // after the last frame
+        }
         if (const int code = app.runInteractive(slide); code != 0) {
             error = tour.source + ": steps[" + std::to_string(i) + "]: the slide was not written";
             return code;
         }
+        // A path step is measured at its first frame (the slide left the camera at its last).
+        if (!step.path.empty()) setPathFrame(app, path, 0, pathCamera, pathLight);
         for (const std::string& id : {step.technique, step.compare}) {
             if (id.empty()) continue;
             TechniqueFigures figures;
-            if (!measureTechnique(app, id, options, figures, error)) {
+            if (!measureTechnique(app, id, options, figures, error) ||
+                (!step.path.empty() && !measurePathTemporal(app, id, path, pathCamera, pathLight, options, figures, error))) {
                 error = tour.source + ": steps[" + std::to_string(i) + "]: " + id + ": " + error;
                 return 1;
             }
@@ -236,7 +299,9 @@ int writeTourPages(App& app, const Tour& tour, const TourPageOptions& options, s
     }
     if (!writeWholeFile(options.outDir / "index.html", htmlPage(tour, pages, options), error)) return 1;
     if (!writeWholeFile(options.outDir / "README.md", markdownPage(tour, pages, options), error)) return 1;
-    logInfo("tour: " + std::to_string(tour.steps.size()) + " steps, " + std::to_string(pages.size()) + " images, index.html and "
+    size_t images = 0;
+    for (const StepPage& page : pages) images += std::max<size_t>(1, page.strip.size());
+    logInfo("tour: " + std::to_string(tour.steps.size()) + " steps, " + std::to_string(images) + " images, index.html and "
             "README.md in " + options.outDir.string());
     return 0;
 }

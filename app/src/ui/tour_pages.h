@@ -22,6 +22,7 @@ struct TourPageOptions {
     int warmupFrames = 5;
     int benchFrames = 30;         // timed frames of each technique of a step
     int referenceSamples = 256;   // soft reference rays per pixel (adaptive)
+    int pathMeasureFrames = 8;    // a path step: its first frames measured for the temporal error (0: none)
 };
 
 // Returns the exit code: 0, 1 (the machine: a write, GL), 2 (the tour: a view no technique has).

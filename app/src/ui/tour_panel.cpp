@@ -52,6 +52,13 @@ void Ui::drawTourPlayer(App& app, UiState& state) {
         for (const auto& [key, value] : step.parameters) set += (set.empty() ? "" : ", ") + key + " = " + value;
         wrappedText("set by this step (editable below): " + set, kDimColour);
     }
+    if (state.path && state.path->frames > 0) {
+        // The step's path plays in a loop; paused, the camera is the user's again.
+        wrappedText("path " + step.path + ": frame " + std::to_string(state.pathFrame % state.path->frames + 1) + " of " +
+                        std::to_string(state.path->frames) + (state.pathPlaying ? " (looping)" : " (paused)"),
+                    kDimColour);
+        if (ImGui::Button(state.pathPlaying ? "Pause path" : "Play path")) state.pathPlaying = !state.pathPlaying;
+    }
     if (!state.tourStatus.empty()) wrappedText(state.tourStatus, state.tourStatusIsError ? kErrorColour : kDimColour);
     wrappedText("Right / Page Down: next, Left / Page Up: previous, Home: restart the step", kDimColour);
     ImGui::Separator();

@@ -1,10 +1,13 @@
 // Tours and sessions on the running app (see tour_player.h).
 #include "ui/tour_player.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <map>
+
+#include "bench/path_run.h"
 
 namespace shadowlab {
 
@@ -41,6 +44,18 @@ bool applyTourStep(App& app, const TourStep& step, UiState& state, std::string& 
     if (step.light.direction) light.direction = glm::normalize(*step.light.direction);
     if (step.light.size)
         light.size = light.type == LightType::Directional ? glm::radians(float(*step.light.size)) : float(*step.light.size);
+    state.path.reset();
+    if (!step.path.empty()) {
+        // The path starts from the step's camera and light, just placed; restarting the step
+        // (applying it again) starts it again from its first frame.
+        CameraPath path;
+        if (!resolveTourPath(app, step, app.camera().pose(), app.light(), path, error)) return false;
+        state.pathCamera = app.camera().pose();
+        state.pathLight = app.light();
+        state.path = std::move(path);
+        state.pathFrame = 0;
+        state.pathPlaying = true;
+    }
     state.technique = step.technique;
     state.compareTechnique = step.compare;
     state.compareLayout = step.layout;
@@ -52,6 +67,56 @@ bool applyTourStep(App& app, const TourStep& step, UiState& state, std::string& 
     state.frameError.clear();
     // Measured after the next frame is drawn, when the main targets have the view's size.
     if (step.view == "error") state.commands.push_back({UiCommand::Kind::Measure, ""});
+    return true;
+}
+
+// A debug view exists only once its technique has drawn a frame (plugins register their images
+// when they create them): one frame of each such technique, before any step is rendered, so a
+// view no technique has is refused before the first slide.
+bool checkTourDebugViews(App& app, const Tour& tour, std::string& error) {
+    for (size_t i = 0; i < tour.steps.size(); ++i) {
+        const TourStep& step = tour.steps[i];
+        if (isHostViewName(step.view)) continue;
+        if (!app.renderFrame(step.technique, error)) return false;
+        LoadedTechnique* loaded = app.techniques().get(step.technique, error);
+        if (!loaded) return false;
+        std::string names = "lit, visibility, error";
+        bool found = false;
+        for (const DebugImage& image : loaded->host().debugImages()) {
+            found |= image.name == step.view;
+            names += ", " + image.name;
+        }
+        if (!found) {
+            error = tour.source + ": steps[" + std::to_string(i) + "] (\"" + step.title + "\"): view '" + step.view +
+                    "': " + step.technique + " has no such image (views: " + names + ")";
+            return false;
+        }
+    }
+    return true;
+}
+
+bool resolveTourPath(App& app, const TourStep& step, const SceneCamera& camera, const LightInfo& light, CameraPath& path,
+                     std::string& error) {
+    const Scene& scene = app.scene();
+    const auto& builtins = builtinPathNames();
+    const bool builtin = std::find(builtins.begin(), builtins.end(), step.path) != builtins.end();
+    if (builtin) {
+        BuiltinPathOptions options;
+        options.frames = step.pathFrames;
+        options.camera = camera;
+        options.light = light;
+        // The dolly moves by a quarter of the step technique's own texel, as the shimmer case.
+        if (const TechniqueInfo* info = app.techniques().find(step.technique); info && step.path == "dolly")
+            options.texelWorldSize = techniqueTexelWorldSize(app, *info, camera, light, app.renderer().size());
+        if (!builtinPath(step.path, scene, options, path, error)) return false;
+    } else {
+        if (!loadPathFile(step.path, path, error)) return false;
+        if (step.pathFrames > 0) path.frames = step.pathFrames;
+    }
+    if (const std::string problem = pathSceneProblem(path, scene); !problem.empty()) {
+        error = problem;
+        return false;
+    }
     return true;
 }
 

@@ -62,6 +62,14 @@ struct UiState {
     bool tourStatusIsError = false;
     std::string sessionStatus;
     bool sessionStatusIsError = false;
+    // The shown step's camera and light path (a step with "path"): one path frame per window
+    // frame from `pathCamera` and `pathLight` (the step's), looping; restarting the step starts
+    // it again. Paused, the camera is the user's again.
+    std::optional<CameraPath> path;
+    SceneCamera pathCamera;
+    LightInfo pathLight;
+    int pathFrame = 0;
+    bool pathPlaying = true;
 
     // Accuracy measured on demand ("Measure accuracy"): one result per side of the view, and
     // every measurement of this session for the error-against-milliseconds plot.
