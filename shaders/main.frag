@@ -3,7 +3,21 @@
 // encoded to sRGB by the present pass), as a real renderer would. Built a second time with
 // SHADOWLAB_ACCURACY_TARGETS for the frames measured for accuracy (never timed): those also write
 // the shadow term with a mask of where it is comparable, and the world position and normal.
+//
+// The eye-space blur (seed 002 sec. 6.3, 9.4.2; shadowlab/eye_blur_shared.h) adds two variants,
+// built on first use: SHADOWLAB_EYE_BLUR_TERM writes only the shadow term of the unlit,
+// unicoloured geometry (Fig. 6.5) and the view depth, for the blur; SHADOWLAB_EYE_BLUR_READ (with
+// or without the accuracy targets) reads the blurred term at the pixel instead of calling
+// shadowTerm() for the opaque surfaces (sec. 9.4.2: "no shadow calculations are necessary"), and
+// calls it for translucent surfaces, which the term texture does not hold.
+//
+// Lighting (uLighting; seed 002 sec. 6.2's three rules, Fig. 6.7): phong = ambient never
+// shadowed, diffuse attenuated by the shadow term (the part that hides projection aliasing, since
+// N.L is small where it is large, eq. 6.2), specular attenuated too (no specular inside shadow);
+// none = the term on unlit surfaces, colour = albedo (ambient + light s), no N.L and no
+// specular: the projection aliasing the lighting would hide stays visible (Fig. 6.7, left).
 #include "common.glsl"
+#include "shadowlab/eye_blur_shared.h"
 
 in VertexOut {
     vec3 worldPos;
@@ -12,11 +26,20 @@ in VertexOut {
     flat uint objectId;
 } vIn;
 
+#ifdef SHADOWLAB_EYE_BLUR_TERM
+layout(location = 0) out vec4 outTerm;        // rgb shadow term, a = view depth
+#else
 layout(location = 0) out vec4 outColor;
+layout(location = SHADOWLAB_LIGHTING_LOCATION) uniform int uLighting;
+#endif
 #ifdef SHADOWLAB_ACCURACY_TARGETS
 layout(location = 1) out vec4 outVisibility;  // rgb shadow term, a = 1 where lit side and in cone
 layout(location = 2) out vec4 outPosition;    // xyz world, w = 1 where geometry was drawn
 layout(location = 3) out vec4 outNormal;      // xyz world normal (geometric side facing the viewer)
+#endif
+#ifdef SHADOWLAB_EYE_BLUR_READ
+layout(binding = kEyeBlurTermUnit) uniform sampler2D uEyeBlurTerm;
+layout(location = SHADOWLAB_EYE_BLUR_READ_LOCATION) uniform int uEyeBlurRead;
 #endif
 
 #include "technique_shadow.glsl"
@@ -30,17 +53,30 @@ void main() {
     float spot = spotFactor(vIn.worldPos);
 
     ShadowInput s = ShadowInput(vIn.worldPos, N, L, NdotL, gl_FragCoord.xy);
+#ifdef SHADOWLAB_EYE_BLUR_READ
+    // uEyeBlurRead is the same for a whole draw, so shadowTerm() still runs in uniform control flow.
+    vec3 shadow = uEyeBlurRead != 0 ? texelFetch(uEyeBlurTerm, ivec2(gl_FragCoord.xy), 0).rgb : shadowTerm(s);
+#else
     // Called in uniform control flow, so techniques may use derivatives.
     vec3 shadow = shadowTerm(s);
+#endif
 
+#ifdef SHADOWLAB_EYE_BLUR_TERM
+    outTerm = vec4(shadow, -(uView * vec4(vIn.worldPos, 1.0)).z);
+#else
     vec4 albedo = surfaceBaseColor(vIn.uv);
-    vec3 H = normalize(L + V);
-    vec3 diffuse = albedo.rgb * max(NdotL, 0.0);
-    vec3 specular = NdotL > 0.0 ? uSpecular.rgb * pow(max(dot(N, H), 0.0), uSpecular.a) : vec3(0.0);
-    vec3 direct = (diffuse + specular) * uLightColor.rgb * spot;
-    vec3 color = uAmbient.rgb * albedo.rgb + direct * shadow;
-
+    vec3 color;
+    if (uLighting == 0) {
+        vec3 H = normalize(L + V);
+        vec3 diffuse = albedo.rgb * max(NdotL, 0.0);
+        vec3 specular = NdotL > 0.0 ? uSpecular.rgb * pow(max(dot(N, H), 0.0), uSpecular.a) : vec3(0.0);
+        vec3 direct = (diffuse + specular) * uLightColor.rgb * spot;
+        color = uAmbient.rgb * albedo.rgb + direct * shadow;
+    } else {
+        color = albedo.rgb * (uAmbient.rgb + uLightColor.rgb * spot * shadow);
+    }
     outColor = vec4(color, albedo.a);
+#endif
 #ifdef SHADOWLAB_ACCURACY_TARGETS
     bool compared = NdotL > 0.0 && spot > 0.0;
     outVisibility = vec4(shadow, compared ? 1.0 : 0.0);

@@ -31,6 +31,10 @@ expect 2 "transmissionTexture: .*fake.png: not a readable PNG" -- render --backe
 expect 2 "no-such-scene" -- render --backend osmesa --scene no-such-scene --out "$tmp/a.png"
 expect 2 "out of range" -- render --backend osmesa -t shadowmap --set resolution=10 --out "$tmp/a.png"
 expect 2 "has no parameter 'kernel'" -- render --backend osmesa -t shadowmap --set kernel=3 --out "$tmp/a.png"
+# The host's parameters (the eye-space blur, seed 002 sec. 6.3) are checked like a technique's.
+expect 2 "parameter 'shadow_blur': 99 is out of range" -- render --backend osmesa -t shadowmap --set host.shadow_blur=99 --out "$tmp/a.png"
+expect 2 "'flat' is not one of phong, none" -- render --backend osmesa -t shadowmap --set host.lighting=flat --out "$tmp/a.png"
+expect 2 "host.shadow_blur=...: parameter 'shadow_blur': 40 is out of range" -- bench --backend osmesa --techniques shadowmap --sweep host.shadow_blur=0,40 --out "$tmp/b.json"
 expect 2 "no such technique" -- render --backend osmesa -t nonexistent --out "$tmp/a.png"
 expect 2 "expected glfw, egl or osmesa" -- render --backend vulkan --out "$tmp/a.png"
 expect 2 "WIDTHxHEIGHT" -- render --backend osmesa --size 12by3 --out "$tmp/a.png"

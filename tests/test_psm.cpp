@@ -144,3 +144,35 @@ TEST(Psm, NearestReceiverDepthIsTheFirstReceiverInView) {
     objects[0].flags = kObjectCastsShadow;   // a caster only: nothing receives in view
     EXPECT_NEAR(psm::nearestReceiverDepth(camera, objects.data(), 3), camera.farPlane, 1e-3f);
 }
+
+// A plane's bounds are flat (zero height); the frustum clipped by them has no volume, and before
+// paddedReceiverBounds the ground never counted as a receiver: the near plane went past it to the
+// first box in view or to the far plane (aliasing-plane: every pixel outside psm's map;
+// perspective-near: the ground's shadow next to the camera lost, MAE 0.81). The level camera 2
+// above flat ground, field of view 60 degrees: the frustum's lower edge meets the ground at
+// 2 / tan(30 deg); the pad (1e-5 of the far distance) may only make the depth nearer.
+TEST(Psm, NearestReceiverDepthCountsAGroundPlane) {
+    const CameraInfo camera = levelCamera();
+    std::vector<ObjectInfo> objects(2);
+    objects[0].bounds = {{-80, 0, -80}, {80, 0, 80}};   // the ground plane: flat bounds
+    objects[0].flags = kObjectReceivesShadow | kObjectCastsShadow | kObjectPlane;
+    objects[1].bounds = {{-1, 1, -11}, {1, 3, -10}};     // a box 10 ahead
+    objects[1].flags = kObjectReceivesShadow | kObjectCastsShadow;
+    const float expected = 2.0f / std::tan(glm::radians(30.0f));
+    const float found = psm::nearestReceiverDepth(camera, objects.data(), 2);
+    EXPECT_LE(found, expected + 1e-4f);
+    EXPECT_GT(found, expected - 0.01f) << "the pad moves it nearer by about 1e-5 far / tan(30 deg)";
+    // And the map then holds the visible ground: points of it from there to the far plane land
+    // inside the map's clip volume (what the main pass and the texel-footprint measure test).
+    const CameraInfo shortened = psm::receiverCamera(camera, found);
+    const LightInfo light = sun({0.3f, -1.0f, 0.2f});
+    const kit::ConvexBody body = kit::focusBody(shortened, light, kScene, LightSpace{});
+    const auto space = psm::psmSpace(shortened, light, body.vertices());
+    ASSERT_TRUE(space);
+    for (const float z : {3.5f, 5.0f, 10.0f, 30.0f, 59.0f}) {
+        const glm::vec4 q = space->viewProjection * glm::vec4(0.0f, 0.0f, -z, 1.0f);
+        ASSERT_GT(q.w, 0.0f) << z;
+        EXPECT_LE(std::abs(q.x / q.w), 1.0f) << z;
+        EXPECT_LE(std::abs(q.y / q.w), 1.0f) << z;
+    }
+}

@@ -301,9 +301,16 @@ TEST(StressSuite, ASceneFitMapFailsPerspectiveNearWhereWarpsAndCascadesPass) {
     const StressCell uniform = run(*app, s, "perspective-near", "shadowmap");
     const StressCell lispsm = run(*app, s, "perspective-near", "lispsm");
     const StressCell csm = run(*app, s, "perspective-near", "csm");
+    // psm scored 0.81 (no shadow at all near the camera) while psm::nearestReceiverDepth skipped
+    // plane receivers and pushed the near plane from the ground (0.12 m) to the wall (2.05 m);
+    // measured since: 0.0141, m 1.48 in the nearest third.
+    const StressCell psm = run(*app, s, "perspective-near", "psm");
     EXPECT_FALSE(uniform.pass);
     EXPECT_TRUE(lispsm.pass);
     EXPECT_TRUE(csm.pass);
+    EXPECT_TRUE(psm.pass);
+    ASSERT_GT(psm.footprintPixels, 0u);
+    EXPECT_GT(uniform.footprintNear, 10.0 * psm.footprintNear);
     // The texel footprint m says why: one texel of the scene-fit map spreads over tens of pixels
     // in the nearest third, the warped map's over a few.
     ASSERT_GT(uniform.footprintPixels, 0u);
@@ -315,15 +322,24 @@ TEST(StressSuite, ASceneFitMapFailsPerspectiveNearWhereWarpsAndCascadesPass) {
     EXPECT_EQ(run(*app, s, "perspective-near", "reference").footprintPixels, 0u);
 }
 
-TEST(StressSuite, PsmLosesCastersBehindTheCameraWhereLispsmAndAUniformMapDoNot) {
+// The literature names psm as failing here (casters behind the camera plane are lost unless the
+// virtual camera moves back over them, seed 002 sec. 7.2.2). The plugin does move back, and since
+// plane receivers count for its near plane (psm::nearestReceiverDepth) it keeps the tower: psm
+// failed this case (MAE 0.103, false light 0.089) only while the ground was skipped and the near
+// plane jumped to the first crate, 3 m ahead, leaving the ground at the camera's feet outside the
+// map. Measured since: 0.0019, false light 0.0008 (docs/stability.md). The cell is marked
+// "(claim: fails)" on the page.
+TEST(StressSuite, LightBehindSeparatesNothingSincePsmMovesBackOverTheTower) {
     const StressSuite s = suite();
     auto app = test::makeHeadlessApp("cube", s.size);
     ASSERT_TRUE(app);
     const StressCell psm = run(*app, s, "light-behind", "psm");
     const StressCell lispsm = run(*app, s, "light-behind", "lispsm");
     const StressCell uniform = run(*app, s, "light-behind", "shadowmap");   // fit=focus-body: the same B
-    EXPECT_FALSE(psm.pass);
-    EXPECT_GT(psm.falseLight, 0.02) << "the tower's shadow near the camera is lost: false light";
+    const StressCell none = run(*app, s, "light-behind", "none");
+    EXPECT_TRUE(psm.pass);
+    EXPECT_LT(psm.falseLight, 0.01) << "the tower's shadow near the camera is kept";
+    EXPECT_FALSE(none.pass) << "the case has shadow to lose";
     EXPECT_TRUE(lispsm.pass);
     EXPECT_TRUE(uniform.pass);
 }

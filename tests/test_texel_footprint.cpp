@@ -190,3 +190,38 @@ TEST(TexelFootprint, ErrorAgainstViewDepthMatchesEquations8_2And8_9) {
     };
     EXPECT_LT(firstFull(warped.footprint), 0.2 * firstFull(uniform.footprint));
 }
+
+// PSM on the same scene (seed 002 eq. 8.3): in post-perspective space the ground's depth z maps
+// to z_pp = (f + n) / (f - n) - 2 f n / ((f - n) z) (eq. 7.1 for a point in front), and with the
+// light straight down PP holds it as a directional light across the view (sec. 7.2.3), so the map
+// is an orthographic projection of PP with one axis along z_pp over B's image [-1, 1]: s = R (z_pp
+// + 1) / 2, ds/dz = R n f / ((f - n) z^2), and eq. 8.1 gives
+//   dp/ds = F z (1 / z_n - 1 / z_f) / R * sqrt(1 + h^2 / z^2),
+// linear in z: eq. 8.3's s ~ 1/z. z_n is psm's near plane, pushed to the nearest receiver (the
+// ground meets the frustum's lower edge at 0.87, inside the near plane 1: it stays 1), z_f the far
+// plane (B reaches it). Tolerance 1% per bin (measured on llvmpipe: within 0.01% at every bin
+// from z = 1 to 93, 48 bins: PSM's s is exactly affine in 1/z, so the bin's median depth does not
+// blur it as it does eq. 8.9's curve). Before the fix in psm::nearestReceiverDepth (flat bounds of the ground
+// plane were dropped, the near plane went to the far plane) no pixel was inside psm's map.
+TEST(TexelFootprint, PsmErrorAgainstViewDepthMatchesEquation8_3) {
+    const glm::ivec2 size{64, 2048};
+    auto app = test::makeHeadlessApp("aliasing-plane", size);
+    ASSERT_TRUE(app);
+    const double zn = 1.0, zf = 100.0, h = 0.5, R = 2048.0;
+    const double F = 0.5 * size.y / std::tan(glm::radians(30.0));
+    const Evaluation e = test::evaluateTechnique(*app, "psm", {"resolution=2048"}, ReferenceOptions::Mode::Hard);
+    EXPECT_LT(e.footprint.uncoveredPixels, e.footprint.measuredPixels / 100 + 1) << "psm's map holds the visible ground";
+    ASSERT_EQ(e.footprint.byViewDepth.size(), size_t(kFootprintDepthBins));
+    int checked = 0;
+    double worst = 0.0;
+    for (const TexelFootprint::DepthBin& bin : e.footprint.byViewDepth) {
+        if (bin.pixels < 64) continue;
+        const double z = bin.depth;
+        const double analytic = F * z * (1.0 / zn - 1.0 / zf) / R * std::sqrt(1.0 + h * h / (z * z));   // eq. 8.3 in pixels
+        EXPECT_NEAR(bin.depthError / analytic, 1.0, 0.01) << "z " << z;
+        worst = std::max(worst, std::abs(bin.depthError / analytic - 1.0));
+        ++checked;
+    }
+    std::printf("aliasing-plane psm: %d bins within %.2f%% of eq. 8.3\n", checked, 100.0 * worst);
+    EXPECT_GE(checked, 30) << "bins from z = 1 well past z = 50";
+}

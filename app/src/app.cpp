@@ -123,7 +123,9 @@ bool App::applyAssignments(const std::vector<std::string>& assignments, const st
         const auto assignment = parseAssignment(text, error);
         if (!assignment) return false;
         const std::string target = assignment->technique.empty() ? technique : assignment->technique;
-        const TechniqueInfo* info = techniques_->find(target);
+        // host.*: the host's own parameters (plugin/host_params.h), unless a technique is named "host".
+        const TechniqueInfo* info = target == hostParams().id && !techniques_->find(target) ? &hostParams()
+                                                                                            : techniques_->find(target);
         if (!info) {
             error = "--set " + text + ": no technique '" + target + "'";
             return false;
@@ -190,15 +192,9 @@ bool App::renderFrame(const std::string& technique, std::string& error, FrameOut
     renderer_->applyDefaultState();
     loaded->host().beginFrame();
     loaded->technique().renderShadows(frame_, params);
-    if (depthPrepass_) {
-        timer_->begin("depth pre-pass");
-        renderer_->mainDepthPrepass(outputs);
-        timer_->end();
-    }
-    timer_->begin("main");
-    renderer_->mainPass(loaded->mainProgram(outputs), outputs, [&] { loaded->technique().bindMainPass(frame_, params); });
-    timer_->end();
+    const bool passes = runMainPasses(*loaded, frame_, params, outputs, true, error);
     timer_->endFrame();
+    if (!passes) return false;
     lastTechnique_ = technique;
     lastCpuFrameMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
     return true;
@@ -217,9 +213,45 @@ bool App::renderAccuracyTargets(std::string& error) {
     // The technique's maps are those of the frame being measured; only its main pass runs again,
     // with the frame context it had, outside any timer scope.
     renderer_->setView(frame_.camera, frame_.light);
-    if (depthPrepass_) renderer_->mainDepthPrepass(FrameOutputs::Accuracy);
-    renderer_->mainPass(loaded->mainProgram(FrameOutputs::Accuracy), FrameOutputs::Accuracy,
-                        [&] { loaded->technique().bindMainPass(frame_, params); });
+    return runMainPasses(*loaded, frame_, params, FrameOutputs::Accuracy, false, error);
+}
+
+bool App::runMainPasses(LoadedTechnique& loaded, const FrameContext& frame, const ParamValues& params,
+                        FrameOutputs outputs, bool timed, std::string& error) {
+    const std::vector<double>& host = hostValues();
+    const float blur = float(host[kHostShadowBlur]);
+    auto begin = [&](const char* scope) {
+        if (timed) timer_->begin(scope);
+    };
+    auto end = [&] {
+        if (timed) timer_->end();
+    };
+    GLuint mainProgram = loaded.mainProgram(outputs);
+    if (blur > 0.0f) {
+        const GLuint term = loaded.eyeBlurTermProgram(error);
+        mainProgram = term ? loaded.eyeBlurMainProgram(outputs, error) : 0;
+        if (!mainProgram) return false;
+        // Seed 002 sec. 9.4.2: an initial pass writes the shadow term (with the technique's own
+        // filtering) of the opaque surfaces; a blur shrinking with depth (sec. 6.3) makes the
+        // texture the main pass attenuates the light with.
+        begin("eye blur term");
+        renderer_->eyeBlurTermPass(term, [&] { loaded.technique().bindMainPass(frame, params); });
+        end();
+        begin("eye blur");
+        renderer_->eyeBlur(blur, float(host[kHostShadowBlurDepth]));
+        end();
+    }
+    if (depthPrepass_) {
+        begin("depth pre-pass");
+        renderer_->mainDepthPrepass(outputs);
+        end();
+    }
+    renderer_->setEyeBlurRead(blur > 0.0f);
+    renderer_->setLighting(int(host[kHostLighting]));
+    begin("main");
+    renderer_->mainPass(mainProgram, outputs, [&] { loaded.technique().bindMainPass(frame, params); });
+    end();
+    renderer_->setEyeBlurRead(false);
     return true;
 }
 

@@ -14,6 +14,7 @@
 #include "groundtruth/groundtruth.h"
 #include "groundtruth/metrics.h"
 #include "groundtruth/texel_footprint.h"
+#include "plugin/host_params.h"
 #include "plugin/params.h"
 #include "plugin/technique_runtime.h"
 #include "render/gpu_timer.h"
@@ -107,6 +108,15 @@ public:
     // Host depth pre-pass before every main pass (main pass with depth test EQUAL, no depth write).
     void setDepthPrepass(bool on) { depthPrepass_ = on; }
     bool depthPrepass() const { return depthPrepass_; }
+    // After the technique's shadow pass, everything up to and including the main pass: the depth
+    // pre-pass when on, the eye-space blur's term and blur passes when host.shadow_blur > 0 (seed
+    // 002 sec. 6.3, 9.4.2; render/renderer.h), then the main pass (reading the blurred term when
+    // blurred), with host.lighting. `timed`: each pass in its timer scope ("depth pre-pass", "eye
+    // blur term", "eye blur", "main"). path_run.cpp uses it for its untimed passes too.
+    bool runMainPasses(LoadedTechnique& loaded, const FrameContext& frame, const ParamValues& params, FrameOutputs outputs,
+                       bool timed, std::string& error);
+    // The host's parameters (plugin/host_params.h) as stored: host.shadow_blur, ...
+    const std::vector<double>& hostValues() { return params_.values(hostParams()); }
     // Shows `view` of the last frame in the display texture (or the window when framebuffer = 0).
     bool presentView(const std::string& technique, const ViewSelection& view, GLuint framebuffer, glm::ivec2 viewport,
                      std::string& error);

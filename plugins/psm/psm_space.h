@@ -65,18 +65,33 @@ inline glm::vec3 anyPerpendicular(glm::vec3 v) {
     return std::abs(v.y) < 0.9f * glm::length(v) ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
 }
 
+// A receiver's bounds as nearestReceiverDepth clips them: grown by `pad` on every side. A plane's
+// bounds are flat (zero height), and the frustum clipped by a flat box has no volume: kit::clip
+// drops it as "flattened to nothing", so without the pad a ground plane never counted as a
+// receiver and the near plane went past it (to the first box in view, or to the far plane when
+// there was none: on `aliasing-plane` every visible pixel then lay outside the map, and on the
+// stress scene `perspective-near` the near plane jumped from the ground at 0.12 m to the wall at
+// 2.05 m, so the whole nearest shadow fell outside the map and read as lit). Growing the box only
+// moves the found depth nearer, which keeps every receiver inside the map.
+inline Bounds paddedReceiverBounds(const Bounds& bounds, float pad) {
+    return {bounds.min - glm::vec3(pad), bounds.max + glm::vec3(pad)};
+}
+
 // The view depth of the nearest point of any receiving object's bounds inside the camera's
 // frustum (at least the near plane); the far plane when nothing receives in view. Objects are
 // taken in order of their bounds' nearest corner depth, and only those that could still beat the
-// best so far are clipped exactly, so a forest costs a few clips a frame.
+// best so far are clipped exactly, so a forest costs a few clips a frame. The bounds are padded by
+// 1e-5 of the far distance (paddedReceiverBounds: planes have flat bounds), so the depth found can
+// be up to about that much nearer than the receiver.
 inline float nearestReceiverDepth(const CameraInfo& camera, const ObjectInfo* objects, uint32_t count) {
     const kit::ConvexBody frustum = kit::frustumBody(camera.inverseViewProjection);
     const std::vector<glm::vec4> planes = kit::inwardPlanes(frustum);
+    const float pad = 1e-5f * std::max(camera.farPlane, 1.0f);   // the slab stays thicker than kit::clip's tolerance (1e-6 of the body)
     std::vector<std::pair<float, uint32_t>> candidates;
     for (uint32_t i = 0; i < count; ++i) {
         if (!objects[i].receivesShadow()) continue;
         glm::vec3 corners[8];
-        kit::boundsCorners(objects[i].bounds, corners);
+        kit::boundsCorners(paddedReceiverBounds(objects[i].bounds, pad), corners);
         bool outside = false;
         for (const glm::vec4& plane : planes) {
             bool anyInside = false;
@@ -96,7 +111,7 @@ inline float nearestReceiverDepth(const CameraInfo& camera, const ObjectInfo* ob
     for (const auto& [lowerBound, index] : candidates) {
         if (lowerBound >= best) break;
         kit::ConvexBody part = frustum;
-        kit::clip(part, objects[index].bounds);
+        kit::clip(part, paddedReceiverBounds(objects[index].bounds, pad));
         for (const glm::vec3& v : part.vertices()) best = std::min(best, -(camera.view * glm::vec4(v, 1.0f)).z);
     }
     return std::clamp(best, camera.nearPlane, camera.farPlane);

@@ -29,9 +29,11 @@ std::string jsonValueText(const nlohmann::json& value) {
     return value.is_string() ? value.get<std::string>() : value.dump();
 }
 
-// The technique's own passes: every pass but the host's frame, main pass and depth pre-pass. The
-// camera pre-pass counts: the technique asked for it.
-bool isTechniquePass(const std::string& pass) { return pass != "frame" && pass != "main" && pass != "depth pre-pass"; }
+// The technique's own passes: every pass but the host's frame, main pass, depth pre-pass and
+// eye-space blur (its term pass and the blur). The camera pre-pass counts: the technique asked for it.
+bool isTechniquePass(const std::string& pass) {
+    return pass != "frame" && pass != "main" && pass != "depth pre-pass" && pass != "eye blur term" && pass != "eye blur";
+}
 
 void addTiming(nlohmann::json& row, const Measurement& m) {
     double techniqueMs = 0.0;
@@ -52,6 +54,7 @@ void addTiming(nlohmann::json& row, const Measurement& m) {
     row["main_ms"] = median("main");
     row["technique_passes_ms"] = techniqueMs;
     if (m.gpuMs.count("depth pre-pass")) row["depth_prepass_ms"] = median("depth pre-pass");
+    if (m.gpuMs.count("eye blur")) row["eye_blur_ms"] = median("eye blur term") + median("eye blur");
     row["cpu_frame_ms"] = m.cpuMs.median;
     row["cpu_frame_ms_p5"] = m.cpuMs.p5;
     row["cpu_frame_ms_p95"] = m.cpuMs.p95;
@@ -189,6 +192,7 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
     std::map<std::pair<int, bool>, double> mainFloor;   // none's main pass by (light size x 1e6, depth pre-pass)
     std::map<int, double> depthFloor;                   // bare depth pass ms by resolution
     const bool savedPrepass = app.depthPrepass();
+    const std::vector<double> savedHost = app.hostValues();   // host.* sweeps change them per row
 
     // Floors are measured once per group, when first needed, with the row's warm-up and frames.
     auto measureDepthFloor = [&](int resolution, double& ms) {
@@ -246,8 +250,10 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                 if (isLightKey(key)) {
                     const float v = static_cast<float>(number(value));
                     app.light().size = app.light().type == LightType::Directional ? glm::radians(v) : v;
-                } else if (isHostKey(key)) {
+                } else if (key == "host.depth_prepass") {
                     app.setDepthPrepass(value == "1");
+                } else if (isHostKey(key)) {
+                    assignments.push_back(key + "=" + value);   // host.shadow_blur, ... (plugin/host_params.h)
                 } else {
                     assignments.push_back(benchParamFor(*info, key) + "=" + value);
                 }
@@ -273,6 +279,8 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                 row["param." + info->params[i].id] = formatParamValue(info->params[i], values[i]);
             row["light_size"] = rowLight.type == LightType::Directional ? glm::degrees(rowLight.size) : rowLight.size;
             row["depth_prepass"] = app.depthPrepass() ? 1 : 0;
+            for (size_t i = 0; i < hostParams().params.size(); ++i)
+                row["host." + hostParams().params[i].id] = formatParamValue(hostParams().params[i], app.hostValues()[i]);
             addTiming(row, m);
             if (mainFloor.count(floorKey)) {
                 row["floor_main_ms"] = mainFloor[floorKey];
@@ -358,6 +366,7 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
         if (onRow) onRow(row);
     }
     app.setDepthPrepass(savedPrepass);
+    app.params().values(hostParams()) = savedHost;
     return true;
 }
 

@@ -353,6 +353,16 @@ bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& tec
             }
             continue;   // the range depends on each scene's light: below
         }
+        if (isHostKey(key) && key != "host.depth_prepass") {
+            for (const auto& value : values) {
+                std::string problem;
+                if (!parseParamValue(*hostParams().findParam(key.substr(5)), value, problem)) {
+                    error = sweepName(spec, key) + ": " + problem;
+                    return false;
+                }
+            }
+            continue;
+        }
         if (isHostKey(key)) {
             for (const auto& value : values) {
                 if (value != "0" && value != "1") {
@@ -377,7 +387,7 @@ bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& tec
         }
         if (!used) {
             error = sweepName(spec, key) + ": '" + key +
-                    "' is no parameter of the techniques measured (nor scene.*, light.size, host.depth_prepass)";
+                    "' is no parameter of the techniques measured (nor scene.*, light.size, host.depth_prepass, host.shadow_blur, host.shadow_blur_depth, host.lighting)";
             return false;
         }
     }

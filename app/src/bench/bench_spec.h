@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "plugin/host_params.h"
 #include "plugin/params.h"
 
 namespace shadowlab {
@@ -25,7 +26,8 @@ struct BenchSpec {
     std::vector<glm::ivec2> sizes{{1280, 720}};
     // Lists to permute. Keys: a technique parameter ("resolution", or "pcf.kernel" for one
     // technique), a scene parameter ("scene.count"), the light size ("light.size"), or the host's
-    // depth pre-pass ("host.depth_prepass": 0 or 1).
+    // depth pre-pass ("host.depth_prepass": 0 or 1) or another host parameter ("host.shadow_blur",
+    // plugin/host_params.h).
     std::map<std::string, std::vector<std::string>> sweeps;
     std::vector<std::string> base;           // key=value set before every combination
     int warmupFrames = 20;
@@ -77,7 +79,10 @@ bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& tec
 // Shared by the check and the run.
 inline bool isSceneKey(const std::string& key) { return key.rfind("scene.", 0) == 0; }
 inline bool isLightKey(const std::string& key) { return key == "light.size"; }
-inline bool isHostKey(const std::string& key) { return key == "host.depth_prepass"; }
+// The host's depth pre-pass, or one of its parameters (plugin/host_params.h: host.shadow_blur, ...).
+inline bool isHostKey(const std::string& key) {
+    return key == "host.depth_prepass" || (key.rfind("host.", 0) == 0 && hostParams().findParam(key.substr(5)));
+}
 // The parameter id `key` names for `info`: "resolution" if it declares it, "pcf.kernel" for pcf; "" if none.
 std::string benchParamFor(const TechniqueInfo& info, const std::string& key);
 using BenchSetting = std::pair<std::string, std::string>;

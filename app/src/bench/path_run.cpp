@@ -78,10 +78,7 @@ bool renderPreviousMapsFrom(App& app, const std::string& technique, const Camera
     FrameContext frame = app.lastFrame();
     frame.camera = camera;
     app.renderer().setView(frame.camera, frame.light);
-    if (app.depthPrepass()) app.renderer().mainDepthPrepass(FrameOutputs::Accuracy);
-    app.renderer().mainPass(loaded->mainProgram(FrameOutputs::Accuracy), FrameOutputs::Accuracy,
-                            [&] { loaded->technique().bindMainPass(frame, params); });
-    return true;
+    return app.runMainPasses(*loaded, frame, params, FrameOutputs::Accuracy, false, error);
 }
 
 AccuracyMetrics regionMetrics(const Evaluation& e, const std::vector<uint8_t>& region, const CameraInfo& camera) {

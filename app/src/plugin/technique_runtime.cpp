@@ -242,6 +242,7 @@ int PluginHost::releaseAll() {
 
 bool LoadedTechnique::start(HostContext context, const std::filesystem::path& shadowGlsl, std::string& error) {
     shaders_ = &context.shaders;
+    shadowGlsl_ = shadowGlsl;
     host_ = std::make_unique<PluginHost>(context, info_);
     for (const FrameOutputs outputs : {FrameOutputs::Colour, FrameOutputs::Accuracy}) {
         const bool accuracy = outputs == FrameOutputs::Accuracy;
@@ -310,11 +311,43 @@ LoadedTechnique::~LoadedTechnique() {
     host_.reset();
     for (ProgramId program : mainPrograms_)
         if (program && shaders_) shaders_->release(program);
+    for (ProgramId program : eyeBlurPrograms_)
+        if (program && shaders_) shaders_->release(program);
     library_.reset();
 }
 
 GLuint LoadedTechnique::mainProgram(FrameOutputs outputs) const {
     return shaders_->program(mainPrograms_[outputs == FrameOutputs::Accuracy ? 1 : 0]);
+}
+
+GLuint LoadedTechnique::eyeBlurVariant(int slot, std::string& error) {
+    if (!eyeBlurPrograms_[slot]) {
+        static const char* const defines[3] = {"SHADOWLAB_EYE_BLUR_TERM 1", "SHADOWLAB_EYE_BLUR_READ 1",
+                                               "SHADOWLAB_EYE_BLUR_READ 1;SHADOWLAB_ACCURACY_TARGETS 1"};
+        static const char* const labels[3] = {": eye-space blur term pass", ": main pass (blurred shadow term)",
+                                              ": main pass (blurred shadow term, accuracy targets)"};
+        ShaderRequest request;
+        request.vertexFile = "main.vert";
+        request.fragmentFile = "main.frag";
+        request.defines = defines[slot];
+        request.searchPaths = hostShaderPaths();
+        request.aliases["technique_shadow.glsl"] = shadowGlsl_;
+        request.label = info_.id + labels[slot];
+        std::string shaderError;
+        eyeBlurPrograms_[slot] = shaders_->build(request, shaderError);
+        if (!eyeBlurPrograms_[slot]) {
+            error = info_.id + ": " + request.label.substr(info_.id.size() + 2) + " with " + info_.shadowGlsl +
+                    " failed to build: " + shaderError;
+            return 0;
+        }
+    }
+    return shaders_->program(eyeBlurPrograms_[slot]);
+}
+
+GLuint LoadedTechnique::eyeBlurTermProgram(std::string& error) { return eyeBlurVariant(0, error); }
+
+GLuint LoadedTechnique::eyeBlurMainProgram(FrameOutputs outputs, std::string& error) {
+    return eyeBlurVariant(outputs == FrameOutputs::Accuracy ? 2 : 1, error);
 }
 
 TechniqueManager::TechniqueManager(HostContext context, std::filesystem::path pluginDir)

@@ -125,6 +125,11 @@ public:
     PluginHost& host() { return *host_; }
     // The host's main pass with this technique's shadowTerm(), built for each FrameOutputs.
     GLuint mainProgram(FrameOutputs outputs) const;
+    // The eye-space blur's variants of it (render/renderer.h eyeBlur*), built on first use and
+    // kept: the term pass (SHADOWLAB_EYE_BLUR_TERM), and the main pass reading the blurred term
+    // (SHADOWLAB_EYE_BLUR_READ) for each FrameOutputs. 0 with `error` when a build fails.
+    GLuint eyeBlurTermProgram(std::string& error);
+    GLuint eyeBlurMainProgram(FrameOutputs outputs, std::string& error);
     const PluginLibrary* library() const { return library_.get(); }
 
 private:
@@ -136,6 +141,9 @@ private:
     std::unique_ptr<PluginHost> host_;
     IShadowTechnique* technique_ = nullptr;
     ProgramId mainPrograms_[2] = {0, 0};   // FrameOutputs::Colour, ::Accuracy
+    GLuint eyeBlurVariant(int slot, std::string& error);
+    ProgramId eyeBlurPrograms_[3] = {0, 0, 0};   // term, read (colour), read (accuracy targets)
+    std::filesystem::path shadowGlsl_;
     ShaderLibrary* shaders_ = nullptr;
 };
 

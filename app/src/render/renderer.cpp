@@ -6,6 +6,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "shadowlab/eye_blur_shared.h"
 #include "shadowlab/frame_block.h"
 #include "util/log.h"
 #include "util/paths.h"
@@ -129,7 +130,14 @@ bool Renderer::init(std::string& error) {
     depthOnly.searchPaths = hostShaderPaths();
     depthOnly.label = "host depth pre-pass";
     depthOnlyProgram_ = shaders_.build(depthOnly, error);
-    return depthOnlyProgram_ != 0;
+    if (!depthOnlyProgram_) return false;
+    ShaderRequest eyeBlur;
+    eyeBlur.vertexFile = "fullscreen.vert";
+    eyeBlur.fragmentFile = "eye_blur.frag";
+    eyeBlur.searchPaths = hostShaderPaths();
+    eyeBlur.label = "host eye-space blur";
+    eyeBlurProgram_ = shaders_.build(eyeBlur, error);
+    return eyeBlurProgram_ != 0;
 }
 
 GLuint Renderer::sampler(SamplerKind kind) const {
@@ -278,6 +286,7 @@ bool Renderer::resize(glm::ivec2 size, int msaaSamples, std::string& error) {
         }
     }
     if (prepassFbo_) allocatePrepassTargets();
+    if (eyeBlurTermFbo_) allocateEyeBlurTargets();
     displayColor_ = makeTexture(GL_RGBA8, size, 0, "display");
     glCreateFramebuffers(1, &name);
     displayFbo_.reset(name);
@@ -443,6 +452,80 @@ void Renderer::beginMainPass(GLuint program, FrameOutputs outputs) {
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     clearMainTargets(fbo, outputs, !depthPrepassed_);
     bindSceneGeometry(program);
+    glUniform1i(SHADOWLAB_LIGHTING_LOCATION, lighting_);
+    if (eyeBlurRead_) {
+        glBindTextureUnit(shared::eye_blur::kEyeBlurTermUnit, eyeBlurTerm_[0].get());
+        glBindSampler(shared::eye_blur::kEyeBlurTermUnit, 0);
+        glUniform1i(SHADOWLAB_EYE_BLUR_READ_LOCATION, 1);
+    }
+}
+
+void Renderer::allocateEyeBlurTargets() {
+    GLuint name = 0;
+    const char* labels[2] = {"eye-space blur: term and result", "eye-space blur: along x"};
+    for (int i = 0; i < 2; ++i) {
+        eyeBlurTerm_[i] = makeTexture(GL_RGBA32F, size_, 0, labels[i]);
+        glCreateFramebuffers(1, &name);
+        eyeBlurFbo_[i].reset(name);
+        glNamedFramebufferTexture(name, GL_COLOR_ATTACHMENT0, eyeBlurTerm_[i].get(), 0);
+        glObjectLabel(GL_FRAMEBUFFER, name, -1, labels[i]);
+    }
+    eyeBlurDepth_ = makeTexture(GL_DEPTH24_STENCIL8, size_, 0, "eye-space blur: depth");
+    glCreateFramebuffers(1, &name);
+    eyeBlurTermFbo_.reset(name);
+    glObjectLabel(GL_FRAMEBUFFER, name, -1, "eye-space blur: term pass");
+    glNamedFramebufferTexture(name, GL_COLOR_ATTACHMENT0, eyeBlurTerm_[0].get(), 0);
+    glNamedFramebufferTexture(name, GL_DEPTH_STENCIL_ATTACHMENT, eyeBlurDepth_.get(), 0);
+    for (GLuint fbo : {eyeBlurTermFbo_.get(), eyeBlurFbo_[0].get(), eyeBlurFbo_[1].get()}) {
+        const GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE) logError("eye-space blur framebuffer is " + framebufferStatusName(status));
+    }
+}
+
+void Renderer::beginEyeBlurTerm(GLuint program) {
+    if (!eyeBlurTermFbo_) allocateEyeBlurTargets();
+    const GLuint fbo = eyeBlurTermFbo_.get();
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, size_.x, size_.y);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);   // as the main pass: planes are seen from both sides
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};   // a = 0: no surface
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero);
+    glClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    bindSceneGeometry(program);
+}
+
+void Renderer::drawOpaque(GLuint program) {
+    if (!scene_) return;
+    bindSceneGeometry(program);
+    for (uint32_t index : opaqueBatches_) {
+        const Batch& batch = batches_[index];
+        drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
+    }
+}
+
+void Renderer::eyeBlur(float width, float referenceDepth) {
+    if (!eyeBlurTermFbo_) allocateEyeBlurTargets();
+    applyDefaultState();
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glViewport(0, 0, size_.x, size_.y);
+    glUseProgram(shaders_.program(eyeBlurProgram_));
+    glUniform1f(1, width);
+    glUniform1f(2, referenceDepth > 0.0f ? referenceDepth : camera_.nearPlane);
+    glBindSampler(shared::eye_blur::kEyeBlurTermUnit, 0);
+    // Along x: term -> [1]; along y: [1] -> term.
+    for (int pass = 0; pass < 2; ++pass) {
+        glBindFramebuffer(GL_FRAMEBUFFER, eyeBlurFbo_[1 - pass].get());
+        glBindTextureUnit(shared::eye_blur::kEyeBlurTermUnit, eyeBlurTerm_[pass].get());
+        glUniform2i(0, pass == 0 ? 1 : 0, pass == 0 ? 0 : 1);
+        drawFullscreenTriangle();
+    }
+    glBindTextureUnit(shared::eye_blur::kEyeBlurTermUnit, 0);
+    resetPipelineState();
 }
 
 void Renderer::drawMainPassObjects(GLuint program, FrameOutputs outputs) {
@@ -453,6 +536,8 @@ void Renderer::drawMainPassObjects(GLuint program, FrameOutputs outputs) {
         drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
     }
     if (opaqueBatches_.size() == batches_.size()) return;
+    // The blurred term holds the opaque surfaces only: translucent ones call shadowTerm().
+    if (eyeBlurRead_) glUniform1i(SHADOWLAB_EYE_BLUR_READ_LOCATION, 0);
     // Translucent surfaces: blended colour, back to front from the camera by their bounds'
     // centres, without touching the G-buffer or depth, so accuracy is measured on the opaque
     // surface behind them.

@@ -87,6 +87,30 @@ public:
     // Whether the last main pass wrote the visibility, position and normal targets.
     bool accuracyTargetsCurrent() const { return accuracyCurrent_; }
 
+    // The eye-space depth-dependent blur of the shadow term (seed 002 sec. 6.3, 9.4.2;
+    // shadowlab/eye_blur_shared.h), between the technique's shadow pass and the main pass:
+    // eyeBlurTermPass() draws the opaque surfaces with `program` (the technique's main pass built
+    // with SHADOWLAB_EYE_BLUR_TERM) into a screen texture, rgb = shadow term, a = view depth;
+    // eyeBlur() blurs it along x, then y, back into that texture. Main passes after
+    // setEyeBlurRead(true) (with the SHADOWLAB_EYE_BLUR_READ program) read it on unit
+    // kEyeBlurTermUnit for their opaque surfaces. The textures (two RGBA32F, exact for the term,
+    // and a depth buffer) are made on first use and on resize, the program once in init().
+    template <typename BindTechnique>
+    void eyeBlurTermPass(GLuint program, BindTechnique&& bindTechnique) {
+        applyDefaultState();
+        glUseProgram(program);
+        bindTechnique();
+        resetPipelineState();
+        beginEyeBlurTerm(program);
+        drawOpaque(program);
+    }
+    void eyeBlur(float width, float referenceDepth);
+    void setEyeBlurRead(bool on) { eyeBlurRead_ = on; }
+    // Seed 002 sec. 6.2 / Fig. 6.7 in every main pass: 0 phong (the three rules), 1 none (unlit).
+    void setLighting(int model) { lighting_ = model; }
+    // The blurred term of the last eyeBlur() (tests read it), 0 before the first.
+    GLuint eyeBlurTexture() const { return eyeBlurTerm_[0].get(); }
+
     // Present pass into `framebuffer` (0 = window) or, with framebuffer = ~0u, the display texture.
     void present(PresentMode mode, GLuint texture, GLuint framebuffer, glm::ivec2 viewport, glm::vec2 range = {0, 1});
     GLuint target(MainTarget which) const;
@@ -113,6 +137,9 @@ private:
         uint32_t material;
     };
     void beginMainPass(GLuint program, FrameOutputs outputs);
+    void beginEyeBlurTerm(GLuint program);
+    void drawOpaque(GLuint program);
+    void allocateEyeBlurTargets();
     void drawMainPassObjects(GLuint program, FrameOutputs outputs);
     void endMainPass(FrameOutputs outputs);
     void clearMainTargets(GLuint fbo, FrameOutputs outputs, bool depth);
@@ -153,6 +180,13 @@ private:
     GlTexture prepassDepth_, prepassPosition_, prepassNormal_, prepassObjectId_;
     GlFramebuffer prepassFbo_;
     CameraPrepass prepass_{};
+
+    // The eye-space blur (eyeBlur*): [0] the term and the blurred result, [1] the blur along x.
+    GlTexture eyeBlurTerm_[2], eyeBlurDepth_;
+    GlFramebuffer eyeBlurTermFbo_, eyeBlurFbo_[2];
+    ProgramId eyeBlurProgram_ = 0;
+    bool eyeBlurRead_ = false;
+    int lighting_ = 0;
 
     CameraInfo camera_{};
     LightInfo light_{};

@@ -468,6 +468,16 @@ void Ui::drawPanel(App& app, UiState& state) {
             if (ImGui::Button("Reset to defaults")) app.params().resetToDefaults(*info);
         }
     }
+    // The host's own parameters (plugin/host_params.h: the eye-space blur and lighting rules of
+    // seed 002 ch. 6), with any technique.
+    if (ImGui::CollapsingHeader("Host passes")) {
+        const TechniqueInfo& host = hostParams();
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextUnformatted(host.explanation.c_str());
+        ImGui::PopTextWrapPos();
+        auto& values = app.params().values(host);
+        for (size_t i = 0; i < host.params.size(); ++i) parameterWidget(host.params[i], values[i]);
+    }
     if (!state.frameError.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.4f, 1.0f));
         ImGui::PushTextWrapPos(0.0f);

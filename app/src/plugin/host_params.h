@@ -1,0 +1,53 @@
+// The host's own parameters, declared once like a technique's: the values live in the App's
+// ParamStore under the id "host", so `--set host.shadow_blur=4`, tours' settings, bench sweeps
+// (`host.shadow_blur=0,1,2,4,8,16`) and the window's "Host" section all read and write the same
+// entries (App::applyAssignments, bench_spec.h isHostKey, ui/ui.cpp).
+//
+// The eye-space depth-dependent blur of the shadow term and the lighting rules of seed 002
+// ch. 6 (sec. 6.2, 6.3, 9.4; shadowlab/eye_blur_shared.h, render/renderer.h eyeBlur*).
+#pragma once
+
+#include "plugin/params.h"
+
+namespace shadowlab {
+
+enum HostParam : uint32_t { kHostShadowBlur = 0, kHostShadowBlurDepth = 1, kHostLighting = 2 };
+
+inline const TechniqueInfo& hostParams() {
+    static const TechniqueInfo info = [] {
+        TechniqueInfo t;
+        t.id = "host";
+        t.displayName = "Host";
+        t.category = "host";
+        t.explanation =
+            "Passes of the host that work with any technique (seed 002 ch. 6, projection aliasing). Eye-space blur "
+            "(sec. 6.3, 9.4.2): a shadow map holds depths, which cannot be blurred, so the shadow term itself is: "
+            "a first pass writes the technique's term of the unlit surfaces to a screen texture, a box blur W pixels "
+            "wide at the reference depth and W z_b / z beyond it (distant shadows, whose artefacts are small on "
+            "screen, keep their detail) smooths it without crossing depth edges, and the main pass attenuates the "
+            "light with it. Lighting (sec. 6.2, Fig. 6.7): with phong the ambient is never shadowed and the diffuse "
+            "N.L darkens exactly the surfaces grazed by the light, where projection aliasing (eq. 6.1) is worst; "
+            "with none the term lies on unlit surfaces and every artefact shows.";
+        t.params.push_back({"shadow_blur", "Eye-space blur", ParamType::Float, 0.0, 16.0, 0.0, "px",
+                            "Seed 002 sec. 6.3 / 9.4.2: the shadow term of the opaque surfaces is written to a screen "
+                            "texture and blurred with a box W pixels wide at the reference depth, W z_b / z beyond it "
+                            "(farther shadows less blurred), then attenuates the light. 0: off (the single main pass). "
+                            "Fig. 6.6 uses 1, 2, 4, 8, 16.",
+                            {}});
+        // Not the near plane by default: with near 0.1 and surfaces 5-70 units away, W z_n / z is
+        // under a pixel everywhere and the blur would do nothing.
+        t.params.push_back({"shadow_blur_depth", "Blur reference depth", ParamType::Float, 0.0, 1e6, 10.0, "",
+                            "z_b: the view depth (scene units) up to which the blur is W pixels wide, W z_b / z beyond "
+                            "(0: the camera's near plane).",
+                            {}});
+        t.params.push_back({"lighting", "Lighting", ParamType::Enum, 0.0, 1.0, 0.0, "",
+                            "Seed 002 sec. 6.2 / Fig. 6.7: phong = ambient never shadowed, diffuse (N.L) and specular "
+                            "attenuated by the shadow term; none = the shadow term on unlit surfaces (no N.L, no "
+                            "specular), where projection aliasing is not hidden.",
+                            {"phong", "none"}});
+        return t;
+    }();
+    return info;
+}
+
+} // namespace shadowlab
