@@ -323,22 +323,24 @@ TEST(StressSuite, ASceneFitMapFailsPerspectiveNearWhereWarpsAndCascadesPass) {
 }
 
 // The literature names psm as failing here (casters behind the camera plane are lost unless the
-// virtual camera moves back over them, seed 002 sec. 7.2.2). The plugin does move back, and since
-// plane receivers count for its near plane (psm::nearestReceiverDepth) it keeps the tower: psm
-// failed this case (MAE 0.103, false light 0.089) only while the ground was skipped and the near
-// plane jumped to the first crate, 3 m ahead, leaving the ground at the camera's feet outside the
-// map. Measured since: 0.0019, false light 0.0008 (docs/stability.md). The cell is marked
-// "(claim: fails)" on the page.
-TEST(StressSuite, LightBehindSeparatesNothingSincePsmMovesBackOverTheTower) {
+// virtual camera moves back over them, seed 002 sec. 7.2.2). The case runs psm with move_back=0,
+// which shows that failure; with the move-back (psm's default) it keeps the tower. psm failed this
+// case with the move-back too (MAE 0.103, false light 0.089) only while the ground was skipped for
+// its near plane (psm::nearestReceiverDepth), leaving the ground at the camera's feet outside the
+// map (docs/stability.md).
+TEST(StressSuite, LightBehindLosesTheTowerWithoutPsmsMoveBack) {
     const StressSuite s = suite();
     auto app = test::makeHeadlessApp("cube", s.size);
     ASSERT_TRUE(app);
     const StressCell psm = run(*app, s, "light-behind", "psm");
+    const StressCell movedBack = run(*app, s, "light-behind", "psm", {"move_back=1"});
     const StressCell lispsm = run(*app, s, "light-behind", "lispsm");
     const StressCell uniform = run(*app, s, "light-behind", "shadowmap");   // fit=focus-body: the same B
     const StressCell none = run(*app, s, "light-behind", "none");
-    EXPECT_TRUE(psm.pass);
-    EXPECT_LT(psm.falseLight, 0.01) << "the tower's shadow near the camera is kept";
+    EXPECT_FALSE(psm.pass) << "without the move-back the tower behind the camera is clipped";
+    EXPECT_GT(psm.falseLight, 0.05) << "its shadow in front of the viewer is lost";
+    EXPECT_TRUE(movedBack.pass);
+    EXPECT_LT(movedBack.falseLight, 0.01) << "the tower's shadow near the camera is kept";
     EXPECT_FALSE(none.pass) << "the case has shadow to lose";
     EXPECT_TRUE(lispsm.pass);
     EXPECT_TRUE(uniform.pass);

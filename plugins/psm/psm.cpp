@@ -22,6 +22,14 @@ constexpr ParamDesc kParams[] = {
     kit::slopeBiasParam(),
     kit::cullParam(2),
     kit::hardwareFilterParam(),
+    {"move_back", "virtual move-back", ParamType::Bool, 0, 1, 1, "",
+     "Seed 002 sec. 7.2.2: casters behind the viewer that shadow the view cross the camera's "
+     "singularity in post-perspective space, so the camera is moved back virtually until the whole "
+     "focus body is in front of it. Off: the body is cut at the camera's near plane and the depth pass "
+     "clips there, so those casters are lost (light leaks in front of the viewer: the stress case "
+     "light-behind); the warp is at its strongest. On: they are kept, the warp weakens with the "
+     "distance moved back.",
+     nullptr},
 };
 enum : uint32_t {
     kResolution = kit::paramIndex(kParams, "resolution"),
@@ -29,6 +37,7 @@ enum : uint32_t {
     kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
     kCull = kit::paramIndex(kParams, "cull"),
     kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
+    kMoveBack = kit::paramIndex(kParams, "move_back"),
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -64,7 +73,15 @@ class PerspectiveShadowMaps final : public kit::TechniqueBase {
         const kit::FocusedLightSpace focused =
             kit::focusLightSpace(host(), shortened, {kit::Fit::FocusBody, false}, config.resolution);
         LightSpace lightSpace = focused.light;
-        const auto space = psm::psmSpace(shortened.camera, frame.light, focused.body.vertices());
+        kit::ConvexBody body = focused.body;
+        if (!params.asBool(kMoveBack)) {
+            // Only B's part in front of the (receiver) near plane: the move-back is then 0, and
+            // the depth pass clips at the camera plane, so casters behind the viewer are lost.
+            const glm::vec3 forward = -glm::vec3(shortened.camera.view[0][2], shortened.camera.view[1][2], shortened.camera.view[2][2]);
+            const glm::vec3 eye = glm::vec3(glm::inverse(shortened.camera.view)[3]);
+            kit::clip(body, glm::vec4(forward, -glm::dot(forward, eye) - shortened.camera.nearPlane));
+        }
+        const auto space = psm::psmSpace(shortened.camera, frame.light, body.vertices());
         host().reportStatistic("near plane", shortened.camera.nearPlane);
         if (space) {
             lightSpace.viewProjection = space->viewProjection;
