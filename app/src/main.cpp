@@ -176,9 +176,23 @@ struct WindowOptions {
     int tourStep = 1;            // from 1
     std::string session;         // a session file applied at the start
     std::string sessionDir = "sessions";
+    std::string probe;           // X,Y: the kernel view's pixel, in the view's pixels from its top left
     // Flags given that only the window reads (for the message when there is no window).
     std::vector<std::string> given;
 };
+
+// "X,Y": two whole numbers, pixels from the top left.
+bool parseProbe(const std::string& text, glm::ivec2& pixel) {
+    const auto comma = text.find(',');
+    if (comma == std::string::npos || comma == 0 || comma + 1 >= text.size()) return false;
+    const std::string x = text.substr(0, comma), y = text.substr(comma + 1);
+    auto digits = [](const std::string& t) {
+        return !t.empty() && t.size() <= 6 && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    if (!digits(x) || !digits(y)) return false;
+    pixel = {std::stoi(x), std::stoi(y)};
+    return true;
+}
 
 // Checks the window options against each other and the techniques; fills `out`.
 int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& technique, InteractiveOptions& out) {
@@ -201,6 +215,14 @@ int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& te
     out.frames = w.smokeFrames > 0 ? w.smokeFrames : w.frames;
     out.session = w.session;
     out.sessionFolder = w.sessionDir;
+    if (!w.probe.empty()) {
+        glm::ivec2 pixel;
+        if (!parseProbe(w.probe, pixel))
+            return fail("--probe '" + w.probe + "': expected X,Y, the pixel of the view (from its top left) whose filter "
+                        "kernel the kernel view shows",
+                        kExitBadInput);
+        out.probe = pixel;
+    }
     return 0;
 }
 
@@ -317,19 +339,6 @@ Image visibilityImage(const std::vector<glm::vec3>& visibility, const std::vecto
 }
 
 ViewSelection parseView(const std::string& text) { return viewFromName(text); }
-
-// "X,Y": two whole numbers, pixels from the top left.
-bool parseProbe(const std::string& text, glm::ivec2& pixel) {
-    const auto comma = text.find(',');
-    if (comma == std::string::npos || comma == 0 || comma + 1 >= text.size()) return false;
-    const std::string x = text.substr(0, comma), y = text.substr(comma + 1);
-    auto digits = [](const std::string& t) {
-        return !t.empty() && t.size() <= 6 && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
-    };
-    if (!digits(x) || !digits(y)) return false;
-    pixel = {std::stoi(x), std::stoi(y)};
-    return true;
-}
 
 int commandRender(const CommonOptions& common, const std::string& out, const std::string& view, int frames,
                   const std::string& reference, int samples, const WindowOptions& compare, const std::string& path,
@@ -733,6 +742,9 @@ int run(int argc, char** argv) {
     windowOption(cli.add_option("--ui-scale", window.uiScale, "window: size of the panel's text and widgets (1.5-2 for a projector)"))
         ->check(CLI::Range(0.5, 4.0));
     windowOption(cli.add_flag("--hide-ui", window.hideUi, "window: start with the panel hidden (F1 or H toggles it)"));
+    windowOption(cli.add_option("--probe", window.probe,
+                                "window: X,Y, the pixel of the view (from its top left) the kernel view probes until the "
+                                "mouse moves over the view (offscreen slides keep it)"));
     windowOption(cli.add_flag("--measure", window.measure,
                               "window: measure accuracy after a few frames, each side of a comparison for its own "
                               "technique, and show the heatmap (with --frames: a slide of it)"));

@@ -140,6 +140,7 @@ int App::runInteractive(const InteractiveOptions& options) {
     state.wipe = options.wipe;
     state.showUi = options.showUi;
     state.view = options.view;
+    if (options.probe) setProbePixel(options.probe);
     state.uiScale = options.uiScale;
     state.msaaSamples = renderer_->msaaSamples();
     camera_.setFramingAspect(kSceneFramingAspect);
