@@ -414,6 +414,37 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         if (code == 0) logInfo("wrote " + out);
         return code;
     }
+    if (!probe.empty()) {
+        // The kernel view as a slide: the window's frame loop offscreen without the panel, so the
+        // footprint's numbers are drawn beside it, and printed.
+        WindowOptions w;
+        w.frames = std::max(frames, 1);
+        w.screenshot = out;
+        w.hideUi = true;
+        InteractiveOptions options;
+        if (int code = windowOptionsProblem(app, w, technique, options)) return code;
+        options.view = parseView(view);
+        options.probe = probePixel;
+        const int code = app.runInteractive(options);
+        if (code) return code;
+        const KernelProbe& measured = app.lastProbe();
+        std::printf("probe %d,%d: %s\n", probePixel.x, probePixel.y, describeProbe(measured).c_str());
+        if (measured.valid)
+            std::printf("probe %d,%d: kernel=%s n=%d kernel_texels=%.4f samples=%d early_out=%d lit=%.4f search_texels=%.4f "
+                        "search_samples=%d blockers=%d blocker_depth=%.5f receiver_depth=%.5f penumbra_texels=%.4f "
+                        "penumbra_world=%.5f decision=%s\n",
+                        probePixel.x, probePixel.y,
+                        measured.kernel == FilterKernel::Box    ? "box"
+                        : measured.kernel == FilterKernel::Disc ? "disc"
+                                                                : "pcss",
+                        measured.n, double(measured.kernelTexels), measured.samplesTaken, measured.earlyOut ? 1 : 0,
+                        double(measured.lit), double(measured.searchRadiusTexels), measured.searchSamples, measured.blockers,
+                        double(measured.averageBlockerDepth), double(measured.receiverDepth), double(measured.kernelTexels),
+                        double(measured.penumbraWorld), measured.decision.empty() ? "-" : measured.decision.c_str());
+        std::fflush(stdout);
+        logInfo("wrote " + out);
+        return 0;
+    }
     for (int i = 0; i < std::max(frames, 1); ++i)
         if (!app.renderFrame(technique, error)) return fail(error, kExitFailure);
     Image image;
@@ -434,26 +465,7 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
     } else {
         if (!app.presentView(technique, parseView(view), ~0u, {}, error)) return fail(error, kExitBadInput);
         image = app.readDisplay();
-        if (parseView(view).kind == ViewSelection::Kind::Kernel) {
-            // The numbers beside the picture: one line, "probe X,Y: ..." (tests read it).
-            const KernelProbe& measured = app.lastProbe();
-            const glm::ivec2 p = app.probePixel().value_or(glm::ivec2(-1));
-            std::printf("probe %d,%d: %s\n", p.x, p.y, describeProbe(measured).c_str());
-            if (measured.valid)
-                std::printf("probe %d,%d: kernel=%s n=%d kernel_texels=%.4f samples=%d early_out=%d lit=%.4f search_texels=%.4f "
-                            "search_samples=%d blockers=%d blocker_depth=%.5f receiver_depth=%.5f penumbra_texels=%.4f "
-                            "penumbra_world=%.5f decision=%s\n",
-                            p.x, p.y,
-                            measured.kernel == FilterKernel::Box    ? "box"
-                            : measured.kernel == FilterKernel::Disc ? "disc"
-                                                                    : "pcss",
-                            measured.n, double(measured.kernelTexels), measured.samplesTaken, measured.earlyOut ? 1 : 0,
-                            double(measured.lit), double(measured.searchRadiusTexels), measured.searchSamples,
-                            measured.blockers, double(measured.averageBlockerDepth), double(measured.receiverDepth),
-                            double(measured.kernelTexels), double(measured.penumbraWorld),
-                            measured.decision.empty() ? "-" : measured.decision.c_str());
-            std::fflush(stdout);
-        }
+        if (parseView(view).kind == ViewSelection::Kind::Kernel) std::printf("%s\n", describeProbe(app.lastProbe()).c_str());
     }
     if (!writePng(out, image, error)) return fail(error, kExitFailure);
     logInfo("wrote " + out);

@@ -387,6 +387,17 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
             }
         }
     }
+    if (state.view.kind == ViewSelection::Kind::Kernel && !layout.comparing) {
+        // The kernel's numbers in the view's corner, UI shown or not (a slide keeps them).
+        std::string text = describeProbe(app.lastProbe());
+        for (size_t at = text.find(", "); at != std::string::npos; at = text.find(", ", at)) text.replace(at, 2, "\n");
+        if (app.probePixel()) text = "pixel " + std::to_string(app.probePixel()->x) + ", " + std::to_string(app.probePixel()->y) + ": " + text;
+        // Away from the probed pixel: at the top when it is in the lower half of the view.
+        const bool top = app.probePixel() && app.probePixel()->y * 2 > layout.renderSize.y;
+        const float height = ImGui::CalcTextSize(text.c_str()).y + 0.8f * ImGui::GetFontSize();
+        labelBox(draw, ImVec2(float(layout.view.origin.x) + 8.0f, top ? float(layout.view.origin.y) + 8.0f + height : bottom),
+                 text, false);
+    }
     if (state.showUi && state.view.kind == ViewSelection::Kind::ErrorHeatmap && !state.measurement.empty()) {
         // Say so when the heatmap no longer shows what is on screen, and offer to measure again.
         const std::string text = state.staleReason.empty()
