@@ -183,11 +183,12 @@ void ShadowMapViews::draw(Renderer& renderer, ShadowMapView view, const std::vec
     if (view == ShadowMapView::Kernel && probe && probe->valid && count > 0) {
         std::vector<OverlayVertex> lines, points;
         kernelOverlay(maps[0], *probe, lines, points);
-        glLineWidth(1.0f);
-        drawOverlay(lines, GL_LINES);
+        // The taps first, the outlines over them (a small box stays visible among its taps).
         glPointSize(4.0f);
         drawOverlay(points, GL_POINTS);
         glPointSize(1.0f);
+        glLineWidth(1.0f);
+        drawOverlay(lines, GL_LINES);
     }
     glBindVertexArray(0);
     for (GLuint unit = 0; unit < 3; ++unit) glBindSampler(unit, 0);
