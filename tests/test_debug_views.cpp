@@ -198,6 +198,8 @@ void expectProbeMatchesTheShader(App& app, const std::string& technique, FilterK
         ++checked;
         if (std::abs(probe.lit - term) <= tolerance) ++agree;
     }
+    std::printf("%s: the probe equals the shader's shadow term (within %.4f) at %zu of %zu penumbra pixels\n",
+                technique.c_str(), double(tolerance), agree, checked);
     EXPECT_GE(double(agree), 0.9 * double(checked)) << technique << ": " << agree << " of " << checked
                                                     << " probes equal the shader's shadow term";
 }

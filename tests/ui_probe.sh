@@ -29,7 +29,7 @@ done
 [ -n "$window" ] || { echo "FAIL: no window"; cat app.log; kill $app; exit 1; }
 sleep 3
 xdotool windowfocus --sync "$window" 2>/dev/null || true
-shots() { ls screenshots/*.png 2>/dev/null | wc -l; }
+shots() { { ls screenshots/*.png 2>/dev/null || true; } | wc -l; }
 for point in "480 470" "250 430"; do
   read -r x y <<<"$point"
   xdotool mousemove --window "$window" "$x" "$y"
