@@ -333,7 +333,7 @@ std::string describeProbe(const KernelProbe& probe) {
         break;
     default:
         std::snprintf(text, sizeof(text),
-                      "PCSS %s: search radius %.3g texels (cone at depth %.4g), %d of %d samples blockers, average blocker depth "
+                      "PCSS %s: search radius %.3g texels (cone at depth %.4g), blockers in %d of %d search samples, average blocker depth "
                       "%.4g (receiver %.4g), penumbra %.3g texels wide (%.4g world), filter %d x %d, %d samples taken%s, lit %.3f",
                       probe.decision.c_str(), double(probe.searchRadiusTexels), double(probe.searchNear), probe.blockers,
                       probe.searchSamples, double(probe.averageBlockerDepth), double(probe.receiverDepth),
