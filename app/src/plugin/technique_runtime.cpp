@@ -76,10 +76,17 @@ void PluginHost::receiveShadowMaps(void* context, const ShadowMapInfo* maps, uin
     host.shadowMapLabels_.clear();
     host.focusBodyEdges_.clear();
     host.shadowMapLabels_.reserve(count);
+    // The plugin's array strides by its own struct size (an older plugin's is smaller than ours).
+    const auto* bytes = reinterpret_cast<const unsigned char*>(maps);
+    const size_t stride = count ? std::max<size_t>(maps[0].structSize, sizeof(uint32_t)) : 0;
+    if (stride > 4096) {
+        host.log(LogLevel::Warning, "reported shadow maps with a structSize over 4096 bytes; ignored");
+        return;
+    }
     for (uint32_t i = 0; i < count; ++i) {
         // Only the fields the plugin's struct has (structSize), the rest keep their defaults.
         ShadowMapInfo map;
-        std::memcpy(&map, &maps[i], std::min<size_t>(sizeof(ShadowMapInfo), std::max<size_t>(maps[i].structSize, sizeof(uint32_t))));
+        std::memcpy(&map, bytes + size_t(i) * stride, std::min<size_t>(sizeof(ShadowMapInfo), stride));
         map.structSize = sizeof(ShadowMapInfo);
         if (map.size.x <= 0 || map.size.y <= 0) continue;   // not a map the footprint can be measured on
         host.shadowMapLabels_.push_back(map.label ? map.label : "");
