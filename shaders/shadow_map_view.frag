@@ -3,6 +3,8 @@
 //           of log2 m: blue m <= 1/16, grey-green 1, red >= 16 (footprintHeatmap's colours)
 //   mode 1: the map's texel grid projected on the receivers, over the lit image
 //   mode 2: which map serves each pixel (cascade colours), over the lit image
+//   mode 3: the lit image dimmed, under the focus body B's edges and the maps' volumes
+//   mode 4: the lit image a little dimmed, under the filter kernel's footprint
 #include "shadow_map_view.glsl"
 in vec2 vUv;
 out vec4 outColor;
@@ -46,7 +48,11 @@ void main() {
     vec4 position = texture(uPosition, vUv);
     vec3 lit = linearToSrgb(texture(uLit, vUv).rgb);
     if (position.w < 0.5) {
-        outColor = vec4(uMode == 0 ? vec3(24.0 / 255.0) : lit, 1.0);
+        outColor = vec4(uMode == 0 ? vec3(24.0 / 255.0) : uMode == 3 ? lit * 0.5 : lit, 1.0);
+        return;
+    }
+    if (uMode == 3 || uMode == 4) {
+        outColor = vec4(lit * (uMode == 3 ? 0.5 : 0.8), 1.0);
         return;
     }
     int map = servingMap(position.xyz);

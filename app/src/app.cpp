@@ -262,6 +262,8 @@ ViewSelection viewFromName(const std::string& name) {
     if (name == "footprint") return {ViewSelection::Kind::Footprint, ""};
     if (name == "texel-grid") return {ViewSelection::Kind::TexelGrid, ""};
     if (name == "coverage") return {ViewSelection::Kind::MapCoverage, ""};
+    if (name == "focus-body") return {ViewSelection::Kind::FocusBody, ""};
+    if (name == "kernel") return {ViewSelection::Kind::Kernel, ""};
     return {ViewSelection::Kind::DebugImage, name};
 }
 
@@ -273,12 +275,90 @@ std::string viewName(const ViewSelection& view) {
     case ViewSelection::Kind::Footprint: return "footprint";
     case ViewSelection::Kind::TexelGrid: return "texel-grid";
     case ViewSelection::Kind::MapCoverage: return "coverage";
+    case ViewSelection::Kind::FocusBody: return "focus-body";
+    case ViewSelection::Kind::Kernel: return "kernel";
     case ViewSelection::Kind::DebugImage: return view.debugImage;
     }
     return "lit";
 }
 
 bool isHostViewName(const std::string& name) { return viewFromName(name).kind != ViewSelection::Kind::DebugImage; }
+
+KernelProbe App::probeKernel(const std::string& technique, std::string& error) {
+    KernelProbe none;
+    LoadedTechnique* loaded = techniques_->get(technique, error);
+    if (!loaded) {
+        none.problem = error;
+        return none;
+    }
+    const FilterFootprint& footprint = loaded->host().filterFootprint();
+    const std::vector<ShadowMapInfo>& maps = loaded->host().shadowMaps();
+    if (footprint.kernel == FilterKernel::None || maps.empty()) {
+        none.problem = technique + " reports no filter kernel (pcf, adaptive-pcf and pcss do, with a 2D map)";
+        return none;
+    }
+    if (!probePixel_) {
+        none.kernel = footprint.kernel;
+        none.problem = "no pixel probed: move the mouse over the view, or --probe X,Y";
+        return none;
+    }
+    const glm::ivec2 size = renderer_->size();
+    const glm::ivec2 pixel(probePixel_->x, size.y - 1 - probePixel_->y);   // GL rows from the bottom
+    if (pixel.x < 0 || pixel.y < 0 || pixel.x >= size.x || pixel.y >= size.y) {
+        none.problem = "the probed pixel is outside the view";
+        return none;
+    }
+    if (!renderAccuracyTargets(error)) {
+        none.problem = error;
+        return none;
+    }
+    // The 2x2 quad's positions and normals (a coherent early out is decided per quad).
+    ProbeQuad quad;
+    quad.origin = {pixel.x & ~1, pixel.y & ~1};
+    for (int q = 0; q < 4; ++q) {
+        const glm::ivec2 p = quad.origin + glm::ivec2(q % 2, q / 2);
+        quad.position[q] = glm::vec4(0.0f);
+        quad.normal[q] = glm::vec3(0.0f, 0.0f, 1.0f);
+        if (p.x >= size.x || p.y >= size.y) continue;
+        glm::vec4 normal(0.0f);
+        glGetTextureSubImage(renderer_->target(MainTarget::Position), 0, p.x, p.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT,
+                             sizeof(glm::vec4), &quad.position[q]);
+        glGetTextureSubImage(renderer_->target(MainTarget::Normal), 0, p.x, p.y, 0, 1, 1, 1, GL_RGBA, GL_FLOAT,
+                             sizeof(glm::vec4), &normal);
+        quad.normal[q] = glm::vec3(normal);
+    }
+    const int resolution = int(footprint.lightDepth.w);
+    GLint width = 0, height = 0;
+    if (footprint.depthTexture && glIsTexture(footprint.depthTexture)) {
+        glGetTextureLevelParameteriv(footprint.depthTexture, 0, GL_TEXTURE_WIDTH, &width);
+        glGetTextureLevelParameteriv(footprint.depthTexture, 0, GL_TEXTURE_HEIGHT, &height);
+    }
+    if (width != resolution || height != resolution) {
+        none.problem = "the reported depth texture is not the map's size";
+        return none;
+    }
+    probeDepths_.resize(size_t(width) * size_t(height));
+    glGetTextureImage(footprint.depthTexture, 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(probeDepths_.size() * sizeof(float)),
+                      probeDepths_.data());
+    const DepthFetch fetch = [&](int x, int y) { return probeDepths_[size_t(y) * size_t(width) + size_t(x)]; };
+    return shadowlab::probeKernel(footprint, maps.front(), quad, pixel, fetch);
+}
+
+std::string App::debugViewsOf(const std::string& technique) {
+    std::string error, views;
+    LoadedTechnique* loaded = techniques_->get(technique, error);
+    if (!loaded) return views;
+    const PluginHost& host = loaded->host();
+    if (!host.shadowMaps().empty()) views = "footprint, texel-grid, coverage";
+    for (const auto& edges : host.focusBodyEdges())
+        if (!edges.empty()) {
+            appendListItem(views, "focus-body");
+            break;
+        }
+    if (host.filterFootprint().kernel != FilterKernel::None) appendListItem(views, "kernel");
+    for (const DebugImage& image : host.debugImages()) appendListItem(views, "'" + image.name + "'");
+    return views;
+}
 
 bool App::presentView(const std::string& technique, const ViewSelection& view, GLuint framebuffer, glm::ivec2 viewport,
                       std::string& error) {
@@ -299,14 +379,24 @@ bool App::presentView(const std::string& technique, const ViewSelection& view, G
         return true;
     case ViewSelection::Kind::Footprint:
     case ViewSelection::Kind::TexelGrid:
-    case ViewSelection::Kind::MapCoverage: {
+    case ViewSelection::Kind::MapCoverage:
+    case ViewSelection::Kind::FocusBody:
+    case ViewSelection::Kind::Kernel: {
         if (!renderAccuracyTargets(error)) return false;
         LoadedTechnique* loaded = techniques_->get(technique, error);
         if (!loaded) return false;
         const ShadowMapView kind = view.kind == ViewSelection::Kind::Footprint   ? ShadowMapView::Footprint
                                    : view.kind == ViewSelection::Kind::TexelGrid ? ShadowMapView::TexelGrid
+                                   : view.kind == ViewSelection::Kind::FocusBody ? ShadowMapView::FocusBody
+                                   : view.kind == ViewSelection::Kind::Kernel    ? ShadowMapView::Kernel
                                                                                  : ShadowMapView::Coverage;
-        shadowMapViews_.draw(*renderer_, kind, loaded->host().shadowMaps(), fbo, size);
+        if (kind == ShadowMapView::Kernel) {
+            std::string problem;
+            lastProbe_ = probeKernel(technique, problem);
+            if (!lastProbe_.valid && lastProbe_.problem.empty()) lastProbe_.problem = problem;
+        }
+        shadowMapViews_.draw(*renderer_, kind, loaded->host().shadowMaps(), fbo, size, &loaded->host().focusBodyEdges(),
+                             &lastProbe_);
         return true;
     }
     case ViewSelection::Kind::DebugImage: {

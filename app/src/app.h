@@ -44,16 +44,20 @@ struct AppOptions {
 struct ViewSelection {
     // Footprint, TexelGrid and MapCoverage: the host's views of the maps the technique reported
     // (render/shadow_map_views.h).
-    enum class Kind { Lit, Visibility, DebugImage, ErrorHeatmap, Footprint, TexelGrid, MapCoverage } kind = Kind::Lit;
+    // FocusBody: B's edges (seed 002 eq. 4.2); Kernel: the filter kernel's footprint around the
+    // probed pixel (App::setProbePixel, render/kernel_probe.h).
+    enum class Kind { Lit, Visibility, DebugImage, ErrorHeatmap, Footprint, TexelGrid, MapCoverage, FocusBody, Kernel } kind = Kind::Lit;
     // Whether showing it needs the accuracy targets (shadow term, position, normal) of the frame.
     bool needsAccuracyTargets() const {
-        return kind == Kind::Visibility || kind == Kind::Footprint || kind == Kind::TexelGrid || kind == Kind::MapCoverage;
+        return kind == Kind::Visibility || kind == Kind::Footprint || kind == Kind::TexelGrid || kind == Kind::MapCoverage ||
+               kind == Kind::FocusBody || kind == Kind::Kernel;
     }
     std::string debugImage;
 };
 
 // View names as the command line (`render --view`), tours and sessions write them: lit,
-// visibility, footprint, texel-grid, coverage, error (the heatmap); any other name is a debug image.
+// visibility, footprint, texel-grid, coverage, focus-body, kernel, error (the heatmap); any other
+// name is a debug image.
 ViewSelection viewFromName(const std::string& name);
 std::string viewName(const ViewSelection& view);
 // Whether `name` is one of the host's own views (not a technique's debug image).
@@ -121,6 +125,17 @@ public:
     bool presentView(const std::string& technique, const ViewSelection& view, GLuint framebuffer, glm::ivec2 viewport,
                      std::string& error);
     Image readDisplay() { return renderer_->readDisplay(); }
+    // The pixel the kernel view probes, in main-target pixels from the top left (as images and
+    // the mouse count); none: nothing probed. The probe is measured when the view is drawn.
+    void setProbePixel(std::optional<glm::ivec2> pixel) { probePixel_ = pixel; }
+    std::optional<glm::ivec2> probePixel() const { return probePixel_; }
+    // The footprint of the last kernel view drawn (valid = false with its problem otherwise).
+    const KernelProbe& lastProbe() const { return lastProbe_; }
+    // Measures the kernel of `technique`'s last frame at the probed pixel (accuracy targets current).
+    KernelProbe probeKernel(const std::string& technique, std::string& error);
+    // The host views that apply to `technique` after its last frame, by what it reported: the
+    // map views, focus-body, kernel, and its debug images ("footprint, texel-grid, ...").
+    std::string debugViewsOf(const std::string& technique);
     // Warm-up frames, then `frames` timed frames; waits for the GPU only at the end.
     bool measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error);
     // The classroom window (ui/session.cpp): in the GLFW window, or with a headless backend in
@@ -163,6 +178,9 @@ private:
     std::unique_ptr<GpuTimer> timer_;
     std::unique_ptr<Renderer> renderer_;
     ShadowMapViews shadowMapViews_;
+    std::optional<glm::ivec2> probePixel_;
+    KernelProbe lastProbe_;
+    std::vector<float> probeDepths_;       // the probed map's depths (read back when the view is drawn)
     std::unique_ptr<TechniqueManager> techniques_;
     std::unique_ptr<Scene> scene_;
     ParamStore params_;

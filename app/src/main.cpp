@@ -176,9 +176,23 @@ struct WindowOptions {
     int tourStep = 1;            // from 1
     std::string session;         // a session file applied at the start
     std::string sessionDir = "sessions";
+    std::string probe;           // X,Y: the kernel view's pixel, in the view's pixels from its top left
     // Flags given that only the window reads (for the message when there is no window).
     std::vector<std::string> given;
 };
+
+// "X,Y": two whole numbers, pixels from the top left.
+bool parseProbe(const std::string& text, glm::ivec2& pixel) {
+    const auto comma = text.find(',');
+    if (comma == std::string::npos || comma == 0 || comma + 1 >= text.size()) return false;
+    const std::string x = text.substr(0, comma), y = text.substr(comma + 1);
+    auto digits = [](const std::string& t) {
+        return !t.empty() && t.size() <= 6 && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    if (!digits(x) || !digits(y)) return false;
+    pixel = {std::stoi(x), std::stoi(y)};
+    return true;
+}
 
 // Checks the window options against each other and the techniques; fills `out`.
 int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& technique, InteractiveOptions& out) {
@@ -201,6 +215,14 @@ int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& te
     out.frames = w.smokeFrames > 0 ? w.smokeFrames : w.frames;
     out.session = w.session;
     out.sessionFolder = w.sessionDir;
+    if (!w.probe.empty()) {
+        glm::ivec2 pixel;
+        if (!parseProbe(w.probe, pixel))
+            return fail("--probe '" + w.probe + "': expected X,Y, the pixel of the view (from its top left) whose filter "
+                        "kernel the kernel view shows",
+                        kExitBadInput);
+        out.probe = pixel;
+    }
     return 0;
 }
 
@@ -320,9 +342,27 @@ ViewSelection parseView(const std::string& text) { return viewFromName(text); }
 
 int commandRender(const CommonOptions& common, const std::string& out, const std::string& view, int frames,
                   const std::string& reference, int samples, const WindowOptions& compare, const std::string& path,
-                  int pathFrames) {
+                  int pathFrames, const std::string& probe) {
+    glm::ivec2 probePixel(0);
+    if (!probe.empty()) {
+        // Checked before the app starts: a bad value costs no context.
+        if (!parseProbe(probe, probePixel))
+            return fail("--probe '" + probe + "': expected X,Y, the pixel from the top left (e.g. 640,360)", kExitBadInput);
+        if (view != "kernel")
+            return fail("--probe: the kernel view draws the probe (--view kernel), not --view " + view, kExitBadInput);
+        if (!compare.compare.empty() || !path.empty())
+            return fail("--probe: one technique, one frame (without --compare or --path)", kExitBadInput);
+    }
     App app;
     if (int code = startApp(app, common, false)) return code;
+    if (!probe.empty()) {
+        const glm::ivec2 size = app.renderer().size();
+        if (probePixel.x >= size.x || probePixel.y >= size.y)
+            return fail("--probe " + probe + ": outside the " + std::to_string(size.x) + "x" + std::to_string(size.y) +
+                            " image (x < " + std::to_string(size.x) + ", y < " + std::to_string(size.y) + ")",
+                        kExitBadInput);
+        app.setProbePixel(probePixel);
+    }
     std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;
     if (!path.empty()) {
         // Every frame of a camera and light path, numbered, into the folder --out (docs/stability.md).
@@ -374,6 +414,37 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         if (code == 0) logInfo("wrote " + out);
         return code;
     }
+    if (!probe.empty()) {
+        // The kernel view as a slide: the window's frame loop offscreen without the panel, so the
+        // footprint's numbers are drawn beside it, and printed.
+        WindowOptions w;
+        w.frames = std::max(frames, 1);
+        w.screenshot = out;
+        w.hideUi = true;
+        InteractiveOptions options;
+        if (int code = windowOptionsProblem(app, w, technique, options)) return code;
+        options.view = parseView(view);
+        options.probe = probePixel;
+        const int code = app.runInteractive(options);
+        if (code) return code;
+        const KernelProbe& measured = app.lastProbe();
+        std::printf("probe %d,%d: %s\n", probePixel.x, probePixel.y, describeProbe(measured).c_str());
+        if (measured.valid)
+            std::printf("probe %d,%d: kernel=%s n=%d kernel_texels=%.4f samples=%d early_out=%d lit=%.4f search_texels=%.4f "
+                        "search_samples=%d blockers=%d blocker_depth=%.5f receiver_depth=%.5f penumbra_texels=%.4f "
+                        "penumbra_world=%.5f decision=%s\n",
+                        probePixel.x, probePixel.y,
+                        measured.kernel == FilterKernel::Box    ? "box"
+                        : measured.kernel == FilterKernel::Disc ? "disc"
+                                                                : "pcss",
+                        measured.n, double(measured.kernelTexels), measured.samplesTaken, measured.earlyOut ? 1 : 0,
+                        double(measured.lit), double(measured.searchRadiusTexels), measured.searchSamples, measured.blockers,
+                        double(measured.averageBlockerDepth), double(measured.receiverDepth), double(measured.kernelTexels),
+                        double(measured.penumbraWorld), measured.decision.empty() ? "-" : measured.decision.c_str());
+        std::fflush(stdout);
+        logInfo("wrote " + out);
+        return 0;
+    }
     for (int i = 0; i < std::max(frames, 1); ++i)
         if (!app.renderFrame(technique, error)) return fail(error, kExitFailure);
     Image image;
@@ -394,6 +465,7 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
     } else {
         if (!app.presentView(technique, parseView(view), ~0u, {}, error)) return fail(error, kExitBadInput);
         image = app.readDisplay();
+        if (parseView(view).kind == ViewSelection::Kind::Kernel) std::printf("%s\n", describeProbe(app.lastProbe()).c_str());
     }
     if (!writePng(out, image, error)) return fail(error, kExitFailure);
     logInfo("wrote " + out);
@@ -682,6 +754,9 @@ int run(int argc, char** argv) {
     windowOption(cli.add_option("--ui-scale", window.uiScale, "window: size of the panel's text and widgets (1.5-2 for a projector)"))
         ->check(CLI::Range(0.5, 4.0));
     windowOption(cli.add_flag("--hide-ui", window.hideUi, "window: start with the panel hidden (F1 or H toggles it)"));
+    windowOption(cli.add_option("--probe", window.probe,
+                                "window: X,Y, the pixel of the view (from its top left) the kernel view probes until the "
+                                "mouse moves over the view (offscreen slides keep it)"));
     windowOption(cli.add_flag("--measure", window.measure,
                               "window: measure accuracy after a few frames, each side of a comparison for its own "
                               "technique, and show the heatmap (with --frames: a slide of it)"));
@@ -705,7 +780,13 @@ int run(int argc, char** argv) {
     render->add_option("--out,-o", renderOut, "PNG file to write")->required();
     render->add_option("--view", renderView,
                        "lit | visibility | error (heatmap vs the reference) | reference | footprint (texel footprint m, log2 heat map) | "
-                       "texel-grid | coverage (which map serves a pixel, and the light frusta) | a debug image (e.g. 'shadow map')");
+                       "texel-grid | coverage (which map serves a pixel, and the light frusta) | focus-body (the focus body B, "
+                       "seed 002 eq. 4.2, and the map's volume) | kernel (the filter kernel around --probe) | a debug image "
+                       "(e.g. 'shadow map')");
+    std::string renderProbe;
+    render->add_option("--probe", renderProbe,
+                       "with --view kernel: X,Y, the pixel (from the top left) whose filter kernel is drawn and measured; "
+                       "its numbers are printed");
     render->add_option("--frames", renderFrames, "frames to render before saving (default 3)")->check(CLI::Range(1, 10000));
     std::string reference = "auto";
     int referenceSamples = BenchSpec{}.referenceSamples;
@@ -817,7 +898,7 @@ int run(int argc, char** argv) {
     }
     if (*render)
         return commandRender(common, renderOut, renderView, renderFrames, reference, referenceSamples, renderCompare,
-                             renderPathText, renderPathFrames);
+                             renderPathText, renderPathFrames, renderProbe);
     auto split = [](const std::string& text) {
         std::vector<std::string> items;
         std::stringstream in(text);

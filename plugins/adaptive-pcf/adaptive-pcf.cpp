@@ -94,7 +94,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "so the penumbra becomes fine noise instead of bands. The outermost samples come first: when they "
                    "all agree the pixel is fully lit or fully shadowed and the rest is skipped, so only penumbra pixels "
                    "pay for the whole kernel (count early outs to see the rate). The radius sets the penumbra width, the same "
-                   "everywhere: filtering, not a physically soft shadow.",
+                   "everywhere: filtering, not a physically soft shadow. Debug views: kernel (the disc around the pixel under the mouse: the outer ring, the samples skipped by the early out), footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'shadow map'.",
      .shadowGlsl = "adaptive-pcf.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
@@ -186,6 +186,17 @@ class AdaptivePcf final : public kit::TechniqueBase {
                                          .fit = kit::readFit(params, kFit, kSnap)};
         if (frame.light.type == LightType::Point) return cube_.render(frame, config);
         map_.render(frame, config);
+        // The disc adaptive-pcf.glsl filters over (seed 000 eq. 3.11-3.12), for the host's kernel view.
+        FilterFootprint footprint = map_.filterFootprint();
+        footprint.kernel = FilterKernel::Disc;
+        footprint.taps = offsets_.n();
+        footprint.spacing = params.asFloat(kRadius);
+        footprint.bilinear = params.asBool(kHardwareFilter) ? 1 : 0;
+        footprint.sets = params.asInt(kSets);
+        footprint.discSeed = 1;   // offsets_.ensure's default
+        footprint.coneBias = params.asBool(kConeBias) ? 1.0f : 0.0f;
+        footprint.coherent = params.asBool(kCoherent) ? 1 : 0;
+        kit::reportFilterFootprint(host(), footprint);
         // classify = depth-range reads mips of the 2D map (the cube path takes the ring test).
         if (params.asInt(kClassify) == 1)
             depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");

@@ -55,7 +55,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "the sun, directions within its angular radius) and averages the N hard visibilities in every pixel. "
                    "Physically right up to sampling: penumbrae widen with the distance between caster and receiver and "
                    "overlapping casters combine correctly. Slow by design (N shadow passes per frame): it is the target "
-                   "that single-map techniques such as PCSS approximate. Few samples show banding.",
+                   "that single-map techniques such as PCSS approximate. Few samples show banding. Debug views: 'average visibility' (no single map, so no map views).",
      .shadowGlsl = "area-reference.glsl",
      .flags = kTechniqueNeedsCameraPrepass,
      .translucencyModel = TranslucencyModel::Ignore},   // its maps hold opaque casters only

@@ -113,7 +113,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "view needs them. The practical split scheme blends logarithmic and uniform splits (lambda). "
                     "Stabilised cascades (snap) hold shadow edges still while the camera moves; without it they "
                     "shimmer. fit = sdsm measures the depth range the camera really sees on the GPU (sample "
-                    "distribution shadow maps). Turn on the cascade colours and move the camera.",
+                    "distribution shadow maps). Turn on the cascade colours and move the camera. Debug views: coverage (each pixel in its cascade's colour, the cascades' boxes), footprint and texel-grid (per cascade).",
      .shadowGlsl = "csm.glsl",
      .flags = kTechniqueNeedsCameraPrepass,   // fit = sdsm reduces the pre-pass's depth
      .translucencyModel = TranslucencyModel::Ignore,   // its maps hold opaque casters only

@@ -78,7 +78,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "transmission, coloured and right on every layer of glass, as the kernel grows, but it is "
                     "noisy (worst in bright, unsaturated light), the kernel blurs edges and, without hardware "
                     "comparison on a colour map, costs n^2 fetches. Try kernel 1, and noise = per-texel under "
-                    "overlapping glass.",
+                    "overlapping glass. Debug views: footprint, texel-grid and coverage (the map and its volume), 'cssm2 opaque depth' and 'cssm2 colour map'.",
      .shadowGlsl = "cssm2.glsl",
      .translucencyModel = TranslucencyModel::Physical},
     kParams);

@@ -43,7 +43,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "exp(-c d_receiver) times the filtered map, so the map can be blurred and mipmapped like a texture "
                    "with one channel. Cheaper than VSM and free of its overlap light bleeding, but shadows leak light "
                    "where receiver and occluder nearly touch (contact shadows fade in; raise c) and the clamp makes "
-                   "penumbrae one-sided.",
+                   "penumbrae one-sided. Debug views: footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'moments'.",
      .shadowGlsl = "esm.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);

@@ -57,7 +57,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "mean square of each, then takes the tighter of the two Chebyshev bounds. The exponential stretches "
                    "the depth differences behind an occluder, so the light that bleeds through overlapping occluders "
                    "in VSM mostly disappears while the map still blurs and mipmaps like a texture. Costs four 32-bit "
-                   "channels per texel; exponents are capped by float range.",
+                   "channels per texel; exponents are capped by float range. Debug views: footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'moments'.",
      .shadowGlsl = "evsm.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);

@@ -91,7 +91,9 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "the cost of distant ones (seed 002 ch. 8-9). The warp distance n is n_opt times n_factor "
                     "(try 0.2 and 5); looking along the light the warp fades to a plain focused map (duelling "
                     "frusta). Back faces are stored by default (cull = front), the seed's best bias. snap only "
-                    "affects that uniform fallback (spot and point lights, near-parallel view and light).",
+                    "affects that uniform fallback (spot and point lights, near-parallel view and light). Debug "
+                    "views: footprint (the warp's texels per pixel, near against far), texel-grid and coverage "
+                    "(the warped map and its volume), focus-body (B, seed 002 eq. 4.2), and the depth image.",
      .shadowGlsl = "lispsm.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
@@ -195,6 +197,7 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
             secondLayer_.drawDepth(lightSpace, config, focused.cullPlanes);
         }
         glDisable(GL_DEPTH_CLAMP);
+        map_.setFocusBody(focused.body);
         map_.reportToHost();
     }
 

@@ -59,7 +59,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "filtered moments the depth distribution that is most plausible for the shaded point (Hamburger "
                    "4MSM): its share in front of the point is the shadow. Four moments describe overlapping occluders "
                    "far better than VSM's two, so light bleeding mostly disappears, and an optimised quantisation "
-                   "lets all four fit in 64 bits per texel. Compare with vsm on the 'overlap' scene.",
+                   "lets all four fit in 64 bits per texel. Compare with vsm on the 'overlap' scene. Debug views: footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'moments'.",
      .shadowGlsl = "msm.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);

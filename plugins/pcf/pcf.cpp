@@ -79,7 +79,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "tests (cost grows with n^2), the offset scale their spacing; bilinear taps remove the "
                     "banding. Sampling by gather or folded reads the same texels four at a time (Castano 2013) for the "
                     "same result (with the cone bias, a little lighter at contacts) at about a quarter of the lookups. The ramp has the same width everywhere: this is anti-aliasing, not a physically soft "
-                    "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause.",
+                    "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause. Debug views: kernel (the n x n box around the pixel under the mouse, its taps lit or shadowed), footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'shadow map'.",
      .shadowGlsl = "pcf.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
@@ -97,6 +97,14 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
                                          .fit = kit::readFit(params, kFit, kSnap)};
         if (frame.light.type == LightType::Point) return cube_.render(frame, config);
         map_.render(frame, config);
+        // The n x n box pcf.glsl filters over, for the host's kernel view (--probe).
+        FilterFootprint footprint = map_.filterFootprint();
+        footprint.kernel = FilterKernel::Box;
+        footprint.taps = params.asInt(kKernel);
+        footprint.spacing = params.asFloat(kOffsetScale);
+        footprint.bilinear = params.asBool(kHardwareFilter) ? 1 : 0;
+        footprint.coneBias = params.asBool(kConeBias) ? 1.0f : 0.0f;
+        kit::reportFilterFootprint(host(), footprint);
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {

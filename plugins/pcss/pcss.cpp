@@ -97,7 +97,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "light, averages their depth, estimates the penumbra width from the light's size by similar triangles, "
                    "and then filters with a kernel of that width (PCF). Shadows are hard where a caster touches the "
                    "receiver and soften with distance (contact hardening). The light size comes from the scene "
-                   "(--light-size). Plausible rather than correct: overlapping blockers at different depths are averaged.",
+                   "(--light-size). Plausible rather than correct: overlapping blockers at different depths are averaged. Debug views: kernel (the blocker search region with its blockers, the average blocker depth and the penumbra disc around the pixel under the mouse), footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'shadow map'.",
      .shadowGlsl = "pcss.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
@@ -133,6 +133,19 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
             return;
         }
         map_.render(frame, config);
+        // The blocker search and filter discs pcss.glsl uses (eq. 3.17-3.20), for the host's kernel view.
+        FilterFootprint footprint = map_.filterFootprint();
+        footprint.kernel = FilterKernel::Pcss;
+        footprint.taps = filterOffsets_.n();
+        footprint.bilinear = params.asBool(kBilinear) ? 1 : 0;
+        footprint.sets = sets;
+        footprint.discSeed = 1;     // filterOffsets_.ensure's default
+        footprint.searchTaps = searchOffsets_.n();
+        footprint.searchSeed = 2;   // as searchOffsets_.ensure above
+        footprint.searchBound = uint32_t(params.asInt(kSearchBound));
+        footprint.lightSize = lightSizeInLightSpace(frame.light);
+        footprint.coneBias = params.asBool(kConeBias) ? 1.0f : 0.0f;
+        kit::reportFilterFootprint(host(), footprint);
         if (params.asInt(kSearchBound) >= 1)
             depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
         else

@@ -53,7 +53,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "matrix, seed 000 eq. 3.3) and draws the flattened geometry as the shadow. Exact and cheap for a "
                     "ground plane, but only planes receive shadows, nothing shadows itself, and the special cases "
                     "need care: stencil keeps shadows on the receiver, clipping removes anti-shadows, a depth offset "
-                    "avoids z-fighting.",
+                    "avoids z-fighting. Debug views: 'planar mask' (no shadow map, so no map views).",
      .shadowGlsl = "planar.glsl",
      .flags = kTechniqueNeedsCameraPrepass},
     kParams);

@@ -50,7 +50,10 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "in front of the camera, eq. 7.1-7.2), casters behind the viewer need a virtual move-back "
                     "that weakens the warp and jumps as the view turns, and a light from in front of the viewer "
                     "cannot be held in one map (it falls back to a plain focused map). Compare with lispsm, "
-                    "which keeps light rays parallel and tunes the warp with n_opt.",
+                    "which keeps light rays parallel and tunes the warp with n_opt; turn move_back off with the light "
+                    "behind the camera to see casters lost. Debug views: footprint, texel-grid and coverage (the "
+                    "post-perspective map and its volume), focus-body (B, cut at the near plane without the "
+                    "move-back), and the depth image.",
      .shadowGlsl = "psm.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
@@ -97,6 +100,7 @@ class PerspectiveShadowMaps final : public kit::TechniqueBase {
         glEnable(GL_DEPTH_CLAMP);
         map_.drawDepth(lightSpace, config, focused.cullPlanes);
         glDisable(GL_DEPTH_CLAMP);
+        map_.setFocusBody(body);
         map_.reportToHost();
     }
 

@@ -48,7 +48,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "space with the stored one: farther means shadowed. Works for any geometry and receiver, costs "
                     "one extra pass, and shows the classic artefacts: acne (self-shadowing from depth quantisation; "
                     "cured by bias), peter panning (too much bias) and blocky edges (limited resolution). Try a low "
-                    "light and zero bias.",
+                    "light and zero bias. Debug views: footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and the 'shadow map' depth image.",
      .shadowGlsl = "shadowmap.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);

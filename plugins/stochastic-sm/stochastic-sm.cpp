@@ -65,7 +65,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "translucent surface, right on translucent surfaces too, but without colour (a red glass "
                     "casts a grey shadow: judged by the coverage model). The price is noise, which needs wide "
                     "kernels that blur every edge; it changes every frame. Try kernel 1 to see the coin flips, "
-                    "and noise = per-texel under overlapping glass to see what shared random numbers do.",
+                    "and noise = per-texel under overlapping glass to see what shared random numbers do. Debug views: footprint, texel-grid and coverage (the map and its volume), and 'stochastic shadow map'.",
      .shadowGlsl = "stochastic-sm.glsl",
      .translucencyModel = TranslucencyModel::Coverage},
     kParams);

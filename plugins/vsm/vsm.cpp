@@ -54,7 +54,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "mipmapped like any texture; a shaded point then takes the Chebyshev upper bound of the fraction of "
                    "depths behind it as its visibility (seed 000 eq. 3.13-3.15). Smooth, antialiased edges for one "
                    "lookup and a cheap separable blur, but where occluders overlap at different depths the bound is "
-                   "loose and light bleeds through (try the 'overlap' scene, then raise the light-bleeding reduction).",
+                   "loose and light bleeds through (try the 'overlap' scene, then raise the light-bleeding reduction). Debug views: footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'moments'.",
      .shadowGlsl = "vsm.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);

@@ -295,11 +295,54 @@ struct ShadowMapInfo {
     float viewDistanceEnd = 1e30f;           // a single map serves them all
     uint32_t layer = 0;                      // array layer or cube face, for labels
     const char* label = nullptr;             // "cascade 2", "+x face"; may be null
+    // Added in ABI 3 after label, read only when structSize covers them (older plugins: none).
+    // The focus body B the map was fitted around (seed 002 eq. 4.2, kit/focus.h), as world-space
+    // edges: 2 * focusBodyEdgeCount points, edge i from [2i] to [2i + 1]. Valid during the report
+    // call only (the host copies them). The host's `focus-body` view draws them.
+    const glm::vec3* focusBodyEdges = nullptr;
+    uint32_t focusBodyEdgeCount = 0;
 };
 struct ShadowMapReport {
     uint32_t structSize;
     void* context;
     void (*report)(void* context, const ShadowMapInfo* maps, uint32_t count);
+};
+
+// Extension "shadowlab.filter-footprint/1": what shadowTerm() filters over around a point of the
+// first reported map, told once a frame after renderShadows (each call replaces the last; cleared
+// before every renderShadows), so the host can show the kernel's footprint around a pixel (the
+// `kernel` view, `--probe`): it re-evaluates the taps on the CPU from the raw depths of
+// `depthTexture`. Data only: the host owns the measurement and the drawing.
+#define SHADOWLAB_EXT_FILTER_FOOTPRINT "shadowlab.filter-footprint/1"
+enum class FilterKernel : uint32_t {
+    None = 0,
+    Box = 1,    // n x n taps `spacing` texels apart around the point (pcf)
+    Disc = 2,   // n x n jittered disc samples of radius `spacing` texels, outer ring first, early out (adaptive-pcf)
+    Pcss = 3,   // blocker search over n_s x n_s disc samples, penumbra estimate, then Disc with that radius (pcss)
+};
+struct FilterFootprint {
+    uint32_t structSize = sizeof(FilterFootprint);
+    FilterKernel kernel = FilterKernel::None;
+    int32_t taps = 1;                // n: Box n x n taps; Disc n x n samples; Pcss the filter's n_f
+    float spacing = 1.0f;            // Box: texels between taps; Disc: the radius in texels
+    uint32_t bilinear = 0;           // 1: each tap is a 2x2 bilinear comparison
+    int32_t sets = 1;                // Disc, Pcss: m x m disc sets, set = pixel mod m
+    uint32_t discSeed = 1;           // the filter's disc sets (jittered_disk::makeOffsetTexture's seed)
+    int32_t searchTaps = 0;          // Pcss: n_s
+    uint32_t searchSeed = 2;         // Pcss: the search's disc sets
+    uint32_t searchBound = 0;        // Pcss: 0 near plane (eq. 3.18), 1 min-depth, 2 depth-range
+    float lightSize = 0.0f;          // Pcss: world radius (perspective map) or tan(angular radius)
+    float coneBias = 0.0f;           // multiplier of the receiver slope; 0 off
+    uint32_t coherent = 0;           // Disc: the early out is decided per 2x2 quad
+    uint32_t depthTexture = 0;       // GL name of the map's raw depths (2D, level 0); 0: none
+    glm::vec4 lightDepth{0.0f};      // near, far, 1 perspective / 0 orthographic, resolution
+    glm::vec4 lightWorldSize{0.0f};  // xy: map extent in world units (orthographic) or at unit depth
+    glm::vec4 lightAxis{0.0f};       // xyz: world direction along which the map measures depth
+};
+struct FilterFootprintReport {
+    uint32_t structSize;
+    void* context;
+    void (*report)(void* context, const FilterFootprint* footprint);
 };
 
 // Host services, one table per loaded technique (so the host can account for its GPU memory and

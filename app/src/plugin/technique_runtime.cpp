@@ -3,6 +3,7 @@
 #include "plugin/technique_runtime.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <sstream>
 #include <string_view>
@@ -43,6 +44,23 @@ size_t textureBytes(const TextureDesc& desc) {
 PluginHost::PluginHost(HostContext context, const TechniqueInfo& info)
     : context_(context), techniqueId_(info.id), flags_(info.flags) {
     shadowMapReport_ = {sizeof(ShadowMapReport), this, &PluginHost::receiveShadowMaps};
+    filterFootprintReport_ = {sizeof(FilterFootprintReport), this, &PluginHost::receiveFilterFootprint};
+}
+
+void PluginHost::receiveFilterFootprint(void* context, const FilterFootprint* footprint) {
+    auto& host = *static_cast<PluginHost*>(context);
+    host.filterFootprint_ = {};
+    if (!footprint) return;
+    // Only the fields the plugin's struct has (structSize), the rest keep their defaults.
+    FilterFootprint known;
+    std::memcpy(&known, footprint, std::min<size_t>(sizeof(FilterFootprint), std::max<size_t>(footprint->structSize, sizeof(uint32_t))));
+    known.structSize = sizeof(FilterFootprint);
+    if (uint32_t(known.kernel) > uint32_t(FilterKernel::Pcss) || known.taps < 1 || known.taps > 64 || known.sets < 1 ||
+        known.sets > 64 || known.searchTaps < 0 || known.searchTaps > 64 || !std::isfinite(known.spacing)) {
+        host.log(LogLevel::Warning, "reported a filter footprint out of range; ignored");
+        return;
+    }
+    host.filterFootprint_ = known;
 }
 
 void PluginHost::receiveShadowMaps(void* context, const ShadowMapInfo* maps, uint32_t count) {
@@ -56,14 +74,29 @@ void PluginHost::receiveShadowMaps(void* context, const ShadowMapInfo* maps, uin
     }
     host.shadowMaps_.clear();
     host.shadowMapLabels_.clear();
+    host.focusBodyEdges_.clear();
     host.shadowMapLabels_.reserve(count);
+    // The plugin's array strides by its own struct size (an older plugin's is smaller than ours).
+    const auto* bytes = reinterpret_cast<const unsigned char*>(maps);
+    const size_t stride = count ? std::max<size_t>(maps[0].structSize, sizeof(uint32_t)) : 0;
+    if (stride > 4096) {
+        host.log(LogLevel::Warning, "reported shadow maps with a structSize over 4096 bytes; ignored");
+        return;
+    }
     for (uint32_t i = 0; i < count; ++i) {
         // Only the fields the plugin's struct has (structSize), the rest keep their defaults.
         ShadowMapInfo map;
-        std::memcpy(&map, &maps[i], std::min<size_t>(sizeof(ShadowMapInfo), std::max<size_t>(maps[i].structSize, sizeof(uint32_t))));
+        std::memcpy(&map, bytes + size_t(i) * stride, std::min<size_t>(sizeof(ShadowMapInfo), stride));
         map.structSize = sizeof(ShadowMapInfo);
         if (map.size.x <= 0 || map.size.y <= 0) continue;   // not a map the footprint can be measured on
         host.shadowMapLabels_.push_back(map.label ? map.label : "");
+        // B's edges, copied (they point into the plugin); at most 4096 edges.
+        std::vector<glm::vec3> edges;
+        if (map.focusBodyEdges && map.focusBodyEdgeCount)
+            edges.assign(map.focusBodyEdges, map.focusBodyEdges + 2 * size_t(std::min<uint32_t>(map.focusBodyEdgeCount, 4096)));
+        map.focusBodyEdges = nullptr;
+        map.focusBodyEdgeCount = uint32_t(edges.size() / 2);
+        host.focusBodyEdges_.push_back(std::move(edges));
         host.shadowMaps_.push_back(map);
     }
     for (size_t i = 0; i < host.shadowMaps_.size(); ++i) host.shadowMaps_[i].label = host.shadowMapLabels_[i].c_str();
@@ -81,6 +114,7 @@ const void* PluginHost::extension(const char* id) const {
                    ? &context_.renderer.prepassTargets()
                    : nullptr;
     if (name == SHADOWLAB_EXT_SHADOW_MAPS) return &shadowMapReport_;
+    if (name == SHADOWLAB_EXT_FILTER_FOOTPRINT) return &filterFootprintReport_;
     return nullptr;
 }
 

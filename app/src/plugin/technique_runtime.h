@@ -81,7 +81,16 @@ public:
     // The shadow maps the technique reported for its last frame (SHADOWLAB_EXT_SHADOW_MAPS);
     // cleared by beginFrame() before each renderShadows, so a technique that stops reporting has none.
     const std::vector<ShadowMapInfo>& shadowMaps() const { return shadowMaps_; }
-    void beginFrame() { shadowMaps_.clear(); }
+    void beginFrame() {
+        shadowMaps_.clear();
+        focusBodyEdges_.clear();
+        filterFootprint_ = {};
+    }
+    // The focus body B's edges of each reported map (ShadowMapInfo::focusBodyEdges, copied):
+    // [i] belongs to shadowMaps()[i], point pairs; empty where the map has none.
+    const std::vector<std::vector<glm::vec3>>& focusBodyEdges() const { return focusBodyEdges_; }
+    // The filter kernel reported this frame (SHADOWLAB_EXT_FILTER_FOOTPRINT); kernel None: none.
+    const FilterFootprint& filterFootprint() const { return filterFootprint_; }
     // The flags that hold this frame (TechniqueInfo::flagsFor the current parameters), set by the
     // frame loop before renderShadows: the camera pre-pass extension answers only when it was
     // rendered for this technique.
@@ -101,8 +110,12 @@ private:
     std::map<std::string, double> statistics_;
     std::vector<ShadowMapInfo> shadowMaps_;
     std::vector<std::string> shadowMapLabels_;   // the reported labels, copied (they point here)
+    std::vector<std::vector<glm::vec3>> focusBodyEdges_;
+    FilterFootprint filterFootprint_{};
     ShadowMapReport shadowMapReport_{};
+    FilterFootprintReport filterFootprintReport_{};
     static void receiveShadowMaps(void* context, const ShadowMapInfo* maps, uint32_t count);
+    static void receiveFilterFootprint(void* context, const FilterFootprint* footprint);
 };
 
 // Size in bytes of a texture described by `desc`, every mip level included.

@@ -147,6 +147,7 @@ int App::runInteractive(const InteractiveOptions& options) {
     state.wipe = options.wipe;
     state.showUi = options.showUi;
     state.view = options.view;
+    if (options.probe) setProbePixel(options.probe);
     state.uiScale = options.uiScale;
     state.msaaSamples = renderer_->msaaSamples();
     camera_.setFramingAspect(kSceneFramingAspect);
@@ -401,6 +402,16 @@ int App::runInteractive(const InteractiveOptions& options) {
             const FrameOutputs outputs = difference || state.view.needsAccuracyTargets()
                                              ? FrameOutputs::Accuracy
                                              : FrameOutputs::Colour;
+            // The kernel view probes the pixel under the mouse (over the view, not the panel); without
+            // a mouse (offscreen) it keeps --probe's.
+            if (window && state.view.kind == ViewSelection::Kind::Kernel && !ui.wantsMouse()) {
+                glm::dvec2 mouse;
+                glfwGetCursorPos(window, &mouse.x, &mouse.y);
+                const PixelRect& rect = layout.halves[0];
+                if (rect.contains(glm::vec2(mouse)) && rect.size.x > 0 && rect.size.y > 0)
+                    setProbePixel(glm::ivec2((glm::vec2(mouse) - glm::vec2(rect.origin)) * glm::vec2(layout.renderSize) /
+                                             glm::vec2(rect.size)));
+            }
             for (int s = 0; s < (comparing ? 2 : 1); ++s) {
                 if (!renderFrame(sides[s], error, outputs)) {
                     state.frameError = error;

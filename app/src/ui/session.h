@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +31,7 @@ struct InteractiveOptions {
     bool measure = false;                          // measure accuracy after a few frames (slides of the heatmap)
     bool showUi = true;                            // false: the view (and comparison labels) only
     ViewSelection view;                            // the image shown at the start (lit, visibility, ...)
+    std::optional<glm::ivec2> probe;               // the kernel view's pixel at the start (main-target pixels)
     float uiScale = 1.0f;
     std::filesystem::path screenshotFolder = "screenshots";   // F12
     // A guided tour, started at `tourStep` (from 0), and/or a session file applied at the start

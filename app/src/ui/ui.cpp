@@ -387,6 +387,17 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
             }
         }
     }
+    if (state.view.kind == ViewSelection::Kind::Kernel && !layout.comparing) {
+        // The kernel's numbers in the view's corner, UI shown or not (a slide keeps them).
+        std::string text = describeProbe(app.lastProbe());
+        for (size_t at = text.find(", "); at != std::string::npos; at = text.find(", ", at)) text.replace(at, 2, "\n");
+        if (app.probePixel()) text = "pixel " + std::to_string(app.probePixel()->x) + ", " + std::to_string(app.probePixel()->y) + ": " + text;
+        // Away from the probed pixel: at the top when it is in the lower half of the view.
+        const bool top = app.probePixel() && app.probePixel()->y * 2 > layout.renderSize.y;
+        const float height = ImGui::CalcTextSize(text.c_str()).y + 0.8f * ImGui::GetFontSize();
+        labelBox(draw, ImVec2(float(layout.view.origin.x) + 8.0f, top ? float(layout.view.origin.y) + 8.0f + height : bottom),
+                 text, false);
+    }
     if (state.showUi && state.view.kind == ViewSelection::Kind::ErrorHeatmap && !state.measurement.empty()) {
         // Say so when the heatmap no longer shows what is on screen, and offer to measure again.
         const std::string text = state.staleReason.empty()
@@ -461,6 +472,9 @@ void Ui::drawPanel(App& app, UiState& state) {
         ImGui::TextDisabled("%s  |  %s", info->category.c_str(), info->id.c_str());
         ImGui::PushTextWrapPos(0.0f);
         ImGui::TextUnformatted(info->explanation.c_str());
+        // What it reported on its last frame decides which of the host's views show something.
+        const std::string views = app.debugViewsOf(state.technique);
+        ImGui::TextDisabled("Debug views here: %s", views.empty() ? "none (lit, visibility and error only)" : views.c_str());
         ImGui::PopTextWrapPos();
         if (!info->params.empty() && ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
             auto& values = app.params().values(*info);
@@ -516,12 +530,16 @@ void Ui::drawPanel(App& app, UiState& state) {
         static const char* const kFootprint = "texel footprint m (log2 heat map)";
         static const char* const kTexelGrid = "shadow-map texel grid";
         static const char* const kCoverage = "map coverage and light frusta";
+        static const char* const kFocusBody = "focus body B (seed 002 eq. 4.2)";
+        static const char* const kKernel = "filter kernel under the mouse";
         std::string current = state.view.kind == ViewSelection::Kind::Lit            ? "lit"
                               : state.view.kind == ViewSelection::Kind::Visibility   ? "visibility (shadow term)"
                               : state.view.kind == ViewSelection::Kind::ErrorHeatmap ? "error heatmap (last measurement)"
                               : state.view.kind == ViewSelection::Kind::Footprint    ? kFootprint
                               : state.view.kind == ViewSelection::Kind::TexelGrid    ? kTexelGrid
                               : state.view.kind == ViewSelection::Kind::MapCoverage  ? kCoverage
+                              : state.view.kind == ViewSelection::Kind::FocusBody    ? kFocusBody
+                              : state.view.kind == ViewSelection::Kind::Kernel       ? kKernel
                                                                                      : state.view.debugImage;
         fieldLabel("image");
         if (ImGui::BeginCombo("##image", current.c_str())) {
@@ -539,11 +557,28 @@ void Ui::drawPanel(App& app, UiState& state) {
             if (ImGui::Selectable(kCoverage)) state.view = {ViewSelection::Kind::MapCoverage, ""};
             if (ImGui::IsItemHovered())
                 ImGui::SetTooltip("Which map (or cascade, or cube face) serves each pixel, and the edges of each map's volume.");
+            if (ImGui::Selectable(kFocusBody)) state.view = {ViewSelection::Kind::FocusBody, ""};
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("White: the edges of the focus body B = ((V n S) + l) n S n L the map was fitted to (fit = "
+                                  "focus-body): the visible part of the scene swept towards the light.\nColoured: the map's "
+                                  "volume, B's bounding box in light space.");
+            if (ImGui::Selectable(kKernel)) state.view = {ViewSelection::Kind::Kernel, ""};
+            if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("The filter's footprint around the pixel under the mouse, on the receiver: the PCF box, the "
+                                  "adaptive disc (grey: samples skipped by the early out), PCSS's blocker search (red: "
+                                  "blockers) and penumbra disc, with the numbers below.");
             std::string error;
             if (LoadedTechnique* loaded = app.techniques().get(state.technique, error))
                 for (const auto& image : loaded->host().debugImages())
                     if (ImGui::Selectable(image.name.c_str())) state.view = {ViewSelection::Kind::DebugImage, image.name};
             ImGui::EndCombo();
+        }
+        if (state.view.kind == ViewSelection::Kind::Kernel) {
+            const KernelProbe& probe = app.lastProbe();
+            ImGui::PushTextWrapPos(0.0f);
+            if (app.probePixel()) ImGui::Text("pixel %d, %d", app.probePixel()->x, app.probePixel()->y);
+            ImGui::TextUnformatted(describeProbe(probe).c_str());
+            ImGui::PopTextWrapPos();
         }
         const char* cameraModes[] = {"orbit (drag, wheel, middle-drag)", "fly (WASD QE + drag)"};
         int mode = app.camera().mode() == CameraController::Mode::Orbit ? 0 : 1;

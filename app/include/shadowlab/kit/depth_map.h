@@ -84,12 +84,30 @@ public:
         GpuPass pass(*host_, "shadow map");
         const FocusedLightSpace focused = focusLightSpace(*host_, frame, config.fit, config.resolution);
         drawDepth(focused.light, config, focused.cullPlanes);
+        setFocusBody(focused.body);
         reportToHost();
     }
 
-    // Tells the host this frame's map (its matrix and size) for the texel-footprint measure and
-    // debug views; render() does it, a technique drawing with drawDepth() calls it itself.
-    void reportToHost() const { reportShadowMap(*host_, lightSpace_.viewProjection, {resolution_, resolution_}); }
+    // Tells the host this frame's map (its matrix and size, and B when the map was fitted to one)
+    // for the texel-footprint measure and debug views; render() does it, a technique drawing with
+    // drawDepth() calls it itself (after setFocusBody() when it focused the map on B).
+    void reportToHost() const {
+        reportShadowMap(*host_, lightSpace_.viewProjection, {resolution_, resolution_}, nullptr, &bodyEdges_);
+    }
+    // The focus body B (seed 002 eq. 4.2) the next reportToHost() gives the host; empty: none.
+    void setFocusBody(const ConvexBody& body) { bodyEdges_ = bodyEdges(body); }
+
+    // The map's part of what the host needs to probe a filter kernel (FilterFootprint): the raw
+    // depth texture and the block's depth conventions. The technique fills in its kernel.
+    FilterFootprint filterFootprint() const {
+        const DepthMapUniforms u = mainPassUniforms();
+        FilterFootprint footprint;
+        footprint.depthTexture = texture_;
+        footprint.lightDepth = u.uLightDepth;
+        footprint.lightWorldSize = u.uLightWorldSize4;
+        footprint.lightAxis = u.uLightAxis4;
+        return footprint;
+    }
 
     // The depth pass alone, from any light space and without a timer scope (area-reference draws
     // one per light sample inside its own scope). ensureTexture() first. Casters are culled
@@ -152,6 +170,7 @@ private:
     }
 
     IHost* host_ = nullptr;
+    std::vector<glm::vec3> bodyEdges_;   // B's edges (kit::bodyEdges) for reportToHost()
     Program program_;
     Framebuffer framebuffer_;
     Texture texture_;

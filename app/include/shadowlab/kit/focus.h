@@ -490,6 +490,43 @@ inline std::vector<glm::vec4> mapSidePlanes(const LightSpace& lightSpace, float 
     return planes;
 }
 
+// B's edges for the host's focus-body view (ShadowMapInfo::focusBodyEdges): pairs of world points,
+// each edge once. Edges between two coplanar faces (left by the operations where a face and a
+// coplanar quad join) are not edges of the body and are dropped.
+inline std::vector<glm::vec3> bodyEdges(const ConvexBody& body) {
+    std::vector<glm::vec3> edges;
+    const float tolerance = 10.0f * focus_detail::toleranceFor(body);
+    std::vector<glm::vec3> normals;
+    for (const auto& face : body.faces) {
+        const glm::vec3 n = focus_detail::areaNormal(face);
+        normals.push_back(glm::length(n) > 0.0f ? glm::normalize(n) : n);
+    }
+    for (size_t f = 0; f < body.faces.size(); ++f) {
+        const auto& face = body.faces[f];
+        for (size_t i = 0; i < face.size(); ++i) {
+            const glm::vec3 a = face[i], b = face[(i + 1) % face.size()];
+            const glm::vec3 mid = 0.5f * (a + b);
+            // The other face holding this edge: its midpoint on one of that face's edges.
+            bool drop = false;
+            for (size_t g = 0; g < body.faces.size() && !drop; ++g) {
+                if (g == f) continue;
+                const auto& other = body.faces[g];
+                for (size_t j = 0; j < other.size(); ++j)
+                    if (focus_detail::segmentDistance(mid, other[j], other[(j + 1) % other.size()]) <= tolerance) {
+                        // Kept once (by the face of lower index), never between coplanar faces.
+                        drop = g < f || glm::dot(normals[f], normals[g]) > 1.0f - 1e-4f;
+                        break;
+                    }
+            }
+            if (!drop) {
+                edges.push_back(a);
+                edges.push_back(b);
+            }
+        }
+    }
+    return edges;
+}
+
 // ---------------------------------------------------------------------------------------------
 // The fit a technique asks for
 

@@ -121,7 +121,8 @@ public:
         const FocusedLightSpace focused = focusLightSpace(*host_, frame, config.fit, config.resolution);
         space_ = fitMomentLightSpace(focused.light, host_->bounds(DrawSet::Casters), host_->bounds(DrawSet::All));
         mapUniforms_.set({{}, space_.light.viewProjection, space_.depthPlane});
-        reportShadowMap(*host_, space_.light.viewProjection, {resolution_, resolution_});
+        bodyEdges_ = bodyEdges(focused.body);
+        reportShadowMap(*host_, space_.light.viewProjection, {resolution_, resolution_}, nullptr, &bodyEdges_);
         const bool compute = config.blur == BlurPath::Compute;
         const bool depthOnly = compute && !config.momentsNeedDerivatives;
         {
@@ -263,6 +264,7 @@ private:
     }
 
     IHost* host_ = nullptr;
+    std::vector<glm::vec3> bodyEdges_;   // B's edges (kit::bodyEdges) for the host's focus-body view
     Program momentProgram_, depthProgram_, blurProgram_, computeBlurX_, computeBlurY_;
     Framebuffer momentFramebuffer_, depthFramebuffer_, blurFramebuffer_;
     Texture moments_, scratch_, depth_;

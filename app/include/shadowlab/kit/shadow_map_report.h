@@ -5,6 +5,7 @@
 #pragma once
 
 #include <initializer_list>
+#include <vector>
 
 #include <shadowlab/technique.h>
 
@@ -16,12 +17,25 @@ inline void reportShadowMaps(IHost& host, const ShadowMapInfo* maps, uint32_t co
 }
 
 // One map over every view depth (a single shadow map, or a warped one whose matrix is given).
-inline void reportShadowMap(IHost& host, const glm::mat4& worldToClip, glm::ivec2 size, const char* label = nullptr) {
+// `bodyEdges`: the focus body B's edges as point pairs (kit::bodyEdges), when the map was fitted to it.
+inline void reportShadowMap(IHost& host, const glm::mat4& worldToClip, glm::ivec2 size, const char* label = nullptr,
+                            const std::vector<glm::vec3>* bodyEdges = nullptr) {
     ShadowMapInfo map;
     map.worldToClip = worldToClip;
     map.size = size;
     map.label = label;
+    if (bodyEdges && !bodyEdges->empty()) {
+        map.focusBodyEdges = bodyEdges->data();
+        map.focusBodyEdgeCount = uint32_t(bodyEdges->size() / 2);
+    }
     reportShadowMaps(host, &map, 1);
+}
+
+// What shadowTerm() filters over (SHADOWLAB_EXT_FILTER_FOOTPRINT), once a frame after the maps are
+// rendered; the host's kernel view and --probe draw and measure it. A host without it ignores it.
+inline void reportFilterFootprint(IHost& host, const FilterFootprint& footprint) {
+    const auto* report = static_cast<const FilterFootprintReport*>(host.extension(SHADOWLAB_EXT_FILTER_FOOTPRINT));
+    if (report && report->report) report->report(report->context, &footprint);
 }
 
 } // namespace shadowlab::kit
