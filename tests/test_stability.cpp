@@ -377,14 +377,19 @@ TEST(StressSuite, MapsRefittedToTheViewPopUnderTheOrbitAndASceneFitMapDoesNot) {
 // --- the six cases whose claims now name techniques (docs/stability.md, "Which technique fails
 // which case"): a technique each claim names as failing fails, one it names as doing better passes.
 
-TEST(StressSuite, DuellingFrustaDefeatPsmWhileLispsmDegeneratesToTheUniformMap) {
+// The claim names psm as failing (seed 002 sec. 8.3: no reparameterisation helps with view and
+// light parallel, and PSM's warp makes it worse). Measured, psm passes: it failed (0.0700) only
+// while its near plane skipped the ground (psm::nearestReceiverDepth); with the near plane on the
+// nearest receiver its map here is as good as the focused uniform map or better (0.0016 against
+// 0.0040 on llvmpipe and on the H200). The page marks the cell "(claim: fails)".
+TEST(StressSuite, DuellingFrustaLispsmDegeneratesToTheUniformMapAndPsmDoesNotFail) {
     const StressSuite s = suite();
     auto app = test::makeHeadlessApp("cube", s.size);
     ASSERT_TRUE(app);
     const StressCell psm = run(*app, s, "duelling-frusta", "psm");
     const StressCell lispsm = run(*app, s, "duelling-frusta", "lispsm");
     const StressCell uniform = run(*app, s, "duelling-frusta", "shadowmap");
-    EXPECT_FALSE(psm.pass);
+    EXPECT_TRUE(psm.pass) << "measured: the claim's failure does not show here (see above)";
     EXPECT_TRUE(lispsm.pass);
     EXPECT_TRUE(uniform.pass);
     // Seed 002 sec. 8.3: with view and light parallel LiSPSM is (nearly) the uniform map.
