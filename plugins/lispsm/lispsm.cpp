@@ -174,13 +174,15 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
         block.uLinearDepth = linear ? 1 : 0;
         block.uBiasMethod = twoLayers_ ? int(method) : 0;
         block.uZOffset = params.asFloat(kZOffset);
-        // A written depth gets no polygon offset: linear depth biases in its fragment stage.
-        block.uSlopeFactor = linear ? config.slopeBias : 0.0f;
-        block.uConstantUnits = linear ? config.constantBias : 0.0f;
-        if (linear || twoLayers_) {
-            config.program = &depthProgram_;
-            if (linear) config.constantBias = config.slopeBias = 0.0f;
-        }
+        // The bias is applied in the fragment stage for both depths, never by glPolygonOffset: with
+        // depth clamp on, a warped caster's unclamped window z can be far outside [0, 1], and a 32F
+        // depth buffer's offset unit is 2^(e - 23) for the primitive's largest exponent e, so on an
+        // H200 those casters were pushed behind the receivers (every shadow of the perspective-near
+        // and light-behind stress cases lost; llvmpipe's unit stayed 2^-24). Here a unit is 2^-24.
+        block.uSlopeFactor = config.slopeBias;
+        block.uConstantUnits = config.constantBias;
+        config.program = &depthProgram_;
+        config.constantBias = config.slopeBias = 0.0f;
         uniforms_.set(block);
         uniforms_.bind();
         // Casters between B and the light's side of the scene are in B; depth clamp keeps any part of

@@ -9,11 +9,12 @@ layout(binding = kFirstDepthUnit) uniform sampler2D uFirstLayer;
 in float vLinearDepth;
 
 void main() {
-    float depth = gl_FragCoord.z;
-    if (uLinearDepth == 1) {
-        float slope = max(abs(dFdx(vLinearDepth)), abs(dFdy(vLinearDepth)));
-        depth = clamp(vLinearDepth, 0.0, 1.0) + uSlopeFactor * slope + uConstantUnits * exp2(-24.0);
-    }
+    // Depth clamp is on: store what the fixed-function path would, clamped to [0, 1], and bias it
+    // here (lispsm.cpp says why not with glPolygonOffset): the slope-scaled part from the depth's
+    // own screen derivatives (eq. 5.2), the constant part in units of 2^-24.
+    float depth = uLinearDepth == 1 ? vLinearDepth : gl_FragCoord.z;
+    float slope = max(abs(dFdx(depth)), abs(dFdy(depth)));
+    depth = clamp(depth, 0.0, 1.0) + uSlopeFactor * slope + uConstantUnits * exp2(-24.0);
     // Same program, same depth for the same surface in both layers: a strict comparison peels it.
     if (uPeel == 1 && depth <= texelFetch(uFirstLayer, ivec2(gl_FragCoord.xy), 0).r) discard;
     gl_FragDepth = depth;

@@ -12,7 +12,7 @@ SHADOWLAB_UNIFORM_BLOCK(LispsmUniforms, 2) {
     int uBiasMethod;          // 0 polygon offset (incl. inverted back faces), 1 midpoint (eq. 5.1), 2 second depth
     int uPeel;                // depth pass: 1 keeps only fragments behind the first layer (the second layer)
     float uZOffset;           // eq. 5.1's z_offset, in map depth units [0, 1]
-    float uSlopeFactor;       // linear depth: the slope-scaled bias done in the fragment stage (eq. 5.2)
+    float uSlopeFactor;       // the slope-scaled bias done in the fragment stage (eq. 5.2), both depths
     float uConstantUnits;     //   and its constant part, in units of 2^-24
     float uLispsmPad0;
     float uLispsmPad1;
