@@ -53,7 +53,8 @@ constexpr ParamDesc kParams[] = {
      "the light over the focus body (TSM's linear z), written per fragment with the slope-scaled bias "
      "done in the shader.", "hyperbolic|linear"},
     {"bias_method", "bias method", ParamType::Enum, 0, 3, 0, "",
-     "offset: constant and slope-scaled polygon offset (eq. 5.2). midpoint: a second layer by depth "
+     "offset: constant and slope-scaled offset (eq. 5.2, applied per fragment like glPolygonOffset with "
+     "a fixed unit of 2^-24). midpoint: a second layer by depth "
      "peeling and the test against min((z2 - z1) / 2, z_offset) past the first (eq. 5.1, dual shadow "
      "maps). second-depth: the test against the second layer (Wang and Molnar). inverted-back-faces: "
      "back faces stored (cull front) with the offset reversed, towards the light. The two-layer "
