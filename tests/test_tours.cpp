@@ -491,3 +491,31 @@ TEST(TourPlayer, TheWindowRefusesAMissingDebugViewBeforeTheFirstStep) {
     EXPECT_EQ(app->runInteractive(options), 2);
     EXPECT_FALSE(std::filesystem::exists(options.screenshot)) << "a frame was drawn before the tour was refused";
 }
+
+// The large-scenes tour's two LiSPSM views (seed 002 Figs. 8.10 and 8.11): with view and light
+// perpendicular the warp puts the texels where the pixels are, so the nearest third of the view
+// gets smaller texels (texel footprint m, eq. 8.1) than when the camera looks into the light, where
+// no warp can help and LiSPSM is a uniform focused map again.
+TEST(Tours, LargeScenesShowsLispsmsBestCaseAndTheDuellingFrusta) {
+    std::string error;
+    Tour tour;
+    auto app = test::makeHeadlessApp("forest-002", {160, 96});
+    ASSERT_TRUE(app);
+    ASSERT_TRUE(loadTour("large-scenes", realTechniques(), tour, error)) << error;
+    auto nearThirdM = [&](const std::string& titleStart) {
+        const auto step = std::find_if(tour.steps.begin(), tour.steps.end(),
+                                       [&](const TourStep& s) { return s.title.rfind(titleStart, 0) == 0; });
+        EXPECT_NE(step, tour.steps.end()) << titleStart;
+        if (step == tour.steps.end()) return 0.0;
+        UiState state;
+        EXPECT_TRUE(applyTourStep(*app, *step, state, error)) << error;
+        const Evaluation e = test::evaluateTechnique(*app, "lispsm", {}, ReferenceOptions::Mode::Hard);
+        std::printf("%s: median m near / mid / far third %.2f / %.2f / %.2f\n", titleStart.c_str(),
+                    e.footprint.medianByViewDepth[0], e.footprint.medianByViewDepth[1], e.footprint.medianByViewDepth[2]);
+        EXPECT_GT(e.footprint.measuredPixels, 1000u);
+        return e.footprint.medianByViewDepth[0];
+    };
+    const double perpendicular = nearThirdM("LiSPSM's best case"), duelling = nearThirdM("Duelling frusta");
+    EXPECT_GT(perpendicular, 0.0);
+    EXPECT_LT(perpendicular * 2.0, duelling);
+}
