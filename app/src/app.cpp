@@ -488,11 +488,7 @@ bool App::measureDepthFloor(int resolution, int warmupFrames, int frames, Measur
         error = "depth floor framebuffer incomplete";
         return false;
     }
-    ShaderRequest request;
-    request.vertexFile = "depth_only.vert";
-    request.searchPaths = hostShaderPaths();
-    request.label = "depth floor";
-    const ProgramId program = shaders_->build(request, error);
+    const ProgramId program = shaders_->build(hostShaderRequest("depth_only.vert", "", "depth floor"), error);
     if (!program) return false;
     // The depth map's block (the same shader as the techniques' depth passes), from the host's
     // fit around the whole scene.

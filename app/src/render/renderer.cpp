@@ -111,32 +111,14 @@ bool Renderer::init(std::string& error) {
         glSamplerParameteri(name, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     }
 
-    ShaderRequest present;
-    present.vertexFile = "fullscreen.vert";
-    present.fragmentFile = "present.frag";
-    present.searchPaths = hostShaderPaths();
-    present.label = "host present";
-    presentProgram_ = shaders_.build(present, error);
+    presentProgram_ = shaders_.build(hostShaderRequest("fullscreen.vert", "present.frag", "host present"), error);
     if (!presentProgram_) return false;
-    ShaderRequest prepass;
-    prepass.vertexFile = "main.vert";
-    prepass.fragmentFile = "camera_prepass.frag";
-    prepass.searchPaths = hostShaderPaths();
-    prepass.label = "host camera pre-pass";
-    prepassProgram_ = shaders_.build(prepass, error);
+    prepassProgram_ = shaders_.build(hostShaderRequest("main.vert", "camera_prepass.frag", "host camera pre-pass"), error);
     if (!prepassProgram_) return false;
-    ShaderRequest depthOnly;
-    depthOnly.vertexFile = "main.vert";   // the main pass's own vertex stage: bit-identical depth
-    depthOnly.searchPaths = hostShaderPaths();
-    depthOnly.label = "host depth pre-pass";
-    depthOnlyProgram_ = shaders_.build(depthOnly, error);
+    // The main pass's own vertex stage, no fragment stage: bit-identical depth.
+    depthOnlyProgram_ = shaders_.build(hostShaderRequest("main.vert", "", "host depth pre-pass"), error);
     if (!depthOnlyProgram_) return false;
-    ShaderRequest eyeBlur;
-    eyeBlur.vertexFile = "fullscreen.vert";
-    eyeBlur.fragmentFile = "eye_blur.frag";
-    eyeBlur.searchPaths = hostShaderPaths();
-    eyeBlur.label = "host eye-space blur";
-    eyeBlurProgram_ = shaders_.build(eyeBlur, error);
+    eyeBlurProgram_ = shaders_.build(hostShaderRequest("fullscreen.vert", "eye_blur.frag", "host eye-space blur"), error);
     return eyeBlurProgram_ != 0;
 }
 
@@ -530,11 +512,7 @@ void Renderer::eyeBlur(float width, float referenceDepth) {
 
 void Renderer::drawMainPassObjects(GLuint program, FrameOutputs outputs) {
     if (!scene_) return;
-    bindSceneGeometry(program);
-    for (uint32_t index : opaqueBatches_) {
-        const Batch& batch = batches_[index];
-        drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
-    }
+    drawOpaque(program);
     if (opaqueBatches_.size() == batches_.size()) return;
     // The blurred term holds the opaque surfaces only: translucent ones call shadowTerm().
     if (eyeBlurRead_) glUniform1i(SHADOWLAB_EYE_BLUR_READ_LOCATION, 0);

@@ -8,10 +8,12 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gl/gl.h"
 #include "shadowlab/technique.h"
+#include "util/paths.h"
 
 namespace shadowlab {
 
@@ -25,6 +27,17 @@ struct ShaderRequest {
     std::map<std::string, std::filesystem::path> aliases; // include name -> file (technique GLSL)
     std::string label;                              // for logs and KHR_debug
 };
+
+// A host program's request: stages found in the host's shader folders (hostShaderPaths()).
+// An empty fragment file makes a depth-only program.
+inline ShaderRequest hostShaderRequest(std::string vertexFile, std::string fragmentFile, std::string label) {
+    ShaderRequest request;
+    request.vertexFile = std::move(vertexFile);
+    request.fragmentFile = std::move(fragmentFile);
+    request.searchPaths = hostShaderPaths();
+    request.label = std::move(label);
+    return request;
+}
 
 class ShaderLibrary {
 public:

@@ -28,26 +28,14 @@ struct ReportedMapsBlock {
 
 bool ShadowMapViews::init(ShaderLibrary& shaders, std::string& error) {
     shaders_ = &shaders;
-    ShaderRequest view;
-    view.vertexFile = "fullscreen.vert";
-    view.fragmentFile = "shadow_map_view.frag";
-    view.searchPaths = hostShaderPaths();
-    view.label = "host shadow-map views";
-    viewProgram_ = shaders.build(view, error);
+    viewProgram_ = shaders.build(hostShaderRequest("fullscreen.vert", "shadow_map_view.frag", "host shadow-map views"), error);
     if (!viewProgram_) return false;
-    ShaderRequest frustum;
-    frustum.vertexFile = "shadow_map_frustum.vert";
-    frustum.fragmentFile = "shadow_map_frustum.frag";
-    frustum.searchPaths = hostShaderPaths();
-    frustum.label = "host shadow-map frusta";
-    frustumProgram_ = shaders.build(frustum, error);
+    frustumProgram_ = shaders.build(
+        hostShaderRequest("shadow_map_frustum.vert", "shadow_map_frustum.frag", "host shadow-map frusta"), error);
     if (!frustumProgram_) return false;
-    ShaderRequest overlay;
-    overlay.vertexFile = "shadow_map_overlay.vert";
-    overlay.fragmentFile = "shadow_map_frustum.frag";
-    overlay.searchPaths = hostShaderPaths();
-    overlay.label = "host debug-view overlays (focus body, kernel footprint)";
-    overlayProgram_ = shaders.build(overlay, error);
+    overlayProgram_ = shaders.build(hostShaderRequest("shadow_map_overlay.vert", "shadow_map_frustum.frag",
+                                                      "host debug-view overlays (focus body, kernel footprint)"),
+                                    error);
     if (!overlayProgram_) return false;
     GLuint name = 0;
     glCreateBuffers(1, &name);

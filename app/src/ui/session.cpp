@@ -131,13 +131,9 @@ int App::runInteractive(const InteractiveOptions& options) {
     }
     SessionTargets targets;
     {
-        ShaderRequest request;
-        request.vertexFile = "fullscreen.vert";
-        request.fragmentFile = "compare_difference.frag";
-        request.searchPaths = hostShaderPaths();
-        request.label = "comparison difference";
         std::string error;
-        targets.differenceProgram = shaders_->build(request, error);
+        targets.differenceProgram =
+            shaders_->build(hostShaderRequest("fullscreen.vert", "compare_difference.frag", "comparison difference"), error);
         if (!targets.differenceProgram) logError(error);
     }
     UiState state;
