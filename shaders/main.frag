@@ -11,6 +11,11 @@
 // shadowTerm() for the opaque surfaces (sec. 9.4.2: "no shadow calculations are necessary"), and
 // calls it for translucent surfaces, which the term texture does not hold.
 //
+// SHADOWLAB_TRANSLUCENT_PEEL (with the accuracy targets; evaluation frames only,
+// shadowlab/translucent_layers_shared.h) draws one translucent layer: fragments at or in front of
+// the previous layer's depth, or at or behind the opaque depth, are discarded at the end (so
+// shadowTerm() still runs in uniform control flow).
+//
 // Lighting (uLighting; seed 002 sec. 6.2's three rules, Fig. 6.7): phong = ambient never
 // shadowed, diffuse attenuated by the shadow term (the part that hides projection aliasing, since
 // N.L is small where it is large, eq. 6.2), specular attenuated too (no specular inside shadow);
@@ -18,6 +23,11 @@
 // specular: the projection aliasing the lighting would hide stays visible (Fig. 6.7, left).
 #include "common.glsl"
 #include "shadowlab/eye_blur_shared.h"
+#ifdef SHADOWLAB_TRANSLUCENT_PEEL
+#include "shadowlab/translucent_layers_shared.h"
+layout(binding = kPeelPreviousDepthUnit) uniform sampler2D uPeelPreviousDepth;
+layout(binding = kPeelOpaqueDepthUnit) uniform sampler2D uPeelOpaqueDepth;
+#endif
 
 in VertexOut {
     vec3 worldPos;
@@ -82,5 +92,13 @@ void main() {
     outVisibility = vec4(shadow, compared ? 1.0 : 0.0);
     outPosition = vec4(vIn.worldPos, 1.0);
     outNormal = vec4(N, 0.0);
+#endif
+#ifdef SHADOWLAB_TRANSLUCENT_PEEL
+    // The previous layer stored this very gl_FragCoord.z in 32-bit float, so <= removes exactly
+    // the surfaces already peeled; the opaque depth is 24-bit, so compare at its precision.
+    const ivec2 texel = ivec2(gl_FragCoord.xy);
+    const float opaque = texelFetch(uPeelOpaqueDepth, texel, 0).r;
+    const float quantised = floor(gl_FragCoord.z * 16777215.0 + 0.5) / 16777215.0;
+    if (gl_FragCoord.z <= texelFetch(uPeelPreviousDepth, texel, 0).r || quantised >= opaque) discard;
 #endif
 }

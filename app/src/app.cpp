@@ -7,6 +7,7 @@
 #include "util/strings.h"
 #include "app.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -72,6 +73,7 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
     light_ = scene_->light;
     applyLightOverrides();
     depthPrepass_ = options.depthPrepass;
+    translucentLayers_ = options.translucentLayers;
     techniques_ = std::make_unique<TechniqueManager>(HostContext{*renderer_, *shaders_, *timer_, backend_->loader()}, pluginDir());
     techniques_->scan();
     techniques_->registerBuiltin(copyDescriptor(referenceDescriptor(), {}), [this] {
@@ -249,10 +251,38 @@ bool App::runMainPasses(LoadedTechnique& loaded, const FrameContext& frame, cons
     renderer_->setEyeBlurRead(blur > 0.0f);
     renderer_->setLighting(int(host[kHostLighting]));
     begin("main");
+    bool translucentScope = false;
+    if (loaded.host().hasTranslucentHook()) {
+        // SHADOWLAB_EXT_TRANSLUCENT_DRAWS: the technique's hook before each translucent object;
+        // the loop (hooks and draws) is timed as one scope inside "main", as seed 001 sec. 5.3.1
+        // times composited shadows.
+        renderer_->setTranslucentHook([&, mainProgram](uint32_t object) {
+            if (object != kTranslucentDrawsDone && !translucentScope) {
+                begin("translucent draws");
+                translucentScope = true;
+            }
+            rebindAfterTranslucentHook(loaded, frame, params, mainProgram, object);
+            if (object == kTranslucentDrawsDone && translucentScope) {
+                end();
+                translucentScope = false;
+            }
+        });
+    }
     renderer_->mainPass(mainProgram, outputs, [&] { loaded.technique().bindMainPass(frame, params); });
+    renderer_->setTranslucentHook({});
     end();
     renderer_->setEyeBlurRead(false);
     return true;
+}
+
+void App::rebindAfterTranslucentHook(LoadedTechnique& loaded, const FrameContext& frame, const ParamValues& params,
+                                     GLuint program, uint32_t object) {
+    loaded.host().beforeTranslucentObject(frame, params, object);
+    // The hook may have changed anything: the contract's state, the program, the technique's bindings.
+    renderer_->applyDefaultState();
+    glUseProgram(program);
+    loaded.technique().bindMainPass(frame, params);
+    renderer_->resetPipelineState();
 }
 
 ViewSelection viewFromName(const std::string& name) {
@@ -571,8 +601,59 @@ bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string
     out.referenceFloor = out.referenceStats.sampleError.empty()
                              ? 0.0
                              : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);
+    return evaluateTranslucentLayers(options, out, error);
+}
+
+bool App::evaluateTranslucentLayers(const ReferenceOptions& options, Evaluation& out, std::string& error) {
+    out.translucentLayers.clear();
+    out.translucentMetrics = {};
+    if (translucentLayers_ <= 0) return true;
+    LoadedTechnique* loaded = techniques_->get(lastTechnique_, error);
+    if (!loaded) return false;
+    const GLuint program = loaded->translucentLayerProgram(error);
+    if (!program) return false;
+    const std::vector<double>& values = params_.values(loaded->info());
+    const ParamValues params(values.data(), uint32_t(values.size()));
+    const glm::ivec2 size = renderer_->size();
+    const size_t pixels = size_t(size.x) * size_t(size.y);
+    // All layers stacked into one image for the combined metrics (a penumbra neighbourhood may
+    // reach across the seam between two layers: one row each, negligible).
+    std::vector<glm::vec3> allTechnique, allReference;
+    std::vector<uint8_t> allMask;
+    renderer_->setView(frame_.camera, frame_.light);
+    for (int k = 0; k < translucentLayers_; ++k) {
+        if (loaded->host().hasTranslucentHook())
+            renderer_->setTranslucentHook([&, program](uint32_t object) {
+                rebindAfterTranslucentHook(*loaded, frame_, params, program, object);
+            });
+        const bool drawn = renderer_->translucentLayer(k, program, [&] { loaded->technique().bindMainPass(frame_, params); });
+        renderer_->setTranslucentHook({});
+        if (!drawn) break;
+        const auto positions = renderer_->readLayer(MainTarget::Position);
+        const auto normals = renderer_->readLayer(MainTarget::Normal);
+        const auto visibility = renderer_->readLayer(MainTarget::Visibility);
+        if (std::none_of(positions.begin(), positions.end(), [](const glm::vec4& p) { return p.w != 0.0f; })) break;
+        const GBufferView gbuffer{size.x, size.y, positions.data(), normals.data()};
+        TranslucentLayerEvaluation layer;
+        layer.technique.resize(pixels);
+        for (size_t i = 0; i < pixels; ++i) layer.technique[i] = glm::clamp(glm::vec3(visibility[i]), 0.0f, 1.0f);
+        layer.mask = compareMask(gbuffer, light_);
+        ReferenceOptions layerOptions = options;
+        if (!traceReference(gbuffer, layerOptions, layer.reference, error)) return false;
+        layer.metrics = compareVisibility(layer.technique, layer.reference, layer.mask, size.x, size.y);
+        allTechnique.insert(allTechnique.end(), layer.technique.begin(), layer.technique.end());
+        allReference.insert(allReference.end(), layer.reference.begin(), layer.reference.end());
+        allMask.insert(allMask.end(), layer.mask.begin(), layer.mask.end());
+        out.translucentLayers.push_back(std::move(layer));
+    }
+    renderer_->applyDefaultState();
+    if (!out.translucentLayers.empty())
+        out.translucentMetrics = compareVisibility(allTechnique, allReference, allMask, size.x,
+                                                   size.y * int(out.translucentLayers.size()));
     return true;
 }
+
+
 
 Image Evaluation::heatmap() const {
     const auto rgb = errorHeatmap(technique, reference, mask, width, height);

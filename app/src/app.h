@@ -38,6 +38,15 @@ struct AppOptions {
     std::optional<glm::vec3> lightDirection;            // overrides the scene's (travel direction)
     std::optional<float> lightSize;                     // scene units (degrees for directional)
     bool depthPrepass = false;                          // host depth pre-pass, then main pass EQUAL
+    int translucentLayers = 4;                          // evaluation: translucent receivers peeled, 0-8
+};
+
+// One translucent layer of an evaluation (Evaluation::translucentLayers).
+struct TranslucentLayerEvaluation {
+    std::vector<glm::vec3> technique;   // the technique's shadow term on the layer's surfaces
+    std::vector<glm::vec3> reference;
+    std::vector<uint8_t> mask;          // compared pixels of the layer
+    AccuracyMetrics metrics;
 };
 
 // Which image a frame shows: the lit scene, the shadow term, or one of the technique's debug images.
@@ -85,6 +94,13 @@ struct Evaluation {
     ReferenceStats referenceStats;      // rays, refined pixels, per-pixel sampling error of the reference
     double referenceFloor = 0.0;        // soft: the reference's own penumbra MAE (penumbraMean of its sampleError)
     TexelFootprint footprint;           // m per pixel from the maps the technique reported (none: 0 maps)
+    // Translucent receivers (seed 001 sec. 5.3.3, Fig. 5.3.3.A): the translucent surfaces in front
+    // of the opaque ones, peeled from the camera (layer 0 nearest), each traced with the same
+    // options and compared like the opaque image above, which holds the opaque surfaces only.
+    // Empty when the scene has no translucent receiver in view (or MSAA is on). translucentMetrics
+    // compares all layers at once (their images stacked); comparedPixels 0 when there are none.
+    std::vector<TranslucentLayerEvaluation> translucentLayers;
+    AccuracyMetrics translucentMetrics;
     Image heatmap() const;              // errorHeatmap() as an RGBA image
 };
 
@@ -112,6 +128,9 @@ public:
     // Host depth pre-pass before every main pass (main pass with depth test EQUAL, no depth write).
     void setDepthPrepass(bool on) { depthPrepass_ = on; }
     bool depthPrepass() const { return depthPrepass_; }
+    // Translucent layers evaluate() peels and measures (0 = the opaque surfaces only).
+    void setTranslucentLayers(int count) { translucentLayers_ = count; }
+    int translucentLayers() const { return translucentLayers_; }
     // After the technique's shadow pass, everything up to and including the main pass: the depth
     // pre-pass when on, the eye-space blur's term and blur passes when host.shadow_blur > 0 (seed
     // 002 sec. 6.3, 9.4.2; render/renderer.h), then the main pass (reading the blurred term when
@@ -191,6 +210,12 @@ private:
     uint64_t framesRendered_ = 0;
     std::string lastTechnique_;            // of the last renderFrame() (renderAccuracyTargets)
     bool depthPrepass_ = false;
+    int translucentLayers_ = 4;
+    bool evaluateTranslucentLayers(const ReferenceOptions& options, Evaluation& out, std::string& error);
+    // After the technique's translucent-draws hook (SHADOWLAB_EXT_TRANSLUCENT_DRAWS): the state
+    // contract, `program` bound, bindMainPass again.
+    void rebindAfterTranslucentHook(LoadedTechnique& loaded, const FrameContext& frame, const ParamValues& params,
+                                    GLuint program, uint32_t object);
     bool windowed_ = false;
     std::chrono::steady_clock::time_point startTime_ = std::chrono::steady_clock::now();
     double lastCpuFrameMs_ = 0.0;

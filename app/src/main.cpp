@@ -32,6 +32,7 @@
 #include "util/log.h"
 #include "util/paths.h"
 #include "util/text_file.h"
+#include "shadowlab/translucent_layers_shared.h"
 
 using namespace shadowlab;
 
@@ -51,6 +52,7 @@ struct CommonOptions {
     std::string lightSize;      // text: checked against the scene's light type once it is known
     int msaa = 0;
     bool depthPrepass = false;
+    int translucentLayers = 4;
     std::string budget;
     bool quiet = false;
 };
@@ -82,6 +84,7 @@ bool buildOptions(const CommonOptions& common, AppOptions& options, std::string&
     options.scene = common.scene;
     options.msaaSamples = common.msaa;
     options.depthPrepass = common.depthPrepass;
+    options.translucentLayers = common.translucentLayers;
     if (!parseSize(common.size, options.size, error)) return false;
     // The budget part of the render-target check needs no GL: before a context or buffer exists.
     if (error = renderTargetBudgetProblem(options.size, options.msaaSamples, 0); !error.empty()) return false;
@@ -131,6 +134,11 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_flag("--depth-prepass", o.depthPrepass,
                  "depth-only pre-pass of the opaque surfaces, then the main pass with depth test EQUAL: the shadow term "
                  "runs once per visible pixel")
+        ->group("Output");
+    cmd.add_option("--translucent-layers", o.translucentLayers,
+                   "evaluation: translucent receivers peeled from the camera and measured, 0-8 (default 4; seed 001 "
+                   "sec. 5.3.3)")
+        ->check(CLI::Range(0, SHADOWLAB_MAX_TRANSLUCENT_LAYERS))
         ->group("Output");
     cmd.add_option("--budget", o.budget,
                    "raise or lower the scene budget: objects=N,triangles=N,gpu-mib=N,file-mib=N (docs/scene-format.md, Limits)")
@@ -520,6 +528,13 @@ int commandEval(const CommonOptions& common, const std::string& reference, int s
             out["accuracy"][name] = nlohmann::json::parse(metricsToJson(evaluation.metrics));
             out["accuracy"][name]["model"] = translucencyModelName(model);
             out["accuracy"][name]["trace_seconds"] = evaluation.traceSeconds;
+            if (!evaluation.translucentLayers.empty()) {
+                // The translucent receivers, every peeled layer together and layer by layer.
+                nlohmann::json receivers = nlohmann::json::parse(metricsToJson(evaluation.translucentMetrics));
+                for (const TranslucentLayerEvaluation& layer : evaluation.translucentLayers)
+                    receivers["layers"].push_back(nlohmann::json::parse(metricsToJson(layer.metrics)));
+                out["accuracy"][name]["translucent_receivers"] = receivers;
+            }
             if (!out.contains("texel_footprint") && evaluation.footprint.maps > 0)
                 out["texel_footprint"] = nlohmann::json::parse(footprintToJson(evaluation.footprint));
             if (mode == ReferenceOptions::Mode::Soft) {
@@ -568,6 +583,18 @@ int commandEval(const CommonOptions& common, const std::string& reference, int s
         std::printf("    MAE by view depth (thirds of near..far): near %.4f (%zu px)  mid %.4f (%zu px)  far %.4f (%zu px)\n",
                     thirds[0].get<double>(), thirdPixels[0].get<size_t>(), thirds[1].get<double>(),
                     thirdPixels[1].get<size_t>(), thirds[2].get<double>(), thirdPixels[2].get<size_t>());
+        if (metrics.contains("translucent_receivers")) {
+            const auto& t = metrics["translucent_receivers"];
+            const auto& channel = t["maePerChannel"];
+            std::printf("    translucent receivers (%zu layers, %zu px): MAE %.4f  (r %.4f g %.4f b %.4f)  false shadow %.3f%%  "
+                        "false light %.3f%%;  by layer:",
+                        t["layers"].size(), t["comparedPixels"].get<size_t>(), t["mae"].get<double>(),
+                        channel[0].get<double>(), channel[1].get<double>(), channel[2].get<double>(),
+                        100.0 * t["falseShadowRate"].get<double>(), 100.0 * t["falseLightRate"].get<double>());
+            for (const auto& layer : t["layers"])
+                std::printf(" %.4f (%zu px)", layer["mae"].get<double>(), layer["comparedPixels"].get<size_t>());
+            std::printf("\n");
+        }
         if (metrics.contains("reference_floor"))
             std::printf("    soft reference: %d rays per pixel%s (%.1f%% of pixels refined), traced in %.2f s; its own "
                         "penumbra error (floor) %.4f\n",

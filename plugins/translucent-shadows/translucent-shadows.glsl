@@ -1,24 +1,5 @@
-// Translucent shadows, main-pass side (seed 001 sec. 2.1.3): o = [z <= D_o] and t = [z <= D_t]
-// through the texture unit's comparison (2x2 bilinear with the hardware filter, as seed 001 timed
-// it, Fig. 5.3.B), C the colour buffer (bilinear), and
-//   visibility = o (t + (1 - t) C):
-// unshadowed in front of every translucent caster, C behind the nearest one, 0 behind an opaque
-// one. Every point behind the nearest translucent surface gets all of C, including the filters of
-// surfaces behind it: translucent surfaces shadow themselves and far layers tint near ones
-// (Figs. 2.1.3.A, 5.3.3.A).
-#include "light_space.glsl"
-#include "shadowlab/kit/depth_map_shared.h"
-#include "translucent_shadows_shared.h"
+// Translucent shadows, main-pass side: the kit's lookup of the three maps (shaders/translucent_maps.glsl,
+// seed 001 sec. 2.1.3): visibility = o (t + (1 - t) C).
+#include "translucent_maps.glsl"
 
-layout(binding = kDepthMapUnit) uniform sampler2DShadow uOpaqueDepth;
-layout(binding = kTranslucentDepthUnit) uniform sampler2DShadow uTranslucentDepth;
-layout(binding = kShadowColourUnit) uniform sampler2D uShadowColour;
-
-vec3 shadowTerm(ShadowInput s) {
-    vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
-    if (!insideShadowMap(coord)) return vec3(1.0);
-    float o = texture(uOpaqueDepth, coord);
-    float t = texture(uTranslucentDepth, coord);
-    vec3 C = texture(uShadowColour, coord.xy).rgb;
-    return o * (t + (1.0 - t) * C);
-}
+vec3 shadowTerm(ShadowInput s) { return translucentMapsVisibility(s); }

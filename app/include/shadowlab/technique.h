@@ -345,6 +345,35 @@ struct FilterFootprintReport {
     void (*report)(void* context, const FilterFootprint* footprint);
 };
 
+// Extension "shadowlab.translucent-draws/1": for a technique whose maps must change between the
+// host's translucent draws (seed 001's composited translucent shadows, sec. 4.2.3, rebuild the
+// nearest translucent depth and the shadow colour from the meshes nearer the light than each
+// mesh drawn). The technique installs a hook (in init(); a null hook removes it). While one is
+// installed, every pass of the host that draws translucent receivers with the technique's
+// shadowTerm() (the main pass, and the evaluation's translucent layers) draws them one at a
+// time, back to front from the camera by their bounds' centres, as it always does, and:
+//   before each object: beforeObject(user, frame, params, objectIndex). The hook may draw
+//     anything into its own framebuffers; then the host sets the GL state contract, binds the
+//     main program, calls bindMainPass(frame, params) again, sets its main-pass state and draws
+//     the object;
+//   after the last one: beforeObject(user, frame, params, kTranslucentDrawsDone), so that the
+//     next bindMainPass binds what the opaque receivers read again (the host calls it next).
+// GpuPass scopes inside the hook are not timed on their own: the host times all the translucent
+// draws with their hooks as one scope, "translucent draws", inside "main" (seed 001 sec. 5.3.1
+// times composited shadows the same way, one scope around the translucent loop).
+#define SHADOWLAB_EXT_TRANSLUCENT_DRAWS "shadowlab.translucent-draws/1"
+constexpr uint32_t kTranslucentDrawsDone = 0xFFFFFFFFu;
+struct TranslucentDrawHook {
+    uint32_t structSize = sizeof(TranslucentDrawHook);
+    void* user = nullptr;
+    void (*beforeObject)(void* user, const FrameContext& frame, const ParamValues& params, uint32_t objectIndex) = nullptr;
+};
+struct TranslucentDraws {
+    uint32_t structSize;
+    void* context;
+    void (*install)(void* context, const TranslucentDrawHook* hook);   // copied; null removes the hook
+};
+
 // Host services, one table per loaded technique (so the host can account for its GPU memory and
 // release whatever it leaves behind on unload).
 class IHost {

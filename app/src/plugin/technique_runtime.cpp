@@ -45,6 +45,26 @@ PluginHost::PluginHost(HostContext context, const TechniqueInfo& info)
     : context_(context), techniqueId_(info.id), flags_(info.flags) {
     shadowMapReport_ = {sizeof(ShadowMapReport), this, &PluginHost::receiveShadowMaps};
     filterFootprintReport_ = {sizeof(FilterFootprintReport), this, &PluginHost::receiveFilterFootprint};
+    translucentDraws_ = {sizeof(TranslucentDraws), this, &PluginHost::installTranslucentHook};
+}
+
+void PluginHost::installTranslucentHook(void* context, const TranslucentDrawHook* hook) {
+    auto& host = *static_cast<PluginHost*>(context);
+    host.translucentHook_ = {};
+    if (!hook) return;
+    // Only the fields the plugin's struct has (structSize), the rest keep their defaults.
+    TranslucentDrawHook known;
+    std::memcpy(&known, hook, std::min<size_t>(sizeof(TranslucentDrawHook), std::max<size_t>(hook->structSize, sizeof(uint32_t))));
+    known.structSize = sizeof(TranslucentDrawHook);
+    host.translucentHook_ = known;
+}
+
+void PluginHost::beforeTranslucentObject(const FrameContext& frame, const ParamValues& params, uint32_t object) {
+    if (!translucentHook_.beforeObject) return;
+    // The hook's own GpuPass scopes are not timed: the host's "translucent draws" scope holds them.
+    muteGpuPasses_ = true;
+    translucentHook_.beforeObject(translucentHook_.user, frame, params, object);
+    muteGpuPasses_ = false;
 }
 
 void PluginHost::receiveFilterFootprint(void* context, const FilterFootprint* footprint) {
@@ -115,6 +135,7 @@ const void* PluginHost::extension(const char* id) const {
                    : nullptr;
     if (name == SHADOWLAB_EXT_SHADOW_MAPS) return &shadowMapReport_;
     if (name == SHADOWLAB_EXT_FILTER_FOOTPRINT) return &filterFootprintReport_;
+    if (name == SHADOWLAB_EXT_TRANSLUCENT_DRAWS) return &translucentDraws_;
     return nullptr;
 }
 
@@ -271,6 +292,7 @@ int PluginHost::releaseAll() {
     framebuffers_.clear();
     programs_.clear();
     debugImages_.clear();
+    translucentHook_ = {};   // it points into the library about to be closed
     return leftovers;
 }
 
@@ -345,7 +367,7 @@ LoadedTechnique::~LoadedTechnique() {
     host_.reset();
     for (ProgramId program : mainPrograms_)
         if (program && shaders_) shaders_->release(program);
-    for (ProgramId program : eyeBlurPrograms_)
+    for (ProgramId program : variantPrograms_)
         if (program && shaders_) shaders_->release(program);
     library_.reset();
 }
@@ -354,12 +376,14 @@ GLuint LoadedTechnique::mainProgram(FrameOutputs outputs) const {
     return shaders_->program(mainPrograms_[outputs == FrameOutputs::Accuracy ? 1 : 0]);
 }
 
-GLuint LoadedTechnique::eyeBlurVariant(int slot, std::string& error) {
-    if (!eyeBlurPrograms_[slot]) {
-        static const char* const defines[3] = {"SHADOWLAB_EYE_BLUR_TERM 1", "SHADOWLAB_EYE_BLUR_READ 1",
-                                               "SHADOWLAB_EYE_BLUR_READ 1;SHADOWLAB_ACCURACY_TARGETS 1"};
-        static const char* const labels[3] = {": eye-space blur term pass", ": main pass (blurred shadow term)",
-                                              ": main pass (blurred shadow term, accuracy targets)"};
+GLuint LoadedTechnique::mainVariant(int slot, std::string& error) {
+    if (!variantPrograms_[slot]) {
+        static const char* const defines[kMainVariants] = {
+            "SHADOWLAB_EYE_BLUR_TERM 1", "SHADOWLAB_EYE_BLUR_READ 1", "SHADOWLAB_EYE_BLUR_READ 1;SHADOWLAB_ACCURACY_TARGETS 1",
+            "SHADOWLAB_ACCURACY_TARGETS 1;SHADOWLAB_TRANSLUCENT_PEEL 1"};
+        static const char* const labels[kMainVariants] = {
+            ": eye-space blur term pass", ": main pass (blurred shadow term)",
+            ": main pass (blurred shadow term, accuracy targets)", ": translucent layer (accuracy targets)"};
         ShaderRequest request;
         request.vertexFile = "main.vert";
         request.fragmentFile = "main.frag";
@@ -368,21 +392,23 @@ GLuint LoadedTechnique::eyeBlurVariant(int slot, std::string& error) {
         request.aliases["technique_shadow.glsl"] = shadowGlsl_;
         request.label = info_.id + labels[slot];
         std::string shaderError;
-        eyeBlurPrograms_[slot] = shaders_->build(request, shaderError);
-        if (!eyeBlurPrograms_[slot]) {
+        variantPrograms_[slot] = shaders_->build(request, shaderError);
+        if (!variantPrograms_[slot]) {
             error = info_.id + ": " + request.label.substr(info_.id.size() + 2) + " with " + info_.shadowGlsl +
                     " failed to build: " + shaderError;
             return 0;
         }
     }
-    return shaders_->program(eyeBlurPrograms_[slot]);
+    return shaders_->program(variantPrograms_[slot]);
 }
 
-GLuint LoadedTechnique::eyeBlurTermProgram(std::string& error) { return eyeBlurVariant(0, error); }
+GLuint LoadedTechnique::eyeBlurTermProgram(std::string& error) { return mainVariant(0, error); }
 
 GLuint LoadedTechnique::eyeBlurMainProgram(FrameOutputs outputs, std::string& error) {
-    return eyeBlurVariant(outputs == FrameOutputs::Accuracy ? 2 : 1, error);
+    return mainVariant(outputs == FrameOutputs::Accuracy ? 2 : 1, error);
 }
+
+GLuint LoadedTechnique::translucentLayerProgram(std::string& error) { return mainVariant(3, error); }
 
 TechniqueManager::TechniqueManager(HostContext context, std::filesystem::path pluginDir)
     : context_(context), pluginDir_(std::move(pluginDir)) {}

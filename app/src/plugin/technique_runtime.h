@@ -61,8 +61,12 @@ public:
     ProgramId buildProgram(const ProgramDesc& desc, std::string& error) override;
     uint32_t glProgram(ProgramId id) const override { return context_.shaders.program(id); }
     void destroyProgram(ProgramId id) override;
-    void beginGpuPass(const char* name) override { context_.timer.begin(name); }
-    void endGpuPass() override { context_.timer.end(); }
+    void beginGpuPass(const char* name) override {
+        if (!muteGpuPasses_) context_.timer.begin(name);
+    }
+    void endGpuPass() override {
+        if (!muteGpuPasses_) context_.timer.end();
+    }
     uint32_t createTexture(const TextureDesc& desc) override;
     void destroyTexture(uint32_t texture) override;
     uint32_t createBuffer(size_t bytes, const void* data, uint32_t storageFlags, const char* label) override;
@@ -98,6 +102,10 @@ public:
     uint32_t frameFlags() const { return flags_; }
     // Deletes every tracked object and program still alive; returns how many were left over.
     int releaseAll();
+    // SHADOWLAB_EXT_TRANSLUCENT_DRAWS: whether the technique installed a hook, and calling it
+    // (objectIndex or kTranslucentDrawsDone) with its GpuPass scopes untimed.
+    bool hasTranslucentHook() const { return translucentHook_.beforeObject != nullptr; }
+    void beforeTranslucentObject(const FrameContext& frame, const ParamValues& params, uint32_t object);
 
 private:
     HostContext context_;
@@ -114,6 +122,10 @@ private:
     FilterFootprint filterFootprint_{};
     ShadowMapReport shadowMapReport_{};
     FilterFootprintReport filterFootprintReport_{};
+    TranslucentDraws translucentDraws_{};
+    TranslucentDrawHook translucentHook_{};
+    bool muteGpuPasses_ = false;
+    static void installTranslucentHook(void* context, const TranslucentDrawHook* hook);
     static void receiveShadowMaps(void* context, const ShadowMapInfo* maps, uint32_t count);
     static void receiveFilterFootprint(void* context, const FilterFootprint* footprint);
 };
@@ -143,6 +155,9 @@ public:
     // (SHADOWLAB_EYE_BLUR_READ) for each FrameOutputs. 0 with `error` when a build fails.
     GLuint eyeBlurTermProgram(std::string& error);
     GLuint eyeBlurMainProgram(FrameOutputs outputs, std::string& error);
+    // The main pass drawing one translucent layer for evaluation (SHADOWLAB_ACCURACY_TARGETS and
+    // SHADOWLAB_TRANSLUCENT_PEEL; Renderer::translucentLayer), built on first use.
+    GLuint translucentLayerProgram(std::string& error);
     const PluginLibrary* library() const { return library_.get(); }
 
 private:
@@ -154,8 +169,11 @@ private:
     std::unique_ptr<PluginHost> host_;
     IShadowTechnique* technique_ = nullptr;
     ProgramId mainPrograms_[2] = {0, 0};   // FrameOutputs::Colour, ::Accuracy
-    GLuint eyeBlurVariant(int slot, std::string& error);
-    ProgramId eyeBlurPrograms_[3] = {0, 0, 0};   // term, read (colour), read (accuracy targets)
+    // The main pass's variants built on first use: eye-blur term, eye-blur read (colour, accuracy
+    // targets), translucent layer.
+    static constexpr int kMainVariants = 4;
+    GLuint mainVariant(int slot, std::string& error);
+    ProgramId variantPrograms_[kMainVariants] = {0, 0, 0, 0};
     std::filesystem::path shadowGlsl_;
     ShaderLibrary* shaders_ = nullptr;
 };

@@ -2,12 +2,14 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <type_traits>
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include "shadowlab/eye_blur_shared.h"
 #include "shadowlab/frame_block.h"
+#include "shadowlab/translucent_layers_shared.h"
 #include "util/log.h"
 #include "util/paths.h"
 
@@ -269,6 +271,7 @@ bool Renderer::resize(glm::ivec2 size, int msaaSamples, std::string& error) {
     }
     if (prepassFbo_) allocatePrepassTargets();
     if (eyeBlurTermFbo_) allocateEyeBlurTargets();
+    if (layerFbo_[0]) allocateLayerTargets();
     displayColor_ = makeTexture(GL_RGBA8, size, 0, "display");
     glCreateFramebuffers(1, &name);
     displayFbo_.reset(name);
@@ -353,8 +356,23 @@ void Renderer::drawScene(const DrawRequest& request, GLuint program) {
     }
     // The objects that pass, sorted if asked, then drawn in runs of consecutive objects of one
     // batch (still instanced where order and culling leave a run together).
+    collectDrawOrder(request);
+    for (size_t k = 0; k < drawOrder_.size();) {
+        const uint32_t first = drawOrder_[k].second;
+        size_t end = k + 1;
+        while (end < drawOrder_.size() && drawOrder_[end].second == drawOrder_[end - 1].second + 1 &&
+               batchOfObject_[drawOrder_[end].second] == batchOfObject_[first])
+            ++end;
+        const SceneObject& object = scene_->objects[first];
+        drawBatch(first, uint32_t(end - k), object.mesh, object.material);
+        k = end;
+    }
+}
+
+void Renderer::collectDrawOrder(const DrawRequest& request) {
     drawOrder_.clear();
     const std::vector<ObjectInfo>& info = scene_->objectInfo;
+    const bool culled = request.cullPlanes && request.cullPlaneCount > 0;
     const glm::vec3 reference{request.orderReference};
     const bool fromPoint = request.orderReference.w != 0.0f;
     for (const Batch& batch : batches_) {
@@ -369,16 +387,6 @@ void Renderer::drawScene(const DrawRequest& request, GLuint program) {
     }
     if (request.order != DrawOrder::Scene)
         std::stable_sort(drawOrder_.begin(), drawOrder_.end(), [](auto& a, auto& b) { return a.first < b.first; });
-    for (size_t k = 0; k < drawOrder_.size();) {
-        const uint32_t first = drawOrder_[k].second;
-        size_t end = k + 1;
-        while (end < drawOrder_.size() && drawOrder_[end].second == drawOrder_[end - 1].second + 1 &&
-               batchOfObject_[drawOrder_[end].second] == batchOfObject_[first])
-            ++end;
-        const SceneObject& object = scene_->objects[first];
-        drawBatch(first, uint32_t(end - k), object.mesh, object.material);
-        k = end;
-    }
 }
 
 void Renderer::drawFullscreenTriangle() {
@@ -514,27 +522,123 @@ void Renderer::drawMainPassObjects(GLuint program, FrameOutputs outputs) {
     if (!scene_) return;
     drawOpaque(program);
     if (opaqueBatches_.size() == batches_.size()) return;
-    // The blurred term holds the opaque surfaces only: translucent ones call shadowTerm().
-    if (eyeBlurRead_) glUniform1i(SHADOWLAB_EYE_BLUR_READ_LOCATION, 0);
     // Translucent surfaces: blended colour, back to front from the camera by their bounds'
-    // centres, without touching the G-buffer or depth, so accuracy is measured on the opaque
-    // surface behind them.
+    // centres, without touching the G-buffer or depth, so the accuracy targets hold the opaque
+    // surface behind them (translucent receivers are measured by translucentLayer()).
+    drawTranslucent(program, [this, program, outputs] { setMainTranslucentState(program, outputs); });
+    const GLuint gbufferTargets = outputs == FrameOutputs::Accuracy ? 4 : 1;
+    for (GLuint attachment = 1; attachment < gbufferTargets; ++attachment)
+        glColorMaski(attachment, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisablei(GL_BLEND, 0);
+    glDepthMask(GL_TRUE);
+}
+
+void Renderer::setMainTranslucentState(GLuint program, FrameOutputs outputs) {
+    glBindFramebuffer(GL_FRAMEBUFFER, mainFramebuffer(outputs));
+    glViewport(0, 0, size_.x, size_.y);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_STENCIL_TEST);
     glEnablei(GL_BLEND, 0);
     glBlendFunci(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     const GLuint gbufferTargets = outputs == FrameOutputs::Accuracy ? 4 : 1;
     for (GLuint attachment = 1; attachment < gbufferTargets; ++attachment)
         glColorMaski(attachment, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    bindSceneGeometry(program);
+    glUniform1i(SHADOWLAB_LIGHTING_LOCATION, lighting_);
+    // The blurred term holds the opaque surfaces only: translucent ones call shadowTerm().
+    if (eyeBlurRead_) glUniform1i(SHADOWLAB_EYE_BLUR_READ_LOCATION, 0);
+}
+
+void Renderer::drawTranslucent(GLuint program, const std::function<void()>& setState) {
     DrawRequest translucent;
     translucent.set = DrawSet::Translucent;
     translucent.order = DrawOrder::BackToFront;
     translucent.orderReference = glm::vec4(camera_.position, 1.0f);
-    drawScene(translucent, program);
-    for (GLuint attachment = 1; attachment < gbufferTargets; ++attachment)
-        glColorMaski(attachment, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDisablei(GL_BLEND, 0);
+    if (!translucentHook_) {
+        setState();
+        drawScene(translucent, program);
+        return;
+    }
+    // One object at a time with the technique's hook before each (SHADOWLAB_EXT_TRANSLUCENT_DRAWS).
+    // The order is copied first: the hook draws through drawScene, which reuses drawOrder_.
+    collectDrawOrder(translucent);
+    translucentOrder_.clear();
+    for (const auto& [key, object] : drawOrder_) translucentOrder_.push_back(object);
+    for (const uint32_t object : translucentOrder_) {
+        translucentHook_(object);
+        setState();
+        drawObject(object, program);
+    }
+    translucentHook_(kTranslucentDrawsDone);
+    setState();
+}
+
+void Renderer::allocateLayerTargets() {
+    layerVisibility_ = makeTexture(GL_RGBA16F, size_, 0, "translucent layer visibility");
+    layerPosition_ = makeTexture(GL_RGBA32F, size_, 0, "translucent layer world position");
+    layerNormal_ = makeTexture(GL_RGBA16F, size_, 0, "translucent layer world normal");
+    const char* labels[2] = {"translucent layer depth (even)", "translucent layer depth (odd)"};
+    for (int i = 0; i < 2; ++i) {
+        layerDepth_[i] = makeTexture(GL_DEPTH_COMPONENT32F, size_, 0, labels[i]);
+        GLuint name = 0;
+        glCreateFramebuffers(1, &name);
+        layerFbo_[i].reset(name);
+        glObjectLabel(GL_FRAMEBUFFER, name, -1, labels[i]);
+        // Location 0 (the lit colour) goes nowhere; 1-3 as the accuracy targets.
+        glNamedFramebufferTexture(name, GL_COLOR_ATTACHMENT1, layerVisibility_.get(), 0);
+        glNamedFramebufferTexture(name, GL_COLOR_ATTACHMENT2, layerPosition_.get(), 0);
+        glNamedFramebufferTexture(name, GL_COLOR_ATTACHMENT3, layerNormal_.get(), 0);
+        glNamedFramebufferTexture(name, GL_DEPTH_ATTACHMENT, layerDepth_[i].get(), 0);
+        const GLenum buffers[] = {GL_NONE, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+        glNamedFramebufferDrawBuffers(name, 4, buffers);
+        const GLenum status = glCheckNamedFramebufferStatus(name, GL_FRAMEBUFFER);
+        if (status != GL_FRAMEBUFFER_COMPLETE) logError(std::string(labels[i]) + " framebuffer is " + framebufferStatusName(status));
+    }
+}
+
+void Renderer::beginTranslucentLayer(int k) {
+    if (!layerFbo_[0]) allocateLayerTargets();   // on first use; resize() reallocates
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const GLuint fbo = layerFbo_[k % 2].get();
+    for (GLint buffer = 1; buffer < 4; ++buffer) glClearNamedFramebufferfv(fbo, GL_COLOR, buffer, zero);
+    glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, std::array<float, 1>{1.0f}.data());
+    // Layer 0 peels behind "nothing": the previous depth is 0 everywhere.
+    if (k == 0) glClearNamedFramebufferfv(layerFbo_[1].get(), GL_DEPTH, 0, std::array<float, 1>{0.0f}.data());
+}
+
+void Renderer::setTranslucentLayerState(int k, GLuint program) {
+    glBindFramebuffer(GL_FRAMEBUFFER, layerFbo_[k % 2].get());
+    glViewport(0, 0, size_.x, size_.y);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);   // the nearest surface behind the previous layer wins
     glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_STENCIL_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    using namespace shared::translucent_layers;
+    glBindTextureUnit(kPeelPreviousDepthUnit, layerDepth_[(k + 1) % 2].get());
+    glBindSampler(kPeelPreviousDepthUnit, 0);
+    glBindTextureUnit(kPeelOpaqueDepthUnit, depth_.get());
+    glBindSampler(kPeelOpaqueDepthUnit, 0);
+    bindSceneGeometry(program);
+    glUniform1i(SHADOWLAB_LIGHTING_LOCATION, lighting_);
+}
+
+std::vector<glm::vec4> Renderer::readLayer(MainTarget which) const {
+    const GLuint texture = which == MainTarget::Visibility ? layerVisibility_.get()
+                           : which == MainTarget::Position ? layerPosition_.get()
+                           : which == MainTarget::Normal   ? layerNormal_.get()
+                                                           : 0u;
+    std::vector<glm::vec4> pixels(size_t(size_.x) * size_t(size_.y));
+    if (!texture) return pixels;
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(glm::vec4)), pixels.data());
+    return pixels;
 }
 
 void Renderer::applyDefaultState() {

@@ -5,6 +5,7 @@
 // never per frame.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -82,6 +83,34 @@ public:
     // main targets, so the main pass then runs the shadow term once per visible pixel (depth test
     // EQUAL, no depth write). main.vert's invariant gl_Position makes both depths identical.
     void mainDepthPrepass(FrameOutputs outputs);
+    // SHADOWLAB_EXT_TRANSLUCENT_DRAWS: while set, the main pass and translucentLayer() draw the
+    // translucent objects one at a time (back to front from the camera) and call the hook before
+    // each with its index, and once with kTranslucentDrawsDone after the last. The hook may change
+    // any GL state, and leaves the pass's program bound with the technique's bindings; the
+    // renderer sets its own state again before each draw. Empty: one sorted draw request.
+    using TranslucentHook = std::function<void(uint32_t object)>;
+    void setTranslucentHook(TranslucentHook hook) { translucentHook_ = std::move(hook); }
+
+    // Evaluation frames only (never timed): translucent layer `k` (0 = nearest the camera) in front
+    // of the opaque depth of the last accuracy main pass, peeled behind layer k - 1 (call them in
+    // order 0, 1, ...; shadowlab/translucent_layers_shared.h). `program` is the technique's main
+    // pass built with SHADOWLAB_ACCURACY_TARGETS and SHADOWLAB_TRANSLUCENT_PEEL; the layer's shadow
+    // term, position and normal go to targets read with readLayer(). False (nothing drawn) when the
+    // scene has no translucent object or the main pass is multisampled (its single-sample depth
+    // is not written then).
+    template <typename BindTechnique>
+    bool translucentLayer(int k, GLuint program, BindTechnique&& bindTechnique) {
+        if (!scene_ || opaqueBatches_.size() == batches_.size() || msaaSamples_ > 0) return false;
+        applyDefaultState();
+        glUseProgram(program);
+        bindTechnique();
+        resetPipelineState();
+        beginTranslucentLayer(k);
+        drawTranslucent(program, [this, k, program] { setTranslucentLayerState(k, program); });
+        return true;
+    }
+    std::vector<glm::vec4> readLayer(MainTarget which) const;
+
     // The framebuffer a main pass of `outputs` draws into (tests check its attachments).
     GLuint mainFramebuffer(FrameOutputs outputs) const;
     // Whether the last main pass wrote the visibility, position and normal targets.
@@ -141,6 +170,13 @@ private:
     void drawOpaque(GLuint program);
     void allocateEyeBlurTargets();
     void drawMainPassObjects(GLuint program, FrameOutputs outputs);
+    // The translucent objects, back to front from the camera: one request, or one by one with the
+    // hook (setState() runs before the draw, and after each hook call).
+    void drawTranslucent(GLuint program, const std::function<void()>& setState);
+    void setMainTranslucentState(GLuint program, FrameOutputs outputs);
+    void beginTranslucentLayer(int k);
+    void setTranslucentLayerState(int k, GLuint program);
+    void allocateLayerTargets();
     void endMainPass(FrameOutputs outputs);
     void clearMainTargets(GLuint fbo, FrameOutputs outputs, bool depth);
     void drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, uint32_t material);
@@ -161,6 +197,9 @@ private:
     std::vector<uint32_t> batchOfObject_;        // object index -> its batch
     std::vector<uint32_t> opaqueBatches_;        // indices into batches_
     std::vector<std::pair<float, uint32_t>> drawOrder_;  // sorted or culled draws, reused each frame
+    std::vector<uint32_t> translucentOrder_;     // the hook's objects (the hook may draw in between)
+    TranslucentHook translucentHook_;
+    void collectDrawOrder(const DrawRequest& request);
 
     glm::ivec2 size_{0};
     int msaaSamples_ = 0;
@@ -186,6 +225,11 @@ private:
     GlFramebuffer eyeBlurTermFbo_, eyeBlurFbo_[2];
     ProgramId eyeBlurProgram_ = 0;
     bool eyeBlurRead_ = false;
+
+    // Translucent layers (translucentLayer): shadow term, position and normal as the accuracy
+    // targets, and two 32F depths, this layer's and the previous one's, alternating.
+    GlTexture layerVisibility_, layerPosition_, layerNormal_, layerDepth_[2];
+    GlFramebuffer layerFbo_[2];
     int lighting_ = 0;
 
     CameraInfo camera_{};

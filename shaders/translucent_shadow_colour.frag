@@ -1,4 +1,4 @@
-// translucent-shadows' third pass (seed 001 sec. 2.1.3, 4.2.1): each translucent caster in front of
+// The third map of translucent shadows (kit/translucent_maps.h) (seed 001 sec. 2.1.3, 4.2.1): each translucent caster in front of
 // the opaque depth D_o (depth-tested against it, no writes) multiplies the colour buffer, cleared
 // to white, by what it lets through, drawn front to back from the light:
 //   original  the surface colour (StarCraft II: transmission taken to be the colour; seed 001
@@ -7,7 +7,7 @@
 // The blend (DST_COLOR, ZERO) is a product, so the order does not change the result; seed 001's
 // front-to-back order would matter only for a blend that does not commute.
 #include "common.glsl"
-#include "translucent_shadows_shared.h"
+#include "shadowlab/kit/translucent_maps_shared.h"
 
 in vec2 vUv;
 
