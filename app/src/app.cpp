@@ -644,6 +644,7 @@ bool App::evaluateTranslucentLayers(const ReferenceOptions& options, Evaluation&
         allTechnique.insert(allTechnique.end(), layer.technique.begin(), layer.technique.end());
         allReference.insert(allReference.end(), layer.reference.begin(), layer.reference.end());
         allMask.insert(allMask.end(), layer.mask.begin(), layer.mask.end());
+        layer.positions = positions;
         out.translucentLayers.push_back(std::move(layer));
     }
     renderer_->applyDefaultState();

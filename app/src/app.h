@@ -46,6 +46,7 @@ struct TranslucentLayerEvaluation {
     std::vector<glm::vec3> technique;   // the technique's shadow term on the layer's surfaces
     std::vector<glm::vec3> reference;
     std::vector<uint8_t> mask;          // compared pixels of the layer
+    std::vector<glm::vec4> positions;   // world positions (w = 1 where the layer has a surface)
     AccuracyMetrics metrics;
 };
 
