@@ -57,6 +57,8 @@ bool measureSide(App& app, const std::string& technique, const ReferenceOptions&
     LoadedTechnique* loaded = app.techniques().get(technique, loadError);
     out.gpuBytes = loaded ? loaded->host().gpuBytes() : 0;
     out.metrics = evaluation.metrics;
+    out.translucentMetrics = evaluation.translucentMetrics;
+    out.translucentLayers = evaluation.translucentLayers.size();
     out.traceSeconds = evaluation.traceSeconds;
     out.heatmap = heatmapOverLit(lit, evaluation.technique, evaluation.reference, evaluation.mask);
     out.key = currentMeasurementKey(app, technique);

@@ -49,6 +49,8 @@ struct SideMeasurement {
     double gpuMs = 0.0;         // the side's last GPU frame time
     size_t gpuBytes = 0;        // the side's technique memory
     AccuracyMetrics metrics;
+    AccuracyMetrics translucentMetrics;   // the translucent receivers' layers (comparedPixels 0: none)
+    size_t translucentLayers = 0;
     double traceSeconds = 0.0;
     Image heatmap;              // heatmapOverLit of this side's frame
     MeasurementKey key;         // what it was measured for (stale when the frame no longer matches)

@@ -665,6 +665,12 @@ void Ui::drawPanel(App& app, UiState& state) {
                                m.mae, m.rmse, 100.0 * m.falseShadowRate, 100.0 * m.falseLightRate, m.maePenumbra,
                                m.maeOutsidePenumbra, 100.0 * m.comparedFraction, side.traceSeconds, side.gpuMs,
                                double(side.gpuBytes) / (1024.0 * 1024.0));
+            if (side.translucentMetrics.comparedPixels > 0) {
+                // Seed 001 sec. 5.3.3: the translucent surfaces themselves, peeled from the camera.
+                const AccuracyMetrics& t = side.translucentMetrics;
+                ImGui::TextWrapped("translucent receivers (%zu layers, %zu px): MAE %.4f (r %.4f g %.4f b %.4f)", side.translucentLayers,
+                                   t.comparedPixels, t.mae, t.maePerChannel.r, t.maePerChannel.g, t.maePerChannel.b);
+            }
         }
         if (!state.measurement.empty() && ImGui::Button("Show error heatmap")) state.view = {ViewSelection::Kind::ErrorHeatmap, ""};
         drawSpeedAccuracyPlot(state.measured);
