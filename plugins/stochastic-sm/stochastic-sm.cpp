@@ -8,9 +8,18 @@
 // changes every frame; seed 001 read an RGB noise texture instead (sec. 5.3.1).
 // Filtering as seed 001 timed it: the texture unit's 2x2 bilinear comparison on every tap of an
 // n x n shader kernel (n up to 9).
+// Optional MSAA map (seed 001 sec. 2.1.2 and the audit's "MSAA 1-8"; Enderton et al. 2010's
+// stochastic transparency): with msaa > 1 the map is a multisample depth texture, translucent
+// fragments keep each covered sample with probability alpha through gl_SampleMask, and the lookup
+// compares every sample of the n x n nearest texels: samples x n^2 coin flips per pixel instead of
+// n^2, for the same kernel footprint. msaa = 1 is the single-sample path above, untouched.
 // Known artefacts: noise under translucent casters, which only wide kernels (blurring every edge)
 // average away; no colour (a red glass casts a grey shadow); the `per-texel` noise lets stacked
 // surfaces through as 1 - max a instead of prod (1 - a_i).
+#include <algorithm>
+#include <string>
+#include <vector>
+
 #include <shadowlab/kit/focus.h>
 #include <shadowlab/kit/handles.h>
 #include <shadowlab/kit/light_target.h>
@@ -37,6 +46,16 @@ constexpr ParamDesc kParams[] = {
      "noisier and with n^2 + 1 shades.",
      nullptr},
     kit::noiseParam(),
+    {"msaa", "MSAA samples", ParamType::Enum, 0, 3, 0, "",
+     "Samples per texel of the map. 1: one coin flip per translucent texel (the single-sample map). "
+     "2-8: a multisample map in which each covered sample is kept with probability alpha on its own "
+     "(stochastic transparency's per-sample masks, Enderton et al. 2010), and every sample of the n x n "
+     "texels is compared: samples x n^2 flips per pixel, so the noise falls about as 1 / sqrt(samples) "
+     "without widening the kernel (a smaller kernel, sharper edges, for the same noise). The cost grows "
+     "with the count: samples x the map's memory and fill, samples x n^2 fetches per pixel, and no "
+     "hardware 2x2 filter (hardware_filter is ignored). A count the GPU lacks for 32F depth becomes the "
+     "next larger it has, else its largest (llvmpipe has only 4).",
+     "1|2|4|8"},
     kit::coneBiasParam(),
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
@@ -48,6 +67,7 @@ enum : uint32_t {
     kKernel = kit::paramIndex(kParams, "kernel"),
     kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
     kNoise = kit::paramIndex(kParams, "noise"),
+    kMsaa = kit::paramIndex(kParams, "msaa"),
     kConeBias = kit::paramIndex(kParams, "cone_bias"),
     kConstantBias = kit::paramIndex(kParams, "constant_bias"),
     kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
@@ -64,8 +84,13 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "the map with PCF then estimates how much light gets through every layer: 1 - alpha per "
                     "translucent surface, right on translucent surfaces too, but without colour (a red glass "
                     "casts a grey shadow: judged by the coverage model). The price is noise, which needs wide "
-                    "kernels that blur every edge; it changes every frame. Try kernel 1 to see the coin flips, "
-                    "and noise = per-texel under overlapping glass to see what shared random numbers do. Debug views: footprint, texel-grid and coverage (the map and its volume), and 'stochastic shadow map'.",
+                    "kernels that blur every edge; it changes every frame. msaa > 1 flips the coin per sample of a "
+                    "multisampled map instead (as stochastic transparency does), so the same kernel averages "
+                    "several flips per texel: less noise at the same blur, for more memory and fetches. Try "
+                    "kernel 1 to see the coin flips, then msaa 4 at the same kernel, and noise = per-texel under "
+                    "overlapping glass to see what shared random numbers do. Debug views: footprint, texel-grid "
+                    "and coverage (the map and its volume), and 'stochastic shadow map' (single-sample maps only: "
+                    "blank at msaa > 1).",
      .shadowGlsl = "stochastic-sm.glsl",
      .translucencyModel = TranslucencyModel::Coverage},
     kParams);
@@ -77,6 +102,18 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
                                        {.vertexFile = "translucent_caster.vert", .fragmentFile = "stochastic_sm_caster.frag"},
                                        error))
             return false;
+        if (!translucentMsProgram_.build(host(),
+                                         {.vertexFile = "translucent_caster.vert",
+                                          .fragmentFile = "stochastic_sm_caster.frag",
+                                          .defines = "STOCHASTIC_SM_MSAA 1"},
+                                         error))
+            return false;
+        // The sample counts this GL offers for multisample 32F depth textures, largest first.
+        GLint counts = 0;
+        glGetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, GL_DEPTH_COMPONENT32F, GL_NUM_SAMPLE_COUNTS, 1, &counts);
+        sampleCounts_.assign(size_t(std::max(counts, 0)), 0);
+        if (counts > 0)
+            glGetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, GL_DEPTH_COMPONENT32F, GL_SAMPLES, counts, sampleCounts_.data());
         target_.create(host(), "stochastic shadow map");
         mapUniforms_.create(host(), "stochastic shadow map uniforms");
         passUniforms_.create(host(), "stochastic light pass uniforms");
@@ -84,10 +121,29 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
         return true;
     }
 
+    // Samples per texel for the `msaa` choice: 0 for the single-sample map, else the smallest count
+    // the GL offers that is at least the one asked for, or its largest (as glTexImage2DMultisample
+    // rounds). What was used is the statistic "map samples per texel" (no log line: the choice is
+    // made every frame, and a count the GL lacks is no fault).
+    int mapSamples(int choice) const {
+        const int requested = 1 << choice;
+        if (requested <= 1) return 0;
+        int chosen = 0;
+        for (const GLint count : sampleCounts_)
+            if (count > 1 && count >= requested && (chosen == 0 || count < chosen)) chosen = count;
+        if (chosen == 0)
+            for (const GLint count : sampleCounts_) chosen = std::max(chosen, count > 1 ? int(count) : 0);
+        return chosen;
+    }
+
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const int resolution = params.asInt(kResolution);
-        if (target_.ensure({.resolution = resolution}))
-            host().registerDebugImage("stochastic shadow map", target_.depth(), DebugImageKind::Depth);
+        const int samples = mapSamples(params.asInt(kMsaa));
+        // The host's image viewer reads single-sample textures only: no debug image of a
+        // multisampled map (registered anyway, so the entry never names a deleted texture).
+        if (target_.ensure({.resolution = resolution, .samples = samples}))
+            host().registerDebugImage("stochastic shadow map", samples ? 0u : target_.depth(), DebugImageKind::Depth);
+        host().reportStatistic("map samples per texel", samples ? samples : 1);
         GpuPass pass(host(), "shadow map");
         const kit::FocusedLightSpace focused = kit::focusLightSpace(host(), frame, kit::readFit(params, kFit, kSnap), resolution);
         const LightSpace& lightSpace = focused.light;
@@ -99,20 +155,28 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(params.asFloat(kSlopeBias), params.asFloat(kConstantBias));
         host().drawScene(kit::culledDraw(DrawSet::OpaqueCasters, focused.cullPlanes), opaqueProgram_.use());
-        // The same depth test and writes: a kept translucent fragment is an opaque one.
-        host().drawScene(kit::culledDraw(DrawSet::TranslucentCasters, focused.cullPlanes), translucentProgram_.use());
+        // The same depth test and writes: a kept translucent fragment (or sample) is an opaque one.
+        const kit::Program& translucent = samples ? translucentMsProgram_ : translucentProgram_;
+        host().drawScene(kit::culledDraw(DrawSet::TranslucentCasters, focused.cullPlanes), translucent.use());
+        samples_ = samples;
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
         const bool bilinear = params.asBool(kHardwareFilter);
-        glBindTextureUnit(kit::kDepthMapUnit, target_.depth());
+        // One map is bound, on its own unit by type (sampler2DShadow or sampler2DMS); the other unit
+        // gets no texture, so it never holds one of the wrong type.
+        glBindTextureUnit(kit::kDepthMapUnit, samples_ ? 0u : target_.depth());
         glBindSampler(kit::kDepthMapUnit, host().sampler(bilinear ? SamplerKind::CompareLinear : SamplerKind::CompareNearest));
+        glBindTextureUnit(shared::stochastic_sm::kMultisampleMapUnit, samples_ ? target_.depth() : 0u);
         mapUniforms_.bind();
-        uniforms_.set({{}, params.asInt(kKernel), bilinear ? 1 : 0, params.asBool(kConeBias) ? 1.0f : 0.0f, 0.0f});
+        uniforms_.set({{}, params.asInt(kKernel), bilinear ? 1 : 0, params.asBool(kConeBias) ? 1.0f : 0.0f, samples_});
     }
 
     kit::Program opaqueProgram_;
     kit::Program translucentProgram_;
+    kit::Program translucentMsProgram_;   // STOCHASTIC_SM_MSAA: per-sample coin flips
+    std::vector<GLint> sampleCounts_;      // offered for multisample 32F depth, from setup()
+    int samples_ = 0;                      // of the map rendered this frame; 0 single-sample
     kit::LightTarget target_;
     kit::UniformBlock<kit::DepthMapUniforms> mapUniforms_;
     kit::UniformBlock<shared::stochastic::StochasticPassUniforms> passUniforms_;

@@ -1,9 +1,10 @@
 // Render targets from the light for techniques whose passes do more than kit::DepthMap's one depth
 // pass (stochastic-sm, cssm2, translucent-shadows): a framebuffer with a depth texture (its own
 // or another target's, to depth-test against without writing) and optionally one colour texture,
-// reallocated only when the resolution or a format changes. Also the kit depth map's block for a
-// light space, which shaders/depth_only.vert and translucent_caster.vert read (uShadowMatrix) and
-// the main pass's light_space.glsl / light_depth.glsl helpers take.
+// single-sample or multisample, reallocated only when the resolution, a format or the sample count
+// changes. Also the kit depth map's block for a light space, which shaders/depth_only.vert and
+// translucent_caster.vert read (uShadowMatrix) and the main pass's light_space.glsl /
+// light_depth.glsl helpers take.
 #pragma once
 
 #include <string>
@@ -49,6 +50,8 @@ struct LightTargetFormat {
     GLenum depthFormat = GL_DEPTH_COMPONENT32F;   // ignored when depthFrom is set
     GLenum colourFormat = 0;                      // 0: depth only
     const class LightTarget* depthFrom = nullptr; // attach this target's depth instead of owning one
+    int samples = 0;                              // > 0: GL_TEXTURE_2D_MULTISAMPLE textures of this many
+                                                  // samples (a count the format supports; see GL_SAMPLES)
     bool operator==(const LightTargetFormat&) const = default;
 };
 
@@ -98,8 +101,13 @@ public:
 private:
     Texture texture(GLenum format, const char* what) {
         const std::string label = std::string(label_) + " " + what;
-        Texture texture = makeTexture(*host_, {.target = GL_TEXTURE_2D, .internalFormat = format, .width = format_.resolution,
-                                               .height = format_.resolution, .label = label.c_str()});
+        const bool multisample = format_.samples > 0;
+        Texture texture = makeTexture(*host_, {.target = GLenum(multisample ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D),
+                                               .internalFormat = format, .width = format_.resolution,
+                                               .height = format_.resolution, .samples = format_.samples,
+                                               .label = label.c_str()});
+        // A multisample texture has no sampler state (texelFetch only): setting it is an error.
+        if (multisample) return texture;
         // Complete without a sampler object; techniques bind host samplers for their lookups.
         glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);

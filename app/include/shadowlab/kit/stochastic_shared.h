@@ -55,9 +55,8 @@ SHADOWLAB_STOCHASTIC_FN uint stochasticCombine(uint h, uint value) {
     return stochasticHash(h ^ (value + 0x9e3779b9u + (h << 6u) + (h >> 2u)));
 }
 
-// xi in [0, 1) with 24 bits: keeping a fragment when xi < alpha keeps it with probability alpha
-// exactly (alpha = 0 never, alpha = 1 always).
-SHADOWLAB_STOCHASTIC_FN float stochasticXi(uint frameSeed, uint texelX, uint texelY, uint object, uint primitive,
+// The hash behind xi (below), before it is turned into a number in [0, 1).
+SHADOWLAB_STOCHASTIC_FN uint stochasticKey(uint frameSeed, uint texelX, uint texelY, uint object, uint primitive,
                                            uint channel, int noise) {
     uint h = stochasticCombine(stochasticHash(frameSeed), texelX);
     h = stochasticCombine(h, texelY);
@@ -65,8 +64,28 @@ SHADOWLAB_STOCHASTIC_FN float stochasticXi(uint frameSeed, uint texelX, uint tex
         h = stochasticCombine(h, object);
         h = stochasticCombine(h, primitive);
     }
-    h = stochasticCombine(h, channel);
+    return stochasticCombine(h, channel);
+}
+
+// xi in [0, 1) with 24 bits: keeping a fragment when xi < alpha keeps it with probability alpha
+// exactly (alpha = 0 never, alpha = 1 always).
+SHADOWLAB_STOCHASTIC_FN float stochasticXiOfKey(uint h) {
     return float(h >> 8u) * (1.0f / 16777216.0f);
+}
+
+SHADOWLAB_STOCHASTIC_FN float stochasticXi(uint frameSeed, uint texelX, uint texelY, uint object, uint primitive,
+                                           uint channel, int noise) {
+    return stochasticXiOfKey(stochasticKey(frameSeed, texelX, texelY, object, primitive, channel, noise));
+}
+
+// xi of one sample of a multisampled texel (stochastic-sm's msaa; Enderton et al. 2010 decide per
+// sample): the texel's key with the sample index folded in last, so every sample draws its own
+// number. The noise modes keep their meaning: per-texel still leaves out object and triangle, so
+// all surfaces over a sample share its number (1 - max p per sample).
+SHADOWLAB_STOCHASTIC_FN float stochasticSampleXi(uint frameSeed, uint texelX, uint texelY, uint object, uint primitive,
+                                                 uint channel, uint sampleIndex, int noise) {
+    return stochasticXiOfKey(
+        stochasticCombine(stochasticKey(frameSeed, texelX, texelY, object, primitive, channel, noise), sampleIndex));
 }
 
 SHADOWLAB_SHARED_END
@@ -91,6 +110,12 @@ constexpr ParamDesc noiseParam() {
 float fragmentXi(uint object, uint channel) {
     uvec2 texel = uvec2(gl_FragCoord.xy);
     return stochasticXi(uFrameSeed, texel.x, texel.y, object, uint(gl_PrimitiveID), channel, uNoise);
+}
+// xi of sample `sampleIndex` of this fragment's texel (multisampled maps). gl_FragCoord is the
+// texel centre unless the shader runs per sample; this one reads no gl_SampleID, so it does not.
+float fragmentSampleXi(uint object, uint channel, int sampleIndex) {
+    uvec2 texel = uvec2(gl_FragCoord.xy);
+    return stochasticSampleXi(uFrameSeed, texel.x, texel.y, object, uint(gl_PrimitiveID), channel, uint(sampleIndex), uNoise);
 }
 #endif
 
