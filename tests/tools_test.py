@@ -6,6 +6,8 @@
 A small synthetic fixture, written here, holds old-style rows (gpu_frame_ms, no G-buffer flag) and
 new-style rows (frame_ms, shadow_term_ms, floors, gbuffer_every_frame), as JSON and as CSV. The
 tools also run end to end on the committed GPU results in docs/results/h100-2026-11-25/*.json.
+Seed 001's specs (assets/bench/seed001.json) have a synthetic fixture of their own, with an N^2
+composited-translucent loop (Seed001Composited).
 Outputs go to a temporary directory. Needs python3-matplotlib: when the interpreter that runs this
 file lacks it (a pyenv or venv python3 first on PATH), the file runs itself again with
 /usr/bin/python3, the interpreter Debian's python3-matplotlib belongs to (as shadowlab report does).
@@ -415,6 +417,7 @@ class Fixture(unittest.TestCase):
                      "triangles-forest.png"):
             self.assertIn(name, names)
         self.assertFalse([n for n in names if n.startswith("triangles-all")])
+        self.assertFalse([n for n in names if n.startswith("seed001-")])    # no seed 001 rows, no seed 001 charts
         # The older form, as shadowlab report calls it (a process of its own, its stdout the list).
         legacy = run_tool("charts.py", self.new_path, os.path.join(out, "legacy"), "--dpi", "40")
         self.assertEqual(legacy.returncode, 0, legacy.stderr)
@@ -496,6 +499,188 @@ class Fixture(unittest.TestCase):
         self.assertIn("| cube | 11 | false | true | 6.421 | 4.154 | 0.65x | 4.134 | 0.64x |", text)  # gather, folded against taps
         with open(os.path.join(H200, "ratios.md")) as f:
             self.assertEqual(f.read(), text)
+
+
+def seed001_row(spec, technique, quads, frame, passes, main, **extra):
+    """A row of seed 001's specs (assets/bench/seed001.json, seed001-composited.json) on glass-field."""
+    row = new_row(technique, "glass-field", frame=frame, main=main, passes=passes, term=0.01, floor_main=1.2,
+                  spec=spec, width=1920, height=1080, pixels=1920 * 1080, frames=60, **{"scene.quads": float(quads)})
+    row.update(extra)
+    return row
+
+
+def composited_draws(quads):
+    """The synthetic per-quad loop of composited-translucent: N^2 draws (seed 001 sec. 5.3.1: two
+    passes per quad, each drawing the quads nearer the light) plus a constant."""
+    return 0.1 * quads * quads + 0.1
+
+
+def seed001_timing_rows():
+    """seed001.json's seed001-timing, synthetic and every 100 quads (the spec: every 20)."""
+    rows = []
+    for n in range(0, 2001, 100):
+        rows.append(seed001_row("seed001-timing", "shadowmap", n, 1.8 + 0.00025 * n, 0.65, 1.17 + 0.00025 * n))
+        rows.append(seed001_row("seed001-timing", "translucent-shadows", n, 3.0 + 0.0004 * n, 1.8, 1.2 + 0.0004 * n))
+        rows.append(seed001_row("seed001-timing", "stochastic-sm", n, 7.9 + 0.0039 * n, 0.9, 7.0 + 0.0039 * n,
+                                **{"param.kernel": "9"}))
+        for kernel, base, slope in ((9, 11.3, 0.0048), (3, 4.5, 0.0012)):
+            rows.append(seed001_row("seed001-timing", "cssm2", n, base + slope * n, 2.7, base - 2.7 + slope * n,
+                                    **{"param.kernel": str(kernel)}))
+    return rows
+
+
+def seed001_composited_rows():
+    """seed001-composited.json's two specs, synthetic, at the spec's counts. composited-translucent's
+    frame is 3 ms + its loop: within 16.7 ms (60 Hz) up to 11 quads (15.2 ms; 12: 17.5) and within
+    33.3 ms (30 Hz) up to 17 (32.0; 18: 35.5)."""
+    rows = []
+    for n in range(0, 31):
+        rows.append(seed001_row("seed001-composited-fine", "shadowmap", n, 1.8 + 0.00025 * n, 0.65, 1.17))
+        rows.append(seed001_row("seed001-composited-fine", "translucent-shadows", n, 3.0 + 0.0004 * n, 1.8, 1.2))
+        d = composited_draws(n)
+        rows.append(seed001_row("seed001-composited-fine", "composited-translucent", n, 3.0 + d, 1.8, 1.2 + d,
+                                translucent_draws_ms=d))
+    for n in list(range(0, 1001, 100)) + [1500, 2000]:
+        d = composited_draws(n)
+        rows.append(seed001_row("seed001-composited-coarse", "composited-translucent", n, 3.0 + d, 1.8, 1.2 + d,
+                                frames=2, translucent_draws_ms=d))
+    return rows
+
+
+class Seed001Composited(unittest.TestCase):
+    """Seed 001 Figs. 5.3.E-F (sec. 5.3.1): ratios.py's composited section and charts.py's two seed001
+    charts on synthetic rows whose composited loop grows as N^2, in two files as the two spec files
+    write them (seed001.json, seed001-composited.json) and in one."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory(prefix="shadowlab-seed001-test-")
+        cls.timing = os.path.join(cls.tmp.name, "seed001.json")
+        cls.composited = os.path.join(cls.tmp.name, "seed001-composited.json")
+        cls.both = os.path.join(cls.tmp.name, "both.json")
+        for path, rows in ((cls.timing, seed001_timing_rows()), (cls.composited, seed001_composited_rows()),
+                           (cls.both, seed001_timing_rows() + seed001_composited_rows())):
+            with open(path, "w") as f:
+                json.dump(rows, f)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def rows_of(self, spec):
+        return [r for r in results.load(self.composited)
+                if r["spec"] == spec and r["technique"] == "composited-translucent"]
+
+    def test_exponent_of_the_loop_near_two(self):
+        draws = [(r["scene.quads"], r["translucent_draws_ms"]) for r in self.rows_of("seed001-composited-coarse")]
+        exponent, n = ratios.loglog_exponent(draws)
+        self.assertAlmostEqual(exponent, 2.0, delta=0.01)
+        self.assertEqual(n, 12)                                # 100-1000, 1500, 2000: 0 quads is left out
+        # A constant loop has exponent 0; one count is no fit.
+        self.assertAlmostEqual(ratios.loglog_exponent([(100, 5.0), (1000, 5.0)])[0], 0.0)
+        self.assertEqual(ratios.loglog_exponent([(0, 0.1), (50, 250.1), (100, 1000.1)]), (None, 1))
+
+    def test_counts_within_60_and_30_hz(self):
+        rows = self.rows_of("seed001-composited-fine") + self.rows_of("seed001-composited-coarse")
+        points = sorted({r["scene.quads"]: r["frame_ms"] for r in rows}.items())
+        self.assertEqual(ratios.within_budget(points, 16.7), (11, 12, 12))
+        self.assertEqual(ratios.within_budget(points, 33.3), (17, 18, 18))
+        # The fine spec ends at 30: a budget met there has the coarse spec's 100 as the next count.
+        self.assertEqual(ratios.within_budget(points, 100.0)[:2], (30, 100))
+        # A noisy curve: the largest count within budget is still the answer, the early miss said.
+        noisy = [(0, 3.0), (1, 18.0), (2, 10.0), (3, 20.0)]
+        self.assertEqual(ratios.within_budget(noisy, 16.7), (2, 3, 1))
+        self.assertIn("though over it at 1", ratios.budget_text(noisy, 60, 16.7))
+        self.assertIn("at no measured count (0: 20.000 ms)", ratios.budget_text([(0, 20.0), (1, 30.0)], 60, 16.7))
+        self.assertIn("at every measured count, up to 1 quads", ratios.budget_text([(0, 2.0), (1, 3.0)], 60, 16.7))
+
+    def test_ratios_section(self):
+        rc, text = call(ratios, self.timing, self.composited)
+        self.assertEqual(rc, 0)
+        self.assertIn("## Seed 001: translucent casters on glass-field", text)       # Figs. 5.3.A-D, as before
+        section = text.split("## Seed 001: composited translucent shadows on glass-field")[1]
+        self.assertIn("| spec | quads | frame ms | translucent draws ms | translucent-shadows frame ms | "
+                      "frame / translucent-shadows |", section)                        # one file: no file column
+        counts = [line.split(" | ")[1] for line in section.splitlines() if line.startswith("| fine |")]
+        self.assertEqual(counts, ["0", "1", "2", "5", "10", "20", "30"])
+        self.assertIn("| fine | 10 | 13.100 | 10.100 | 3.004 | 4.36x |", section)
+        counts = [line.split(" | ")[1] for line in section.splitlines() if line.startswith("| coarse |")]
+        self.assertEqual(counts, ["0", "500", "1000", "1500", "2000"])
+        # translucent-shadows at 500 quads is in the other file (run): no ratio across runs.
+        self.assertIn("| coarse | 500 | 25003.100 | 25000.100 | n/a | n/a |", section)
+        self.assertIn("| coarse | 0 | 3.100 | 0.100 | 3.000 | 1.03x |", section)   # the fine spec's, same file
+        self.assertIn("at most 16.7 ms (60 Hz) up to 11 quads (12: 17.500 ms)", section)
+        self.assertIn("at most 33.3 ms (30 Hz) up to 17 quads (18: 35.500 ms)", section)
+        self.assertIn("real time only for single-digit counts, here 11 quads at 60 Hz", section)
+        self.assertIn("translucent draws ms grows as quads^2.00", section)
+        self.assertIn("12 counts 100-2000", section)
+        # One run holding both spec files' rows: seed001-timing's translucent-shadows at 500.
+        rc, text = call(ratios, self.both)
+        self.assertIn("| coarse | 500 | 25003.100 | 25000.100 | 3.200 | 7813.47x |", text)
+        # A curve within 60 Hz to 7 quads only: the seed's single digits.
+        rows = results.load(self.composited)
+        for r in rows:
+            if r["technique"] == "composited-translucent":
+                r["frame_ms"] = 3.1 + 0.25 * r["scene.quads"] ** 2
+        lines, _ = ratios.section_seed001_composited(results.by_source(rows))
+        self.assertIn("up to 7 quads (8: 19.100 ms)", "\n".join(lines))
+        self.assertIn("single-digit here too", "\n".join(lines))
+        # No composited rows, no section (and the Figs. 5.3.A-D section as before).
+        rc, text = call(ratios, self.timing)
+        self.assertEqual(rc, 0)
+        self.assertIn("## Seed 001: translucent casters on glass-field", text)
+        self.assertNotIn("composited", text)
+
+    def test_charts_written(self):
+        out = os.path.join(self.tmp.name, "charts")
+        rc, printed = call(charts, self.timing, self.composited, "--out", out, "--dpi", "40")
+        self.assertEqual(rc, 0)
+        names = {os.path.basename(p): p for p in printed.split()}
+        for name in ("seed001-quads.png", "seed001-composited-fine.png"):
+            self.assertIn(name, names)
+            self.assertGreater(os.path.getsize(names[name]), 1000, name)
+            with open(names[name], "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n", name)
+        # Without the composited specs: the 0-2000 chart only.
+        rc, printed = call(charts, self.timing, "--out", os.path.join(self.tmp.name, "timing"), "--dpi", "40")
+        self.assertEqual(rc, 0)
+        names = [os.path.basename(p) for p in printed.split()]
+        self.assertIn("seed001-quads.png", names)
+        self.assertNotIn("seed001-composited-fine.png", names)
+
+    def test_quads_chart_lines_and_styles(self):
+        # The two spec files' runs on one chart, each curve from one file.
+        fig, info = charts.seed001_quads_figure(results.load([self.timing, self.composited]))
+        self.assertEqual(list(info["series"]), ["shadowmap", "stochastic-sm 9x9", "cssm2 9x9", "cssm2 3x3",
+                                                "translucent-shadows", "composited-translucent"])
+        self.assertEqual(info["scales"], ("linear", "log"))   # 1.8 ms to 400 s: decades apart
+        self.assertIn("rows of 2 files", fig.axes[0].get_title())
+        self.assertIn("composited-translucent: 13 counts, 2 timed frames each", fig.axes[0].get_title())
+        lines = {ln.get_label(): ln for ln in fig.axes[0].get_lines()}
+        for text, (technique, points) in info["series"].items():
+            self.assertEqual(matplotlib.colors.to_hex(lines[text].get_color()), results.style(technique)[0])
+            self.assertEqual(lines[text].get_marker(), results.style(technique)[1])
+            self.assertEqual(points[-1][0], 2000.0)
+        # cssm2's two kernels: one colour and marker, two line styles.
+        self.assertNotEqual(lines["cssm2 9x9"].get_linestyle(), lines["cssm2 3x3"].get_linestyle())
+        self.assertIn("16.7 ms (60 Hz)", lines)
+        matplotlib.pyplot.close(fig)
+        # Two runs of one spec: a curve each, told apart by file.
+        fig, info = charts.seed001_quads_figure(results.load([self.timing, self.both]))
+        self.assertIn("cssm2 3x3 [both.json]", info["series"])
+        self.assertIn("cssm2 3x3 [seed001.json]", info["series"])
+        self.assertIn("composited-translucent", info["series"])
+        matplotlib.pyplot.close(fig)
+
+        fig, info = charts.seed001_fine_figure(results.load(self.composited))
+        self.assertEqual(list(info["series"]), ["shadowmap", "translucent-shadows", "composited-translucent"])
+        self.assertEqual([x for x, _ in info["draws"]["composited-translucent"][1]], [float(n) for n in range(31)])
+        lines = {ln.get_label(): ln for ln in fig.axes[0].get_lines()}
+        draws = lines["composited-translucent: translucent draws (inside the main pass)"]
+        self.assertEqual(draws.get_linestyle(), "--")
+        self.assertEqual(matplotlib.colors.to_hex(draws.get_color()), results.style("composited-translucent")[0])
+        self.assertEqual(max(x for x, _ in info["series"]["shadowmap"][1]), 30.0)   # the fine spec's rows only
+        matplotlib.pyplot.close(fig)
 
 
 def stress_row(technique, case, value, threshold, fail=False, better=False, skipped=False):

@@ -20,6 +20,16 @@ Writes PNG files into OUT_DIR and prints their paths, one a line:
                                   scene.segments): only that sweep's rows, never a mix of scenes;
                                   -<WxH> and -<file> are added when a scene was swept at several
                                   sizes or in several files (each file is one run)
+  seed001-quads.png               seed 001 Figs. 5.3.A-E: GPU ms per frame against translucent quads
+                                  (0-2000), the seed001-timing techniques (cssm2 9x9 and 3x3 two
+                                  lines) and composited-translucent's seed001-composited-coarse rows
+  seed001-composited-fine.png     seed 001 Fig. 5.3.F: GPU ms per frame against 0-30 quads
+                                  (seed001-composited-fine), and composited-translucent's per-quad
+                                  loop (translucent_draws_ms) dashed. Both take the rows of every
+                                  file given (seed001.json and seed001-composited.json are two
+                                  runs; a curve is one file's, labelled [file] when two files
+                                  have it) and draw 16.7 and 33.3 ms (60 and 30 Hz) dotted where
+                                  the curves cross them
 
 On every chart a technique has the colour and marker of results.STYLE. An axis is logarithmic
 when its values span more than a factor of 10. On the Pareto charts `none` is a pair of reference
@@ -264,6 +274,128 @@ def triangle_chart_names(sweeps):
     return named
 
 
+# Seed 001 sec. 5.3.1: its figures plot time against the number of translucent quads, one curve
+# per technique (and per kernel: cssm2 9x9 and 3x3 are two, Fig. 5.3.D). assets/bench/seed001.json
+# holds seed001-timing, assets/bench/seed001-composited.json the two composited specs: their rows
+# usually come in two files (two runs), and a chart draws both, each curve from one file.
+SEED001_QUADS_SPECS = ("seed001-timing", "seed001-composited-coarse")    # Figs. 5.3.A-E, 0-2000
+SEED001_FINE_SPEC = "seed001-composited-fine"                            # Fig. 5.3.F, 0-30
+COMPOSITED = "composited-translucent"
+DRAWS = "translucent_draws_ms"
+# 60 and 30 Hz frames: where seed 001 draws the line for composited shadows (real time only for
+# single-digit counts); a reference line when the curves cross it.
+FRAME_BUDGETS = ((60, 16.7), (30, 33.3))
+
+
+def quad_series(rows, column=X):
+    """label -> (technique, [(quads, value)]) sorted by quads, one series per (results.kernel_label,
+    file): the label gains ' [file]' when one kernel label comes from several files (as on the
+    sweep charts). Only series with values at two counts or more, in first-seen order."""
+    series = {}
+    for row in results.techniques(rows, NOT_CHARTED):
+        x, y = results.number(row.get("scene.quads")), results.number(row.get(column))
+        if x is not None and y is not None:
+            key = (results.kernel_label(row), row.get("_source", ""))
+            series.setdefault(key, (row["technique"], []))[1].append((x, y))
+    series = {k: (t, sorted(p)) for k, (t, p) in series.items() if len({x for x, _ in p}) > 1}
+    labels = [label for label, _ in series]
+    # A file by its name, or by its path as given when two files share a name (two runs'
+    # seed001.json), so no two curves share a label.
+    sources = {source for _, source in series}
+    names = {source: os.path.basename(source) for source in sources}
+    if len(set(names.values())) < len(names):
+        names = {source: source for source in sources}
+    return {label + (f" [{names[source]}]" if labels.count(label) > 1 else ""): value
+            for (label, source), value in series.items()}
+
+
+def plot_quad_series(ax, series, suffix="", ls=None):
+    """One line per label in the technique's colour and marker; a technique's second label (cssm2
+    3x3 after 9x9) takes the next line style, as on the sweep charts."""
+    count = {}
+    for text, (technique, points) in series.items():
+        colour, marker = results.style(technique)
+        index = count.get(technique, 0)
+        count[technique] = index + 1
+        ax.plot([p[0] for p in points], [p[1] for p in points], marker=marker, ms=3, color=colour,
+                ls=ls or LINESTYLES[index % len(LINESTYLES)], label=text + suffix)
+
+
+def budget_lines(ax, ys):
+    """The 60 and 30 Hz frame times as grey lines, each only when the curves reach it (a line far
+    above every curve would squash them)."""
+    for hz, budget in FRAME_BUDGETS:
+        if ys and min(ys) <= budget <= max(ys):
+            ax.axhline(budget, color="#888888", ls=":", lw=1, label=f"{budget:g} ms ({hz} Hz)", zorder=1)
+
+
+def seed001_order(series):
+    """Labels in the order of results.STYLE, a technique's labels in the rows' order (the spec
+    sweeps cssm2's kernel 9 then 3: 9x9, the seed's own, gets the solid line)."""
+    ids = list(results.STYLE)
+    seen = list(series)
+    return dict(sorted(series.items(), key=lambda kv: (ids.index(kv[1][0]) if kv[1][0] in ids else len(ids),
+                                                        seen.index(kv[0]))))
+
+
+def seed001_quads_figure(rows):
+    """Seed 001 Figs. 5.3.A-E: GPU ms per frame against translucent quads (0-2000), one line per
+    technique and kernel of seed001-timing, plus composited-translucent's seed001-composited-coarse
+    rows. Returns (figure, info) or None; info holds series (label -> (technique, points)), scales."""
+    rows = [r for r in rows if r.get("spec") in SEED001_QUADS_SPECS]
+    series = seed001_order(quad_series(rows))
+    if not series:
+        return None
+    fig, ax = plt.subplots(figsize=(9, 6))
+    plot_quad_series(ax, series)
+    ys = [y for _, pts in series.values() for _, y in pts]
+    # Composited shadows grow as N^2 (seed 001 sec. 5.3.1), the others about linearly: a log y axis
+    # when the curves span decades keeps the cheap techniques readable.
+    scales = ("linear", set_scale(ax, "y", ys))
+    budget_lines(ax, ys)
+    ax.set_xlabel("translucent quads (scene.quads)")
+    ax.set_ylabel("GPU milliseconds per frame (median)")
+    # The coarse spec times few frames at few counts (O(N^2) draws a frame): said in the title.
+    coarse = [r for r in rows if r.get("technique") == COMPOSITED]
+    frames = sorted({results.canonical(r.get("frames")) for r in coarse if "frames" in r}, key=float)
+    extra = (f"{COMPOSITED}: {len({results.canonical(r.get('scene.quads')) for r in coarse})} counts"
+             + (f", {'/'.join(frames)} timed frames each" if frames else "")) if coarse else ""
+    gpu = rows[0].get("gpu", "")
+    title(ax, f"{rows[0].get('scene', '')}: frame time against translucent quads (seed 001 Figs. 5.3.A-E)"
+          + (f" ({gpu})" if gpu else ""), rows, extra)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    layout(fig)
+    return fig, {"series": series, "scales": scales}
+
+
+def seed001_fine_figure(rows):
+    """Seed 001 Fig. 5.3.F: GPU ms per frame against translucent quads (0-30) of the
+    seed001-composited-fine rows, one solid line per technique, and composited-translucent's
+    per-quad loop ('translucent draws', inside its main pass) dashed in its colour. Returns
+    (figure, info) or None; info holds series and draws (label -> (technique, points)), scales."""
+    rows = [r for r in rows if r.get("spec") == SEED001_FINE_SPEC]
+    series = seed001_order(quad_series(rows))
+    if not series:
+        return None
+    draws = quad_series([r for r in rows if r.get("technique") == COMPOSITED], DRAWS)
+    fig, ax = plt.subplots(figsize=(9, 6))
+    plot_quad_series(ax, series, ls="-")
+    plot_quad_series(ax, draws, suffix=": translucent draws (inside the main pass)", ls="--")
+    ys = [y for _, pts in list(series.values()) + list(draws.values()) for _, y in pts]
+    scales = ("linear", set_scale(ax, "y", ys))
+    budget_lines(ax, ys)
+    ax.set_xlabel("translucent quads (scene.quads)")
+    ax.set_ylabel("GPU milliseconds (median)")
+    gpu = rows[0].get("gpu", "")
+    title(ax, f"{rows[0].get('scene', '')}: composited translucent shadows, 0-30 quads (seed 001 Fig. 5.3.F)"
+          + (f" ({gpu})" if gpu else ""), rows)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    layout(fig)
+    return fig, {"series": series, "draws": draws, "scales": scales}
+
+
 def save(made, path, dpi):
     if made is None:
         return None
@@ -297,6 +429,8 @@ def write_charts(rows, out_dir, dpi=120):
                             os.path.join(out_dir, f"resolution-{scene}.png"), dpi))
     for sweep, name in triangle_chart_names(results.scene_sweeps(rows)):
         written.append(save(triangles_figure(sweep), os.path.join(out_dir, name + ".png"), dpi))
+    written.append(save(seed001_quads_figure(rows), os.path.join(out_dir, "seed001-quads.png"), dpi))
+    written.append(save(seed001_fine_figure(rows), os.path.join(out_dir, "seed001-composited-fine.png"), dpi))
     return [p for p in written if p]
 
 

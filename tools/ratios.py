@@ -14,7 +14,9 @@ frame-time overhead of shadowmap over none; host CPU time per frame; time agains
 (every sweep of one scene's `scene.*` parameter with none and shadowmap rows); adaptive PCF and
 VSM against PCF; every technique at the Fig. 4.15 settings; PCSS against light size; issue 10's
 fast passes (fast-passes.json: moment passes against the depth floor, PCF gather against taps,
-the host depth pre-pass on forest, PCSS's sample grids).
+the host depth pre-pass on forest, PCSS's sample grids); seed 001's translucent casters against the
+quad count (seed001.json: Figs. 5.3.A-D) and composited translucent shadows (seed001-composited.json:
+Figs. 5.3.E-F; the counts inside a 60 Hz and a 30 Hz frame and the exponent of its per-quad loop).
 
 Columns beyond frame time: `technique passes ms` (technique_passes_ms, the technique's own passes
 summed), `shadow term ms` (shadow_term_ms: the main pass with the technique minus the main pass
@@ -24,6 +26,7 @@ see tools/results.py; values it derived from rows measured with the G-buffer on 
 marked with a dagger.
 """
 import argparse
+import math
 import os
 import statistics
 import sys
@@ -360,9 +363,7 @@ def section_seed001(runs):
     deltas, tables = [], [t]
     for source, s in runs.items():
         rows = results.where(s, spec="seed001-timing")
-        def name(r):
-            kernel = results.canonical(r.get("param.kernel"))
-            return f"{r['technique']} {kernel}x{kernel}" if r["technique"] in ("cssm2", "stochastic-sm") else r["technique"]
+        name = results.kernel_label
         counts = sorted({int(results.number(r.get("scene.quads")) or 0) for r in rows})
         shown = [c for c in counts if c % 500 == 0]
         for technique in dict.fromkeys(name(r) for r in rows):
@@ -389,6 +390,137 @@ def section_seed001(runs):
     return out, tables
 
 
+# Seed 001 Figs. 5.3.E-F (assets/bench/seed001-composited.json).
+COMPOSITED = "composited-translucent"
+COMPOSITED_FINE_COUNTS = (0, 1, 2, 5, 10, 20, 30)
+# The 60 and 30 Hz frames, to one decimal as the section prints them (16.7 ms, not 1000/60 = 16.67:
+# a frame of 16.68 ms counts as 60 Hz here).
+FRAME_BUDGETS = ((60, 16.7), (30, 33.3))
+# The fit leaves out the small counts, where the quad-independent part of the loop's time (its
+# scope, state changes) is not yet small against the N^2 draws.
+EXPONENT_MIN_QUADS = 100
+
+
+def quads(row):
+    """The row's scene.quads as an int, or None."""
+    value = results.number((row or {}).get("scene.quads"))
+    return int(value) if value is not None else None
+
+
+def loglog_exponent(points, min_x=EXPONENT_MIN_QUADS):
+    """(k, n): the slope k of log y against log x by least squares over the n points (x, y) with
+    x >= min_x and y > 0, the exponent of y ~ x^k; (None, n) with fewer than two distinct x."""
+    pts = [(math.log(x), math.log(y)) for x, y in points
+           if x is not None and y is not None and x >= min_x and x > 0 and y > 0]
+    if len({x for x, _ in pts}) < 2:
+        return None, len(pts)
+    mx = sum(x for x, _ in pts) / len(pts)
+    my = sum(y for _, y in pts) / len(pts)
+    sxx = sum((x - mx) ** 2 for x, _ in pts)
+    sxy = sum((x - mx) * (y - my) for x, y in pts)
+    return sxy / sxx, len(pts)
+
+
+def within_budget(points, budget):
+    """(largest, above, first_over) over the points (count, frame ms): the largest count whose frame
+    is at most `budget` ms, the next measured count above it (every count above the largest is
+    over budget), and the smallest count over budget (below `largest` when the curve is noisy).
+    Each None when there is none."""
+    points = sorted(points)
+    ok = [c for c, t in points if t <= budget]
+    over = [c for c, t in points if t > budget]
+    largest = max(ok) if ok else None
+    above = next((c for c, _ in points if largest is None or c > largest), None)
+    return largest, above, (min(over) if over else None)
+
+
+def budget_text(points, hz, budget):
+    """'at most 16.7 ms (60 Hz) up to 7 quads (8: 17.214 ms)' for the points (count, frame ms)."""
+    frames = dict(points)
+    largest, above, first_over = within_budget(points, budget)
+    head = f"at most {budget:g} ms ({hz} Hz)"
+    if largest is None:
+        return f"{head} at no measured count ({above}: {frames[above]:.3f} ms)"
+    if above is None:
+        return f"{head} at every measured count, up to {largest} quads"
+    text = f"{head} up to {largest} quads ({above}: {frames[above]:.3f} ms)"
+    if first_over is not None and first_over < largest:
+        text += f", though over it at {first_over}"
+    return text
+
+
+def section_seed001_composited(runs):
+    """Seed 001 Figs. 5.3.E-F: composited translucent shadows (sec. 4.2.3) against the quad count,
+    from the specs seed001-composited-fine (0-30 quads, step 1) and seed001-composited-coarse
+    (0-2000), both in assets/bench/seed001-composited.json. Within each run: the frame and the
+    per-quad loop ('translucent draws', the seed's one scope, sec. 5.3.1) at a few counts and
+    against translucent-shadows' frame; the largest count inside a 60 Hz and a 30 Hz frame, against
+    the seed's 'real time only for single-digit counts'; and the exponent of the loop's time in the
+    quad count, which the seed's partition (every quad a partition of its own: two passes per quad,
+    each drawing the quads nearer the light) puts at about 2."""
+    out = ["\n## Seed 001: composited translucent shadows on glass-field, against the quad count (Figs. 5.3.E-F)\n"]
+    t = Table(["spec", "quads", "frame ms", "translucent draws ms", "translucent-shadows frame ms",
+               "frame / translucent-shadows"],
+              ["---", "---:", "---:", "---:", "---:", "---:"])
+    bullets = []
+    for source, s in runs.items():
+        fine = results.where(s, spec="seed001-composited-fine")
+        coarse = results.where(s, spec="seed001-composited-coarse")
+        # translucent-shadows at the same count, same run (file): the fine spec's own rows, else
+        # seed001-timing's (every 20 quads: every coarse count) where the run holds both specs.
+        # assets/bench/seed001-composited.json is a run of its own, so its coarse rows above 30
+        # quads have no ratio: every ratio here is within one run.
+        against = {}
+        for spec in ("seed001-timing", "seed001-composited-fine"):
+            for r in results.where(s, spec=spec, technique="translucent-shadows"):
+                against[quads(r)] = r
+        for spec, rows, shown in (("fine", fine, lambda c: c in COMPOSITED_FINE_COUNTS),
+                                  ("coarse", coarse, lambda c: c % 500 == 0)):
+            for r in sorted(results.where(rows, technique=COMPOSITED), key=lambda r: quads(r) or 0):
+                count = quads(r)
+                if count is None or not shown(count):
+                    continue
+                base = against.get(count)
+                t.add(source, [spec, count, ms(r, "frame_ms"), ms(r, "translucent_draws_ms"),
+                               ms(base, "frame_ms"),
+                               quotient(r["frame_ms"], base["frame_ms"], "{:.2f}x") if base else "n/a"])
+        # Every measured count; at a count both specs measured (0), the fine spec's row (60 timed
+        # frames, the coarse spec's 2).
+        frames = {}
+        for r in results.where(coarse, technique=COMPOSITED) + results.where(fine, technique=COMPOSITED):
+            if quads(r) is not None and results.number(r.get("frame_ms")) is not None:
+                frames[quads(r)] = r["frame_ms"]
+        if frames:
+            points = sorted(frames.items())
+            largest, above, _ = within_budget(points, FRAME_BUDGETS[0][1])
+            if largest is None:
+                verdict = "here not even 0 quads at 60 Hz"
+            elif above is None:
+                verdict = f"here every measured count at 60 Hz, up to {largest}: the sweep ends first"
+            elif largest < 10:
+                verdict = "single-digit here too"
+            else:
+                verdict = f"here {largest} quads at 60 Hz"
+            bullets.append((source, f"{COMPOSITED}: frame "
+                            + ", ".join(budget_text(points, hz, budget) for hz, budget in FRAME_BUDGETS)
+                            + f"; seed 001 sec. 5.3.1 (RTX 3070): real time only for single-digit counts, {verdict}"))
+        draws = [(quads(r), results.number(r.get("translucent_draws_ms")))
+                 for r in results.where(coarse, technique=COMPOSITED)]
+        exponent, n = loglog_exponent(draws)
+        if exponent is not None:
+            used = sorted(c for c, y in draws if c is not None and c >= EXPONENT_MIN_QUADS and y and y > 0)
+            bullets.append((source, f"translucent draws ms grows as quads^{exponent:.2f} (log-log least squares "
+                            f"over the coarse spec's {n} counts {used[0]}-{used[-1]}; seed 001 sec. 4.2.3's "
+                            "partition, two passes per quad each drawing the quads nearer the light, predicts "
+                            "about 2)"))
+    if t.rows:
+        out += t.lines()
+    if bullets:
+        several = len({source for source, _ in bullets}) > 1
+        out += [""] + [f"- {os.path.basename(source) + ': ' if several else ''}{line}" for source, line in bullets]
+    return out, [t]
+
+
 def report(rows):
     """The Markdown text of every section for the rows (results.load)."""
     runs = results.by_source(rows)
@@ -407,7 +539,8 @@ def report(rows):
                      "frame, so their frame and main-pass times include it.\n")
     body, tables = [], []
     for section in (section_depth_floor, section_overhead, section_cpu, section_triangles, section_kernels,
-                    section_fig415, section_light_size, section_fast_passes, section_seed001):
+                    section_fig415, section_light_size, section_fast_passes, section_seed001,
+                    section_seed001_composited):
         text, made = section(runs)
         if any(t.rows for t in made):
             body += text

@@ -29,8 +29,8 @@ Loader bookkeeping lives in keys that start with `_`: `_source` (the file a row 
 one file are one run, and only rows of one run are ever compared) and `_derived`.
 
 Also here: grouping by (scene, size), the parameter string of a row, the Pareto front, the log
-scale rule, the scene sweeps behind the triangles chart, and STYLE, the fixed colour and marker of
-every technique. Standard library only.
+scale rule, the scene sweeps behind the triangles chart, the curve label of seed 001's figures
+(kernel_label), and STYLE, the fixed colour and marker of every technique. Standard library only.
 """
 import csv
 import json
@@ -336,6 +336,15 @@ def param_string(row, keys):
 def label(row, keys):
     """The technique id followed by its parameter string."""
     return " ".join(p for p in (row.get("technique", ""), param_string(row, keys)) if p)
+
+
+def kernel_label(row):
+    """'cssm2 9x9': the technique id, with its kernel for the techniques seed 001 times at more than
+    one kernel or at a kernel of its own (cssm2, stochastic-sm; Figs. 5.3.C-D), each a curve there."""
+    if row.get("technique") in ("cssm2", "stochastic-sm") and row.get("param.kernel") not in (None, ""):
+        kernel = canonical(row.get("param.kernel"))
+        return f"{row['technique']} {kernel}x{kernel}"
+    return row.get("technique", "")
 
 
 def pareto_front(rows, x, y):

@@ -23,6 +23,7 @@ struct TechniqueFigures {
     double frameMs = 0.0;         // median GPU ms of a timed frame
     double gpuMiB = 0.0;
     AccuracyMetrics metrics;
+    AccuracyMetrics translucent;  // the translucent receivers (comparedPixels 0: none in view)
     // A step with a path: the temporal error (flicker, docs/stability.md) over its first frames.
     int temporalFrames = 0;
     TemporalSummary temporal;
@@ -73,6 +74,7 @@ bool measureTechnique(App& app, const std::string& id, const TourPageOptions& op
     if (!app.evaluate(reference, evaluation, error)) return false;
     out.reference = hard ? "hard" : "soft";
     out.metrics = evaluation.metrics;
+    out.translucent = evaluation.translucentMetrics;
     return true;
 }
 
@@ -125,6 +127,8 @@ const char* const kColumns[][2] = {
     {"MAE", "mean absolute error of the shadow term against the reference, over the compared (lit-side) pixels"},
     {"false shadow", "compared pixels the reference lights (>= 0.5) that the technique darkens (< 0.5): acne, over-darkening"},
     {"false light", "compared pixels the reference shadows that the technique lights: leaks, peter panning, light bleeding"},
+    {"translucent MAE", "the same on the translucent surfaces themselves (peeled from the camera, seed 001 sec. 5.3.3); "
+                        "- where the step shows none facing the light"},
     {"frame ms", "median GPU time of a whole frame over the short benchmark (" "warm-up, then timed frames)"},
     {"GPU MiB", "the technique's own GPU memory (shadow maps, blurred copies)"},
 };
@@ -137,8 +141,9 @@ std::string figureCell(const TechniqueFigures& f, int column) {
     case 2: return measured ? fixed(f.metrics.mae, 4) : "-";
     case 3: return measured ? fixed(100.0 * f.metrics.falseShadowRate, 2) + "%" : "-";
     case 4: return measured ? fixed(100.0 * f.metrics.falseLightRate, 2) + "%" : "-";
-    case 5: return fixed(f.frameMs, 3);
-    case 6: return fixed(f.gpuMiB, 2);
+    case 5: return measured && f.translucent.comparedPixels > 0 ? fixed(f.translucent.mae, 4) : "-";
+    case 6: return fixed(f.frameMs, 3);
+    case 7: return fixed(f.gpuMiB, 2);
     }
     return "";
 }
@@ -293,7 +298,9 @@ int writeTourPages(App& app, const Tour& tour, const TourPageOptions& options, s
         std::printf("step %zu/%zu  %-40s", i + 1, tour.steps.size(), step.title.substr(0, 40).c_str());
         for (const TechniqueFigures& f : pages[i].figures)
             std::printf("  %s: %.3f ms%s", f.technique.c_str(), f.frameMs,
-                        f.reference.empty() ? "" : (", MAE " + fixed(f.metrics.mae, 4)).c_str());
+                        f.reference.empty() ? "" : (", MAE " + fixed(f.metrics.mae, 4) +
+                                                    (f.translucent.comparedPixels ? ", translucent " + fixed(f.translucent.mae, 4) : ""))
+                                                       .c_str());
         std::printf("\n");
         std::fflush(stdout);
     }
