@@ -73,6 +73,8 @@ printf '{"cases": [{"id": "x", "title": "t", "scene": "cube", "metric": "flicker
 expect 2 "cases.json: cases\[0\].metric: a temporal metric needs a path" -- stress --backend osmesa --cases-file "$tmp/cases.json" --out "$tmp/stress"
 expect 2 "--techniques: no technique 'nonesuch'" -- stress --backend osmesa --techniques nonesuch --out "$tmp/stress"
 expect 2 "--cases: no case 'nonesuch'" -- stress --backend osmesa --techniques shadowmap --cases nonesuch --out "$tmp/stress"
+expect 2 "--translucent-layers: Value 9 not in range 0 to 8" -- eval --backend osmesa --scene layered-quads --translucent-layers 9
+expect 2 "--translucent-layers: Value -1 not in range 0 to 8" -- eval --backend osmesa --scene layered-quads --translucent-layers -1
 expect 0 "stress: 2 cells" -- stress --backend osmesa --techniques shadowmap,reference --cases acne-5 --out "$tmp/stress"
 for file in README.md results.json results.csv stress.png images/shadowmap-acne-5.png; do
     [ -s "$tmp/stress/$file" ] || { echo "FAIL: stress did not write $file"; failures=$((failures + 1)); }
