@@ -7,9 +7,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <numbers>
 #include <set>
+
+#include <unistd.h>
 
 #include "shadowlab/kit/jittered_disk.h"
 #include "test_support.h"
@@ -707,6 +713,197 @@ TEST_P(PcfGather, MatchesTheTapLoopWithinOne8BitLevel) {
 
 INSTANTIATE_TEST_SUITE_P(CubeAndContact, PcfGather, ::testing::Values("cube", "contact"));
 
+// pcf's classify = depth-range (pcf.glsl, classifyByDepthRange) is an exact shortcut: the pixels
+// whose every comparison the depth-range mips decide return 1 or 0 without the kernel, all others
+// run it, so the shadow term equals classify = none on every pixel (difference 0, not a tolerance),
+// for the three samplings, nearest and bilinear taps, small and large kernels, taps also at offset
+// scale 2, on cube and contact (320 x 240, map 1024), and forest (160 x 120, nearest taps).
+// DecidesPixelsAndAWrongBoundShows below shows that the bounds do decide pixels and that wrong
+// bounds change pixels.
+namespace {
+
+struct PcfClassifyCase {
+    const char* sampling;
+    int kernel;
+    bool bilinear;
+    int offsetScale;
+};
+
+std::vector<std::string> pcfClassifySets(const PcfClassifyCase& c) {
+    return {"resolution=1024", std::string("sampling=") + c.sampling, "kernel=" + std::to_string(c.kernel),
+            c.bilinear ? "hardware_filter=1" : "hardware_filter=0", "offset_scale=" + std::to_string(c.offsetScale)};
+}
+
+std::string pcfClassifyLabel(const std::string& scene, const PcfClassifyCase& c) {
+    return scene + " " + c.sampling + " kernel " + std::to_string(c.kernel) + (c.bilinear ? " bilinear" : " nearest") +
+           " offset scale " + std::to_string(c.offsetScale);
+}
+
+// pcf's shadow term with `sets` and classify = `classify`.
+std::vector<glm::vec3> pcfShadow(App& app, std::vector<std::string> sets, const char* classify) {
+    sets.push_back(std::string("classify=") + classify);
+    return test::evaluateTechnique(app, "pcf", sets, ReferenceOptions::Mode::Hard, 1).technique;
+}
+
+} // namespace
+
+TEST(PcfClassify, DepthRangeChangesNoPixel) {
+    struct SceneCases {
+        const char* scene;
+        glm::ivec2 size;
+        std::vector<PcfClassifyCase> cases;
+    };
+    std::vector<PcfClassifyCase> full;
+    for (const char* sampling : {"taps", "gather", "folded"})
+        for (const int kernel : {3, 11})
+            for (const bool bilinear : {false, true}) full.push_back({sampling, kernel, bilinear, 1});
+    full.push_back({"taps", 11, false, 2});
+    full.push_back({"taps", 5, true, 2});
+    const std::vector<PcfClassifyCase> forest = {{"taps", 3, false, 1}, {"taps", 11, false, 1}, {"gather", 3, false, 1},
+                                                 {"gather", 11, false, 1}, {"folded", 3, false, 1}, {"folded", 11, false, 1}};
+    for (const SceneCases& scene : {SceneCases{"cube", {320, 240}, full}, SceneCases{"contact", {320, 240}, full},
+                                    SceneCases{"forest", {160, 120}, forest}}) {
+        auto app = test::makeHeadlessApp(scene.scene, scene.size);
+        ASSERT_TRUE(app);
+        for (const PcfClassifyCase& c : scene.cases) {
+            const std::string label = pcfClassifyLabel(scene.scene, c);
+            SCOPED_TRACE(label);
+            const auto none = pcfShadow(*app, pcfClassifySets(c), "none");
+            const auto bounded = pcfShadow(*app, pcfClassifySets(c), "depth-range");
+            ASSERT_EQ(none.size(), bounded.size());
+            double worst = 0.0;
+            int differing = 0, shadowed = 0, penumbra = 0;
+            for (size_t i = 0; i < none.size(); ++i) {
+                const double difference = std::abs(double(bounded[i].r) - double(none[i].r));
+                worst = std::max(worst, difference);
+                differing += difference > 0.0;
+                shadowed += none[i].r == 0.0f;
+                penumbra += none[i].r > 0.0f && none[i].r < 1.0f;
+            }
+            std::printf("pcf classify on %s: depth-range vs none, largest difference %.3g on %d pixels (%d at 0, %d "
+                        "between 0 and 1)\n",
+                        label.c_str(), worst, differing, shadowed, penumbra);
+            EXPECT_EQ(worst, 0.0);
+            EXPECT_GT(penumbra, 100) << "the comparison covers filtered edges";
+        }
+    }
+}
+
+// The decisions are not vacuous and the bound is not loose by accident. pcf.glsl is copied into a
+// private data root (SHADOWLAB_DATA_DIR, as test_plugins.cpp's sandbox) with one line changed:
+//   marked:   decided pixels return -1 (lit) and -2 (shadowed) instead of 1 and 0, values no
+//             kernel gives: counts the pixels the bounds decide (many, each where the kernel gives
+//             1 or 0, every other pixel as the kernel has it);
+//   short:    the region one texel inside the kernel's on every side (the texels of the outer
+//             taps, and the bilinear taps' far neighbours, left out): pixels change;
+//   no cone:  the shadowed test against coord.z instead of the most cone-biased tap's depth.
+// The plugin's own file is not touched; its classify = none runs the same kernel in the sandbox.
+TEST(PcfClassify, DecidesPixelsAndAWrongBoundShows) {
+    namespace fs = std::filesystem;
+    const fs::path source = SHADOWLAB_SOURCE_DIR;
+    std::string glsl;
+    {
+        std::ifstream in(source / "plugins" / "pcf" / "pcf.glsl");
+        glsl.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    ASSERT_FALSE(glsl.empty());
+    struct Mutation {
+        const char* name;
+        std::vector<std::pair<std::string, std::string>> edits;
+    };
+    const std::vector<Mutation> mutations = {
+        {"marked",
+         {{"if (decided >= 0.0) return vec3(decided);", "if (decided >= 0.0) return vec3(decided > 0.5 ? -1.0 : -2.0);"}}},
+        {"short",
+         {{"ivec2 lo = ivec2(floor(u - reach - h)) - 1;", "ivec2 lo = ivec2(floor(u - reach - h)) + 1;"},
+          {"ivec2 hi = ivec2(floor(u + reach + h)) + 1;", "ivec2 hi = ivec2(floor(u + reach + h)) - 1;"}}},
+        {"no cone", {{"range.y < coord.z - slope * (reach * 1.41436)", "range.y < coord.z"}}},
+    };
+    const fs::path root = fs::temp_directory_path() / ("shadowlab-pcf-classify-" + std::to_string(::getpid()));
+    const std::vector<PcfClassifyCase> cases = {{"taps", 3, false, 1}, {"taps", 3, true, 1}, {"gather", 11, true, 1},
+                                                {"folded", 11, false, 1}};
+    std::map<std::string, int> decidedLit, decidedShadowed, changed;
+    for (const Mutation& mutation : mutations) {
+        SCOPED_TRACE(mutation.name);
+        std::string mutated = glsl;
+        for (const auto& [from, to] : mutation.edits) {
+            const size_t at = mutated.find(from);
+            ASSERT_NE(at, std::string::npos) << "pcf.glsl no longer has: " << from;
+            mutated.replace(at, from.size(), to);
+        }
+        fs::remove_all(root);
+        fs::create_directories(root / "app");
+        fs::create_directories(root / "plugins");
+        fs::copy(source / "shaders", root / "shaders", fs::copy_options::recursive);
+        fs::copy(source / "app" / "include", root / "app" / "include", fs::copy_options::recursive);
+        fs::copy(source / "plugins" / "pcf", root / "plugins" / "pcf", fs::copy_options::recursive);
+        std::ofstream(root / "plugins" / "pcf" / "pcf.glsl") << mutated;
+        setenv("SHADOWLAB_DATA_DIR", root.c_str(), 1);
+        for (const char* scene : {"cube", "contact"}) {
+            auto app = test::makeHeadlessApp(scene, {320, 240});
+            ASSERT_TRUE(app);
+            for (const PcfClassifyCase& c : cases) {
+                const std::string label = pcfClassifyLabel(scene, c);
+                SCOPED_TRACE(label);
+                // The visibility target as the main pass wrote it (Evaluation clamps to [0, 1]).
+                std::vector<std::string> sets = pcfClassifySets(c);
+                sets.push_back("classify=none");
+                const auto none = test::renderVisibility(*app, "pcf", sets);
+                sets.back() = "classify=depth-range";
+                const auto bounded = test::renderVisibility(*app, "pcf", sets);
+                ASSERT_EQ(none.size(), bounded.size());
+                int lit = 0, shadowed = 0, differing = 0;
+                for (size_t i = 0; i < none.size(); ++i) {
+                    lit += bounded[i].r == -1.0f;
+                    shadowed += bounded[i].r == -2.0f;
+                    differing += bounded[i].r != none[i].r;
+                    if (std::string(mutation.name) == "marked") {
+                        if (bounded[i].r == -1.0f) EXPECT_EQ(none[i].r, 1.0f) << "pixel " << i;
+                        else if (bounded[i].r == -2.0f) EXPECT_EQ(none[i].r, 0.0f) << "pixel " << i;
+                        else EXPECT_EQ(none[i].r, bounded[i].r) << "pixel " << i;
+                    }
+                }
+                std::printf("pcf classify, %s bound, %s: %d pixels decided lit, %d shadowed, %d differ from none\n",
+                            mutation.name, label.c_str(), lit, shadowed, differing);
+                decidedLit[mutation.name] += lit;
+                decidedShadowed[mutation.name] += shadowed;
+                changed[mutation.name] += differing;
+            }
+        }
+        unsetenv("SHADOWLAB_DATA_DIR");
+    }
+    fs::remove_all(root);
+    EXPECT_GT(decidedLit["marked"], 1000) << "the bounds decide lit pixels";
+    EXPECT_GT(decidedShadowed["marked"], 1000) << "and shadowed ones";
+    EXPECT_GT(changed["short"], 0) << "a region one texel short changes pixels";
+    EXPECT_GT(changed["no cone"], 0) << "ignoring the cone bias changes pixels";
+}
+
+// The mips exist only while classify = depth-range: none allocates nothing, depth-range allocates
+// them once (not again per frame, again only for a new map size), none again frees them.
+TEST(PcfClassify, MipsOnlyWhileClassifying) {
+    auto app = test::makeHeadlessApp("cube", {160, 120});
+    ASSERT_TRUE(app);
+    auto mips = [&] {
+        std::string error;
+        std::vector<GLuint> names;
+        for (const auto& [name, allocation] : app->techniques().get("pcf", error)->host().textures())
+            if (allocation.label == "pcf: depth-range mips") names.push_back(name);
+        return names;
+    };
+    render(*app, "pcf", {"resolution=1024", "classify=none"});
+    EXPECT_TRUE(mips().empty());
+    render(*app, "pcf", {"classify=depth-range"});
+    const auto first = mips();
+    ASSERT_EQ(first.size(), 1u);
+    render(*app, "pcf");
+    EXPECT_EQ(mips(), first) << "the same texture next frame";
+    render(*app, "pcf", {"resolution=512"});
+    EXPECT_EQ(mips().size(), 1u) << "reallocated for the new map size, the old one freed";
+    render(*app, "pcf", {"classify=none"});
+    EXPECT_TRUE(mips().empty());
+}
+
 class DepthRangeMips : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(DepthRangeMips, BoundEveryTexelTheyStandFor) {
@@ -716,9 +913,9 @@ TEST_P(DepthRangeMips, BoundEveryTexelTheyStandFor) {
     auto app = test::makeHeadlessApp("contact", {320, 180});
     ASSERT_TRUE(app);
     const std::string technique = GetParam();
-    // not a power of two: odd sizes on the way down; adaptive-pcf builds the mips for classify = depth-range
-    render(*app, technique, technique == "adaptive-pcf" ? std::vector<std::string>{"resolution=1000", "classify=depth-range"}
-                                                        : std::vector<std::string>{"resolution=1000"});
+    // not a power of two: odd sizes on the way down; adaptive-pcf and pcf build the mips for classify = depth-range
+    render(*app, technique, technique == "pcss" ? std::vector<std::string>{"resolution=1000"}
+                                                : std::vector<std::string>{"resolution=1000", "classify=depth-range"});
     std::string error;
     GLuint map = 0, mips = 0;
     for (const auto& [name, allocation] : app->techniques().get(technique, error)->host().textures()) {
@@ -751,7 +948,7 @@ TEST_P(DepthRangeMips, BoundEveryTexelTheyStandFor) {
     EXPECT_GT(spread, 1000) << "the bounds differ where the map has edges (the mips are not flat)";
 }
 
-INSTANTIATE_TEST_SUITE_P(Users, DepthRangeMips, ::testing::Values("pcss", "adaptive-pcf"));
+INSTANTIATE_TEST_SUITE_P(Users, DepthRangeMips, ::testing::Values("pcss", "adaptive-pcf", "pcf"));
 
 // The depth-range decisions are exact shortcuts: pcss's fully-blocked stop (search_bound =
 // depth-range against min-depth) and adaptive-pcf's classification by the bounds (classify =

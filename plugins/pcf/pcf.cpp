@@ -15,8 +15,13 @@
 // price of some peter panning under large kernels.
 // Point lights: the kit's cube map (kit/cube_depth_map.h), the n x n taps laid across the ray from
 // the light (shaders/cube_shadow.glsl), with the cone bias; `sampling = gather | folded` use the taps there.
+// classify = depth-range: the kit's depth-range mips (kit/depth_range_mips.h: min and max depth
+// mips built after the shadow pass, as pcss and adaptive-pcf use them) bound every depth the
+// kernel can read, and a pixel whose every comparison they decide skips the kernel, with the same
+// image (pcf.glsl, classifyByDepthRange). 2D maps only: point lights always run the kernel.
 #include <shadowlab/kit/cube_depth_map.h>
 #include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/depth_range_mips.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
@@ -51,6 +56,19 @@ constexpr ParamDesc kParams[] = {
      "little lighter (never darker) than with the taps. Both need offset scale 1 (neighbouring taps sharing "
      "texels); at other spacings, and for point lights, the taps are used.",
      "taps|gather|folded"},
+    {"classify", "decide lit and shadowed by", ParamType::Enum, 0, 1, 0, "",
+     "none: every pixel in the map runs the kernel. depth-range: first the nearest and farthest depth "
+     "stored anywhere the kernel reads (depth-range mips: one extra pass after the shadow map, then at most "
+     "four fetches per pixel): nearest at or behind the receiver means every tap is lit, farthest in front "
+     "of the most cone-biased tap's depth every tap shadowed, and the kernel is skipped. Exactly the same "
+     "image as none, for every sampling. It saves the kernel on surfaces facing the light and under "
+     "casters well above the receiver. It cannot decide a receiver tilted against the light (the texels on "
+     "its near side are closer to the light than it is; the cone bias is what keeps its taps lit) once the "
+     "region, rounded up to the mips' power-of-two blocks, spans more than the depth bias covers: at 11 x 11 "
+     "that is nearly all of the lit ground in cube and contact, and penumbra-heavy views (forest's foliage) "
+     "decide little at any size. Those pixels pay the mips and the test and still run the kernel. Point "
+     "lights ignore it.",
+     "none|depth-range"},
     kit::coneBiasParam(),
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
@@ -63,6 +81,7 @@ enum : uint32_t {
     kOffsetScale = kit::paramIndex(kParams, "offset_scale"),
     kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
     kSampling = kit::paramIndex(kParams, "sampling"),
+    kClassify = kit::paramIndex(kParams, "classify"),
     kConeBias = kit::paramIndex(kParams, "cone_bias"),
     kConstantBias = kit::paramIndex(kParams, "constant_bias"),
     kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
@@ -79,7 +98,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "tests (cost grows with n^2), the offset scale their spacing; bilinear taps remove the "
                     "banding. Sampling by gather or folded reads the same texels four at a time (Castano 2013) for the "
                     "same result (with the cone bias, a little lighter at contacts) at about a quarter of the lookups. The ramp has the same width everywhere: this is anti-aliasing, not a physically soft "
-                    "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause. Debug views: kernel (the n x n box around the pixel under the mouse, its taps lit or shadowed), footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'shadow map'.",
+                    "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause. Classify = depth-range skips the kernel where min/max depth mips prove every tap lit or every tap shadowed, with the same image. Debug views: kernel (the n x n box around the pixel under the mouse, its taps lit or shadowed), footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), 'shadow map', and 'depth-range mips' (with classify = depth-range).",
      .shadowGlsl = "pcf.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
@@ -87,7 +106,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
 class PercentageCloserFiltering final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         uniforms_.create(host(), "pcf uniforms");
-        return map_.create(host(), error) && cube_.create(host(), error);
+        return map_.create(host(), error) && cube_.create(host(), error) && depthRange_.create(host(), error);
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
@@ -105,6 +124,12 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
         footprint.bilinear = params.asBool(kHardwareFilter) ? 1 : 0;
         footprint.coneBias = params.asBool(kConeBias) ? 1.0f : 0.0f;
         kit::reportFilterFootprint(host(), footprint);
+        // classify = depth-range bounds the kernel with mips of the 2D map (allocated on first use
+        // and when the resolution changes; freed when classify goes back to none).
+        if (params.asInt(kClassify) == 1)
+            depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
+        else
+            depthRange_.reset();
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
@@ -118,13 +143,16 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
             cube_.bindMainPass(bilinear ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
         else
             map_.bindMainPass(sampler);
+        depthRange_.bindMainPass();
         const bool coneBias = params.asBool(kConeBias);
+        const int classify = frame.light.type == LightType::Point ? 0 : params.asInt(kClassify);
         uniforms_.set({{}, params.asInt(kKernel), params.asFloat(kOffsetScale), coneBias ? 1.0f : 0.0f, sampling,
-                       bilinear ? 1 : 0, 0, 0, 0});
+                       bilinear ? 1 : 0, classify, 0, 0});
     }
 
     kit::DepthMap map_;
     kit::CubeDepthMap cube_;
+    kit::DepthRangeMips depthRange_;
     kit::UniformBlock<shared::pcf::PcfUniforms> uniforms_;
 };
 

@@ -14,15 +14,24 @@
 //           a wider tent, and the comparisons stay in the texture unit.
 //   folded  the same 2 x 2 blocks, each one bilinear comparison the texture unit weights
 //           (pcfFolded: Castano's own form).
+//
+// classify = depth-range (uClassify 1, 2D maps only): before any of the above, the nearest and
+// farthest depth of every texel the kernel can read, from the kit's depth-range mips (min/max
+// mips as in kit/depth_range_mips.h, at most four fetches), decide the pixel where every one of
+// sec. 3.2.4's binary tests in the kernel agrees; the other pixels run the kernel
+// (classifyByDepthRange below).
 #include "light_space.glsl"
 #include "light_depth.glsl"
 #include "box_pcf.glsl"
 #include "cube_shadow.glsl"
+#include "depth_range.glsl"
 
 #include "shadowlab/kit/depth_map_shared.h"
+#include "shadowlab/kit/depth_range_mips_shared.h"
 #include "pcf_shared.h"
 
 layout(binding = kDepthMapUnit) uniform sampler2DShadow uShadowMap;   // comparison: hardware PCF
+layout(binding = kDepthRangeMipsUnit) uniform sampler2D uDepthRange;  // classify = depth-range: (min, max) mips
 
 // The gather variant, for unit spacing (pcf.cpp uses the taps otherwise). Derivation, per axis
 // (the filter is separable apart from the references), in texel units: the point is at u, texel t
@@ -148,11 +157,53 @@ float pcfFolded(vec3 coord, float slope) {
     return lit;
 }
 
+// The exact early out of classify = depth-range: 1 when every comparison of the kernel passes
+// (lit), 0 when every one fails (shadowed), -1 when the bounds cannot tell (run the kernel).
+// Every lookup of every sampling reads texels within the taps' span u +- c s (u = coord.xy *
+// resolution in texels, c = (n - 1) / 2, s the offset scale; gather and folded run only at s = 1)
+// widened by h = 1/2 where a lookup is a bilinear one (each reads the 2 x 2 texels within half a
+// texel of it). The region is one texel wider still on every side: folded with nearest taps puts
+// the last lookup of an odd kernel on a texel centre, whose bilinear neighbour (weight 0, up to
+// the texture unit's rounding) lies one texel past the kernel, and the texture unit's own
+// rounding of a bilinear tap's position may pick the neighbouring pair where the shader's floor()
+// would not. Weight-0 texels included, so no comparison the kernel makes is left out.
+// The compared depths (the cone bias): every tap compares ref = coord.z - slope * r (r >= 0 its
+// distance from the centre; gather and folded: a block's farthest tap's r), never more than
+// coord.z and never less than coord.z - slope * c s sqrt 2 (the corner tap's r; the factor
+// 1.41436 is sqrt 2 with 1e-4 to spare against the rounding of length() and of the product). So
+// the region's nearest depth at or behind coord.z means ref <= depth for every comparison
+// (LEQUAL: lit), and its farthest depth in front of the smallest ref means ref > depth for every
+// one (shadowed). The map is 32-bit float (no rounding of ref in the comparison) and the sampler
+// clamps to the edge (no border depth the mips would not hold). A decided pixel's kernel would
+// have summed n^2 ones or zeros: 1 and 0 exactly (gather and folded with bilinear taps sum their
+// weights in float, n^2 up to a few ulps; the shadow term is stored as a half float, where that
+// rounds to 1; tests/test_soft_filtering.cpp, PcfClassify, finds no pixel changed).
+// What it cannot decide: a receiver tilted against the light has texels on its near side closer
+// to the light than coord.z (the cone bias is what keeps its taps lit), so the region's nearest
+// depth is in front of it once the region (rounded up to the mips' power-of-two blocks) spans
+// more than the depth bias covers: at 11 x 11 nearly all of the lit ground of cube and contact.
+float classifyByDepthRange(vec3 coord, float slope) {
+    float resolution = uLightDepth.w;
+    float reach = 0.5 * float(uKernel - 1) * uOffsetScale;   // c s, texels
+    float h = (uBilinear != 0 || uSampling == 2) ? 0.5 : 0.0;
+    vec2 u = coord.xy * resolution;
+    ivec2 lo = ivec2(floor(u - reach - h)) - 1;
+    ivec2 hi = ivec2(floor(u + reach + h)) + 1;
+    vec2 range = depthRangeInTexels(uDepthRange, lo, hi, resolution);
+    if (range.x >= coord.z) return 1.0;
+    if (range.y < coord.z - slope * (reach * 1.41436)) return 0.0;
+    return -1.0;
+}
+
 vec3 shadowTerm(ShadowInput s) {
     if (lightType() == LIGHT_POINT) return vec3(cubeShadow(s.worldPos, s.worldNormal, uKernel, uOffsetScale, uConeBias));
     vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
     if (!insideShadowMap(coord)) return vec3(1.0);
     float slope = uConeBias * receiverDepthSlope(s.worldNormal, uLightAxis, coord.z, uLightDepth, uLightWorldSize);
+    if (uClassify == 1) {
+        float decided = classifyByDepthRange(coord, slope);
+        if (decided >= 0.0) return vec3(decided);
+    }
     if (uSampling == 1) return vec3(pcfGather(coord, slope) / float(uKernel * uKernel));
     if (uSampling == 2) return vec3(pcfFolded(coord, slope) / float(uKernel * uKernel));
     return vec3(boxPcfDepth(uShadowMap, coord, uLightDepth.w, uKernel, uOffsetScale, slope, uBilinear != 0));

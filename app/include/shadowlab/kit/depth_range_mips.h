@@ -3,7 +3,8 @@
 // one full-screen draw per level (shaders/depth_range_mips.frag). Read with depthRangeIn
 // (shaders/depth_range.glsl) to bound every depth in a kernel's region with at most four fetches:
 // pcss narrows its blocker search with the minimum and stops where the whole region blocks;
-// adaptive-pcf decides lit and shadowed pixels before its ring of taps. Reallocated with the map only.
+// adaptive-pcf decides lit and shadowed pixels before its ring of taps, pcf before its n x n kernel
+// (depthRangeInTexels). Reallocated with the map only.
 #pragma once
 
 #include <algorithm>

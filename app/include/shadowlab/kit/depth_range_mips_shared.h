@@ -1,6 +1,6 @@
 // The depth-range mips' units and block (kit/depth_range_mips.h), shared by its C++, its pass
 // (shaders/depth_range_mips.frag) and the lookups of the techniques that read it
-// (shaders/depth_range.glsl: adaptive-pcf, pcss).
+// (shaders/depth_range.glsl: adaptive-pcf, pcss, pcf).
 #ifndef SHADOWLAB_KIT_DEPTH_RANGE_MIPS_SHARED_H
 #define SHADOWLAB_KIT_DEPTH_RANGE_MIPS_SHARED_H
 #include "shadowlab/kit/shared.h"
