@@ -21,21 +21,7 @@ namespace fs = std::filesystem;
 using Mode = ReferenceOptions::Mode;
 
 // A scene file written for one test, removed afterwards.
-class SceneFile {
-public:
-    SceneFile(const std::string& name, const std::string& json) {
-        path_ = fs::temp_directory_path() / ("shadowlab_" + name + "_" + std::to_string(std::random_device{}()) + ".json");
-        std::ofstream(path_, std::ios::binary) << json;
-    }
-    ~SceneFile() {
-        std::error_code ignored;
-        fs::remove(path_, ignored);
-    }
-    std::string path() const { return path_.string(); }
-
-private:
-    fs::path path_;
-};
+using test::SceneFile;
 
 double scalar(glm::vec3 v) { return (double(v.r) + double(v.g) + double(v.b)) / 3.0; }
 

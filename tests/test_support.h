@@ -3,12 +3,35 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <memory>
+#include <random>
 #include <string>
 
 #include "app.h"
 
 namespace shadowlab::test {
+
+// A scene file written for one test (in the temporary folder), removed afterwards.
+class SceneFile {
+public:
+    SceneFile(const std::string& name, const std::string& json) {
+        path_ = std::filesystem::temp_directory_path() /
+                ("shadowlab_" + name + "_" + std::to_string(std::random_device{}()) + ".json");
+        std::ofstream(path_, std::ios::binary) << json;
+    }
+    ~SceneFile() {
+        std::error_code ignored;
+        std::filesystem::remove(path_, ignored);
+    }
+    SceneFile(const SceneFile&) = delete;
+    SceneFile& operator=(const SceneFile&) = delete;
+    std::string path() const { return path_.string(); }
+
+private:
+    std::filesystem::path path_;
+};
 
 // The message of the SceneError `load` throws ("" and a test failure when it throws none).
 template <typename Load>

@@ -5,33 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <random>
 
 #include "test_support.h"
 
 namespace shadowlab {
 namespace {
 
-namespace fs = std::filesystem;
 using Mode = ReferenceOptions::Mode;
 
-class SceneFile {
-public:
-    explicit SceneFile(const std::string& json) {
-        path_ = fs::temp_directory_path() / ("shadowlab_layers_" + std::to_string(std::random_device{}()) + ".json");
-        std::ofstream(path_, std::ios::binary) << json;
-    }
-    ~SceneFile() {
-        std::error_code ignored;
-        fs::remove(path_, ignored);
-    }
-    std::string path() const { return path_.string(); }
-
-private:
-    fs::path path_;
-};
+using test::SceneFile;
 
 // A blue glass quad 1 above a red one 1 above the ground, the sun almost overhead, the camera above
 // them: layer 0 is the blue quad, layer 1 the red one. Closed forms (alpha 0.5 both):
@@ -87,7 +69,7 @@ void expectNear(glm::dvec3 value, glm::dvec3 expected, double tolerance, const c
 } // namespace
 
 TEST(TranslucentLayers, ArePeeledFrontToBackAndTracedAgainstTheClosedForm) {
-    SceneFile scene(kTwoPanes);
+    SceneFile scene("two-panes", kTwoPanes);
     auto app = test::makeHeadlessApp(scene.path(), {256, 192});
     ASSERT_TRUE(app);
     const Evaluation e = test::evaluateTechnique(*app, "cssm2", {"kernel=9"}, Mode::Hard, 1, TranslucencyModel::Physical);
@@ -127,7 +109,7 @@ TEST(TranslucentLayers, NoneWithoutTranslucentSurfaces) {
 // Fig. 5.3.3.A: translucent shadows shade the pane beneath with the whole colour buffer (its own
 // filter included), composited shadows with the panes nearer the light only.
 TEST(CompositedTranslucent, ShadesTheLowerPaneByThePaneAboveWhereTranslucentShadowsTintItWithItself) {
-    SceneFile scene(kTwoPanes);
+    SceneFile scene("two-panes", kTwoPanes);
     auto app = test::makeHeadlessApp(scene.path(), {256, 192});
     ASSERT_TRUE(app);
     const auto m3 = TranslucencyModel::ModifiedTranslucent;

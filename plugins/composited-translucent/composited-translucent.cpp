@@ -26,7 +26,6 @@
 #include <algorithm>
 #include <vector>
 
-#include <shadowlab/kit/focus.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 #include <shadowlab/kit/translucent_maps.h>
@@ -34,25 +33,6 @@
 namespace {
 
 using namespace shadowlab;
-
-constexpr ParamDesc kParams[] = {
-    kit::resolutionParam(),
-    kit::translucentVariantParam(),
-    kit::translucentHardwareFilterParam(),
-    kit::constantBiasParam(),
-    kit::slopeBiasParam(),
-    kit::fitParam(),
-    kit::snapParam(),
-};
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kVariant = kit::paramIndex(kParams, "variant"),
-    kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
-    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
-    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
-    kFit = kit::paramIndex(kParams, "fit"),
-    kSnap = kit::paramIndex(kParams, "snap"),
-};
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "composited-translucent",
@@ -69,7 +49,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "'translucent depth D_t' and 'shadow colour C'.",
      .shadowGlsl = "composited-translucent.glsl",
      .translucencyModel = TranslucencyModel::ModifiedTranslucent},
-    kParams);
+    kit::kTranslucentMapParams);
 
 class CompositedTranslucent final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
@@ -90,27 +70,18 @@ class CompositedTranslucent final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const int resolution = params.asInt(kResolution);
-        const bool newFrame = allCasters_.ensure(resolution);
-        if (perMesh_.ensure(resolution) || newFrame)
-            allCasters_.registerDebugImages("opaque depth D_o", "translucent depth D_t", "shadow colour C");
-        const kit::FocusedLightSpace focused = kit::focusLightSpace(host(), frame, kit::readFit(params, kFit, kSnap), resolution);
-        allCasters_.setLightSpace(focused.light, resolution);
-        perMesh_.setLightSpace(focused.light, resolution);
-        kit::reportShadowMap(host(), focused.light.viewProjection, {resolution, resolution});
-        settings_ = {resolution, params.asInt(kVariant), params.asFloat(kConstantBias), params.asFloat(kSlopeBias)};
-        allCasters_.renderOpaqueDepth(kit::culledDraw(DrawSet::OpaqueCasters, focused.cullPlanes), settings_);
-        allCasters_.renderTranslucent(settings_, [&](GLuint program) {
-            host().drawScene(kit::culledDraw(DrawSet::TranslucentCasters, focused.cullPlanes,
-                                             kit::frontToBackFromLight(DrawSet::TranslucentCasters, frame.light)),
-                             program);
-        });
+        // The opaque receivers' maps are translucent shadows' own; the per-mesh ones share their
+        // D_o and light space.
+        const kit::FocusedLightSpace focused = allCasters_.renderAllCasters(frame, params);
+        settings_ = kit::TranslucentMaps::settings(params);
+        perMesh_.ensure(settings_.resolution);
+        perMesh_.setLightSpace(focused.light, settings_.resolution);
         sortCastersFromLight(frame.light);
         current_ = kTranslucentDrawsDone;
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
-        (current_ == kTranslucentDrawsDone ? allCasters_ : perMesh_).bind(params.asBool(kHardwareFilter));
+        (current_ == kTranslucentDrawsDone ? allCasters_ : perMesh_).bind(params);
     }
 
     // Before translucent mesh `object`: D_t and C of the casters nearer the light than it.

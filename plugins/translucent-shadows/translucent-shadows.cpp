@@ -19,7 +19,6 @@
 // colour (a green plane over a green pot, Fig. 4.2.1.A); modified: (1 - a) t does not tend to 1
 // as a -> 0 (it is 1 - a only where t = 1), so it differs from the physical model even under one
 // layer ("only superficially corrected", sec. 2.1.3 footnote 1).
-#include <shadowlab/kit/focus.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 #include <shadowlab/kit/translucent_maps.h>
@@ -27,26 +26,6 @@
 namespace {
 
 using namespace shadowlab;
-using namespace shadowlab::shared::translucent_maps;
-
-constexpr ParamDesc kParams[] = {
-    kit::resolutionParam(),
-    kit::translucentVariantParam(),
-    kit::translucentHardwareFilterParam(),
-    kit::constantBiasParam(),
-    kit::slopeBiasParam(),
-    kit::fitParam(),
-    kit::snapParam(),
-};
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kVariant = kit::paramIndex(kParams, "variant"),
-    kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
-    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
-    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
-    kFit = kit::paramIndex(kParams, "fit"),
-    kSnap = kit::paramIndex(kParams, "snap"),
-};
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "translucent-shadows",
@@ -63,28 +42,12 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "teapot-glass's green pot. Debug views: footprint, texel-grid and coverage (the map and its volume), 'opaque depth D_o', 'translucent depth D_t' and 'shadow colour C'.",
      .shadowGlsl = "translucent-shadows.glsl",
      .translucencyModel = TranslucencyModel::ModifiedTranslucent},
-    kParams);
+    kit::kTranslucentMapParams);
 
 class TranslucentShadows final : public kit::TechniqueBase {
     bool setup(std::string& error) override { return maps_.setup(host(), "translucent shadows", error); }
-
-    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const int resolution = params.asInt(kResolution);
-        if (maps_.ensure(resolution)) maps_.registerDebugImages("opaque depth D_o", "translucent depth D_t", "shadow colour C");
-        const kit::FocusedLightSpace focused = kit::focusLightSpace(host(), frame, kit::readFit(params, kFit, kSnap), resolution);
-        maps_.setLightSpace(focused.light, resolution);
-        kit::reportShadowMap(host(), focused.light.viewProjection, {resolution, resolution});
-        const kit::TranslucentMapSettings settings{resolution, params.asInt(kVariant), params.asFloat(kConstantBias),
-                                                   params.asFloat(kSlopeBias)};
-        maps_.renderOpaqueDepth(kit::culledDraw(DrawSet::OpaqueCasters, focused.cullPlanes), settings);
-        maps_.renderTranslucent(settings, [&](GLuint program) {
-            host().drawScene(kit::culledDraw(DrawSet::TranslucentCasters, focused.cullPlanes,
-                                             kit::frontToBackFromLight(DrawSet::TranslucentCasters, frame.light)),
-                             program);
-        });
-    }
-
-    void bindMainPass(const FrameContext&, const ParamValues& params) override { maps_.bind(params.asBool(kHardwareFilter)); }
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override { maps_.renderAllCasters(frame, params); }
+    void bindMainPass(const FrameContext&, const ParamValues& params) override { maps_.bind(params); }
 
     kit::TranslucentMaps maps_;
 };

@@ -19,8 +19,11 @@
 #include <glad/gl.h>
 #include <shadowlab/technique.h>
 
+#include "shadowlab/kit/focus.h"
 #include "shadowlab/kit/handles.h"
 #include "shadowlab/kit/light_target.h"
+#include "shadowlab/kit/params.h"
+#include "shadowlab/kit/shadow_map_report.h"
 #include "shadowlab/kit/translucent_maps_shared.h"
 
 namespace shadowlab::kit {
@@ -41,6 +44,24 @@ constexpr ParamDesc translucentHardwareFilterParam() {
             "shadows with 2x2 hardware PCF). Off: plain tests, staircase edges.",
             nullptr};
 }
+
+// The parameters of the techniques built on these maps (translucent-shadows,
+// composited-translucent), declared once; TranslucentMaps reads them by these indices.
+inline constexpr ParamDesc kTranslucentMapParams[] = {
+    resolutionParam(), translucentVariantParam(), translucentHardwareFilterParam(), constantBiasParam(),
+    slopeBiasParam(),  fitParam(),                snapParam(),
+};
+namespace translucent_map_param {
+enum : uint32_t {
+    kResolution = paramIndex(kTranslucentMapParams, "resolution"),
+    kVariant = paramIndex(kTranslucentMapParams, "variant"),
+    kHardwareFilter = paramIndex(kTranslucentMapParams, "hardware_filter"),
+    kConstantBias = paramIndex(kTranslucentMapParams, "constant_bias"),
+    kSlopeBias = paramIndex(kTranslucentMapParams, "slope_bias"),
+    kFit = paramIndex(kTranslucentMapParams, "fit"),
+    kSnap = paramIndex(kTranslucentMapParams, "snap"),
+};
+} // namespace translucent_map_param
 
 struct TranslucentMapSettings {
     int resolution = 2048;
@@ -81,6 +102,31 @@ public:
         const bool newColour = shadowColour_.ensure(
             {.resolution = resolution, .colourFormat = GL_RGBA16F, .depthFrom = &opaqueTarget()});
         return newOpaque || newTranslucent || newColour;
+    }
+
+    // The settings kTranslucentMapParams' values give.
+    static TranslucentMapSettings settings(const ParamValues& params) {
+        using namespace translucent_map_param;
+        return {params.asInt(kResolution), params.asInt(kVariant), params.asFloat(kConstantBias), params.asFloat(kSlopeBias)};
+    }
+
+    // A frame of translucent shadows from kTranslucentMapParams' values: the map fitted (`fit`,
+    // `snap`, kit/focus.h) and reported to the host, D_o of the opaque casters, then D_t and C of
+    // every translucent caster, front to back from the light, all culled to the map's volume.
+    FocusedLightSpace renderAllCasters(const FrameContext& frame, const ParamValues& params) {
+        const TranslucentMapSettings s = settings(params);
+        if (ensure(s.resolution)) registerDebugImages("opaque depth D_o", "translucent depth D_t", "shadow colour C");
+        const FitConfig fit = readFit(params, translucent_map_param::kFit, translucent_map_param::kSnap);
+        FocusedLightSpace focused = focusLightSpace(*host_, frame, fit, s.resolution);
+        setLightSpace(focused.light, s.resolution);
+        reportShadowMap(*host_, focused.light.viewProjection, {s.resolution, s.resolution});
+        renderOpaqueDepth(culledDraw(DrawSet::OpaqueCasters, focused.cullPlanes), s);
+        renderTranslucent(s, [&](GLuint program) {
+            host_->drawScene(culledDraw(DrawSet::TranslucentCasters, focused.cullPlanes,
+                                        frontToBackFromLight(DrawSet::TranslucentCasters, frame.light)),
+                             program);
+        });
+        return focused;
     }
 
     void setLightSpace(const LightSpace& lightSpace, int resolution) {
@@ -132,6 +178,7 @@ public:
 
     // For shaders/translucent_maps.glsl: D_o and D_t through the comparison sampler (2x2 bilinear
     // with the hardware filter), C bilinear, and the light-space block.
+    void bind(const ParamValues& params) const { bind(params.asBool(translucent_map_param::kHardwareFilter)); }
     void bind(bool hardwareFilter) const {
         const GLuint comparison = host_->sampler(hardwareFilter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
         glBindTextureUnit(kDepthMapUnit, opaqueTarget().depth());
