@@ -334,9 +334,9 @@ TEST(TranslucentShadows, ModifiedIsWithinItsModelOnLayeredQuadsAndTheOriginalIsN
 }
 
 // The known failure (seed 001 Figs. 2.1.3.A, 5.3.3.A): everything behind the nearest translucent
-// layer gets the whole colour buffer, the filters of layers farther from the light included. The
-// host measures opaque receivers only, so the receiver here is an opaque quad that casts no shadow
-// (like a translucent surface, it is in neither D_o nor D_t) between a blue quad above it and a red
+// layer gets the whole colour buffer, the filters of layers farther from the light included. Here
+// the receiver is an opaque quad that casts no shadow (like a translucent surface, it is in neither
+// D_o nor D_t; test_translucent_receivers.cpp measures translucent receivers themselves) between a blue quad above it and a red
 // one below it. M3 gives it the blue filter alone, (1 - a) t_blue = (0.05, 0.15, 0.45); translucent
 // shadows give it blue times red, (0.0225, 0.015, 0.0225). The ground under both quads, where
 // the product is what the model says, is right; cssm2 gets the probe right too.
