@@ -608,6 +608,15 @@ bool App::evaluateTranslucentLayers(const ReferenceOptions& options, Evaluation&
     out.translucentLayers.clear();
     out.translucentMetrics = {};
     if (translucentLayers_ <= 0) return true;
+    if (renderer_->msaaSamples() > 0) {
+        // The peel reads the single-sample opaque depth, which a multisampled main pass leaves unwritten.
+        if (!warnedLayersUnderMsaa_ &&
+            std::any_of(scene_->materials.begin(), scene_->materials.end(), [](const Material& m) { return m.translucent(); })) {
+            logWarning("translucent receivers are not measured with MSAA on (--msaa 0 measures them)");
+            warnedLayersUnderMsaa_ = true;
+        }
+        return true;
+    }
     LoadedTechnique* loaded = techniques_->get(lastTechnique_, error);
     if (!loaded) return false;
     const GLuint program = loaded->translucentLayerProgram(error);

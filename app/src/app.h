@@ -212,6 +212,7 @@ private:
     std::string lastTechnique_;            // of the last renderFrame() (renderAccuracyTargets)
     bool depthPrepass_ = false;
     int translucentLayers_ = 4;
+    bool warnedLayersUnderMsaa_ = false;   // said once per run, not once per measured row
     bool evaluateTranslucentLayers(const ReferenceOptions& options, Evaluation& out, std::string& error);
     // After the technique's translucent-draws hook (SHADOWLAB_EXT_TRANSLUCENT_DRAWS): the state
     // contract, `program` bound, bindMainPass again.
