@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Tests of the result tools (tools/results.py, charts.py, ratios.py, table41.py, stress_chart.py), run by ctest.
+"""Tests of the result tools (tools/results.py, charts.py, ratios.py, table41.py, stress_chart.py, strip.py), run by ctest.
 
     python3 tests/tools_test.py [-v]
 
@@ -692,6 +692,30 @@ def stress_row(technique, case, value, threshold, fail=False, better=False, skip
         if fail or better:
             row["agrees_with_literature"] = fail != (value <= threshold)
     return row
+
+
+class StripTool(unittest.TestCase):
+    """tools/strip.py puts images side by side under their captions (seed 001's Figs. 5.3.2.B, 5.3.3.A)."""
+
+    def test_strip_is_the_images_side_by_side_under_a_caption_band(self):
+        import strip
+        from PIL import Image
+        with tempfile.TemporaryDirectory() as tmp:
+            red, blue = os.path.join(tmp, "red.png"), os.path.join(tmp, "blue.png")
+            Image.new("RGB", (40, 30), (255, 0, 0)).save(red)
+            Image.new("RGB", (20, 50), (0, 0, 255)).save(blue)
+            out = os.path.join(tmp, "strip.png")
+            self.assertEqual(strip.main(["--out", out, red, "red", blue, "blue"]), 0)
+            image = Image.open(out).convert("RGB")
+            self.assertEqual(image.size, (60, 50 + 28))
+            self.assertEqual(image.getpixel((10, 28 + 15)), (255, 0, 0))    # the first image, below the band
+            self.assertEqual(image.getpixel((50, 28 + 40)), (0, 0, 255))    # the second, to its right
+            self.assertEqual(image.getpixel((30, 28 + 40)), (24, 24, 24))   # below the shorter first image
+            with contextlib.redirect_stderr(io.StringIO()), self.assertRaises(SystemExit) as odd:
+                strip.main(["--out", out, red, "red", blue])                # a caption missing
+            self.assertEqual(odd.exception.code, 2)
+            with contextlib.redirect_stderr(io.StringIO()):
+                self.assertEqual(strip.main(["--out", out, os.path.join(tmp, "missing.png"), "x"]), 2)
 
 
 class StressChart(unittest.TestCase):

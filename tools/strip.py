@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Images side by side with a caption over each: figures like seed 001's Figs. 5.3.2.B and 5.3.3.A
 from `shadowlab render` outputs (docs/coloured-shadows.md shows the commands).
 

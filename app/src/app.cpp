@@ -251,23 +251,22 @@ bool App::runMainPasses(LoadedTechnique& loaded, const FrameContext& frame, cons
     renderer_->setEyeBlurRead(blur > 0.0f);
     renderer_->setLighting(int(host[kHostLighting]));
     begin("main");
+    // SHADOWLAB_EXT_TRANSLUCENT_DRAWS: the technique's hook before each translucent object; the
+    // loop (hooks and draws) is timed as one scope inside "main", as seed 001 sec. 5.3.1 times
+    // composited shadows.
     bool translucentScope = false;
-    if (loaded.host().hasTranslucentHook()) {
-        // SHADOWLAB_EXT_TRANSLUCENT_DRAWS: the technique's hook before each translucent object;
-        // the loop (hooks and draws) is timed as one scope inside "main", as seed 001 sec. 5.3.1
-        // times composited shadows.
-        renderer_->setTranslucentHook([&, mainProgram](uint32_t object) {
-            if (object != kTranslucentDrawsDone && !translucentScope) {
-                begin("translucent draws");
-                translucentScope = true;
-            }
-            rebindAfterTranslucentHook(loaded, frame, params, mainProgram, object);
-            if (object == kTranslucentDrawsDone && translucentScope) {
-                end();
-                translucentScope = false;
-            }
-        });
-    }
+    auto translucentHook = [&](uint32_t object) {
+        if (object != kTranslucentDrawsDone && !translucentScope) {
+            begin("translucent draws");
+            translucentScope = true;
+        }
+        rebindAfterTranslucentHook(loaded, frame, params, mainProgram, object);
+        if (object == kTranslucentDrawsDone && translucentScope) {
+            end();
+            translucentScope = false;
+        }
+    };
+    if (loaded.host().hasTranslucentHook()) renderer_->setTranslucentHook(Renderer::translucentHookFor(translucentHook));
     renderer_->mainPass(mainProgram, outputs, [&] { loaded.technique().bindMainPass(frame, params); });
     renderer_->setTranslucentHook({});
     end();
@@ -632,11 +631,9 @@ bool App::evaluateTranslucentLayers(const ReferenceOptions& options, Evaluation&
     std::vector<glm::vec3> allTechnique, allReference;
     std::vector<uint8_t> allMask;
     renderer_->setView(frame_.camera, frame_.light);
+    auto translucentHook = [&](uint32_t object) { rebindAfterTranslucentHook(*loaded, frame_, params, program, object); };
     for (int k = 0; k < translucentLayers_; ++k) {
-        if (loaded->host().hasTranslucentHook())
-            renderer_->setTranslucentHook([&, program](uint32_t object) {
-                rebindAfterTranslucentHook(*loaded, frame_, params, program, object);
-            });
+        if (loaded->host().hasTranslucentHook()) renderer_->setTranslucentHook(Renderer::translucentHookFor(translucentHook));
         const bool drawn = renderer_->translucentLayer(k, program, [&] { loaded->technique().bindMainPass(frame_, params); });
         renderer_->setTranslucentHook({});
         if (!drawn) break;
@@ -649,8 +646,7 @@ bool App::evaluateTranslucentLayers(const ReferenceOptions& options, Evaluation&
         layer.technique.resize(pixels);
         for (size_t i = 0; i < pixels; ++i) layer.technique[i] = glm::clamp(glm::vec3(visibility[i]), 0.0f, 1.0f);
         layer.mask = compareMask(gbuffer, light_);
-        ReferenceOptions layerOptions = options;
-        if (!traceReference(gbuffer, layerOptions, layer.reference, error)) return false;
+        if (!traceReference(gbuffer, options, layer.reference, error)) return false;
         layer.metrics = compareVisibility(layer.technique, layer.reference, layer.mask, size.x, size.y);
         allTechnique.insert(allTechnique.end(), layer.technique.begin(), layer.technique.end());
         allReference.insert(allReference.end(), layer.reference.begin(), layer.reference.end());
@@ -664,8 +660,6 @@ bool App::evaluateTranslucentLayers(const ReferenceOptions& options, Evaluation&
                                                    size.y * int(out.translucentLayers.size()));
     return true;
 }
-
-
 
 Image Evaluation::heatmap() const {
     const auto rgb = errorHeatmap(technique, reference, mask, width, height);

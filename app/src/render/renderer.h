@@ -88,8 +88,19 @@ public:
     // each with its index, and once with kTranslucentDrawsDone after the last. The hook may change
     // any GL state, and leaves the pass's program bound with the technique's bindings; the
     // renderer sets its own state again before each draw. Empty: one sorted draw request.
-    using TranslucentHook = std::function<void(uint32_t object)>;
-    void setTranslucentHook(TranslucentHook hook) { translucentHook_ = std::move(hook); }
+    // The hook refers to a callable of the caller's, which must outlive its passes (a reference,
+    // not a copy: nothing is allocated per frame).
+    struct TranslucentHook {
+        void* callable = nullptr;
+        void (*call)(void* callable, uint32_t object) = nullptr;
+        explicit operator bool() const { return call != nullptr; }
+        void operator()(uint32_t object) const { call(callable, object); }
+    };
+    template <typename Callable>
+    static TranslucentHook translucentHookFor(Callable& callable) {
+        return {&callable, [](void* c, uint32_t object) { (*static_cast<Callable*>(c))(object); }};
+    }
+    void setTranslucentHook(TranslucentHook hook) { translucentHook_ = hook; }
 
     // Evaluation frames only (never timed): translucent layer `k` (0 = nearest the camera) in front
     // of the opaque depth of the last accuracy main pass, peeled behind layer k - 1 (call them in
