@@ -8,6 +8,17 @@
 #ifndef SHADOWLAB_DEPTH_RANGE_GLSL
 #define SHADOWLAB_DEPTH_RANGE_GLSL
 
+// (min, max) of the level texels lo .. hi (inclusive) of one level of the mips.
+vec2 depthRangeOfLevelTexels(sampler2D mips, int level, ivec2 lo, ivec2 hi) {
+    vec2 range = vec2(1.0, 0.0);
+    for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) {
+            vec2 texel = texelFetch(mips, ivec2(x, y), level).rg;
+            range = vec2(min(range.x, texel.x), max(range.y, texel.y));
+        }
+    return range;
+}
+
 // (min, max) map depth within radiusUv of uv; `resolution` is the shadow map's.
 vec2 depthRangeIn(sampler2D mips, vec2 uv, vec2 radiusUv, float resolution) {
     float radiusTexels = max(radiusUv.x, radiusUv.y) * resolution;
@@ -19,13 +30,7 @@ vec2 depthRangeIn(sampler2D mips, vec2 uv, vec2 radiusUv, float resolution) {
     int span = 2 << level;   // map texels per texel of this level
     ivec2 lo = clamp(ivec2(floor((uv - radiusUv) * resolution)) / span, ivec2(0), size - 1);
     ivec2 hi = clamp(ivec2(floor((uv + radiusUv) * resolution)) / span, ivec2(0), size - 1);
-    vec2 range = vec2(1.0, 0.0);
-    for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x) {
-            vec2 texel = texelFetch(mips, ivec2(x, y), level).rg;
-            range = vec2(min(range.x, texel.x), max(range.y, texel.y));
-        }
-    return range;
+    return depthRangeOfLevelTexels(mips, level, lo, hi);
 }
 
 // (min, max) map depth over the map texels lo .. hi (inclusive, per axis; clamped to the map as a
@@ -43,13 +48,7 @@ vec2 depthRangeInTexels(sampler2D mips, ivec2 lo, ivec2 hi, float resolution) {
     ivec2 size = max(textureSize(mips, 0) >> level, ivec2(1));   // from level 0: see depthRangeIn
     ivec2 a = min(lo >> (level + 1), size - 1);
     ivec2 b = min(hi >> (level + 1), size - 1);
-    vec2 range = vec2(1.0, 0.0);
-    for (int y = a.y; y <= b.y; ++y)
-        for (int x = a.x; x <= b.x; ++x) {
-            vec2 texel = texelFetch(mips, ivec2(x, y), level).rg;
-            range = vec2(min(range.x, texel.x), max(range.y, texel.y));
-        }
-    return range;
+    return depthRangeOfLevelTexels(mips, level, a, b);
 }
 
 #endif
