@@ -4,6 +4,10 @@
 # regressions. A crash, a sanitizer report, an input running over 10 s (a hang) or over 2 GiB
 # (exhausting the machine) fails the run; the input is left in <build>/artifacts/<target>/, to be
 # copied to tests/fuzz/regressions/<kind>/ once fixed (test_fuzz_regressions.cpp replays them).
+# libFuzzer saves an input that took over 10 s but finished as slow-unit-*; such an input is
+# replayed three times on its own and counts only if a replay is still slow (over 2 s): a stall of
+# the machine (CI once saw one) is not the input's doing. Either way it is printed in base64, so
+# the CI log alone is enough to reproduce it.
 #   tests/fuzz/run.sh [seconds per target, default 60] [build folder, default build-fuzz]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -35,6 +39,23 @@ for target in scene obj bench_spec tour path; do
     code=$?
     set -e
     runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
+    for unit in "$artifacts"/slow-unit-*; do
+        [ -e "$unit" ] || continue
+        echo "fuzz_$target: $(basename "$unit") ($(stat -c %s "$unit") bytes), base64:"
+        base64 -w 120 "$unit"
+        slowest=0
+        for replay in 1 2 3; do
+            ms=$({ "$build/fuzz_$target" "$unit" 2>&1 || true; } | grep -o 'in [0-9]* ms' | grep -o '[0-9]*' | head -1 || true)
+            ms=${ms:-999999}   # no time printed: it crashed on replay, which is a finding
+            echo "fuzz_$target: replay $replay took $ms ms"
+            [ "$ms" -gt "$slowest" ] && slowest=$ms
+        done
+        if [ "$slowest" -le 2000 ]; then
+            echo "fuzz_$target: not slow when replayed (at most $slowest ms): a stall of the machine, not a finding"
+            mkdir -p "$build/stalls/$target"
+            mv "$unit" "$build/stalls/$target/"
+        fi
+    done
     found=$(ls "$artifacts" | wc -l)
     summary+="fuzz_$target: $runs executions in ${seconds}s, exit $code, $found finding(s)"$'\n'
     if [ "$code" != 0 ] || [ "$found" != 0 ]; then
