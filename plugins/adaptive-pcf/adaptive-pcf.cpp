@@ -67,6 +67,7 @@ constexpr ParamDesc kParams[] = {
     kit::coneBiasParam(),
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
+    kit::cullParam(0),   // none: every face casts (open and single-sided casters too); back as shadowmap's default
     kit::fitParam(),
     kit::snapParam(),
 };
@@ -82,6 +83,7 @@ enum : uint32_t {
     kConeBias = kit::paramIndex(kParams, "cone_bias"),
     kConstantBias = kit::paramIndex(kParams, "constant_bias"),
     kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
+    kCull = kit::paramIndex(kParams, "cull"),
     kFit = kit::paramIndex(kParams, "fit"),
     kSnap = kit::paramIndex(kParams, "snap"),
 };
@@ -183,6 +185,7 @@ class AdaptivePcf final : public kit::TechniqueBase {
         const kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
                                          .constantBias = params.asFloat(kConstantBias),
                                          .slopeBias = params.asFloat(kSlopeBias),
+                                         .cull = kit::Cull(params.asInt(kCull)),
                                          .fit = kit::readFit(params, kFit, kSnap)};
         if (frame.light.type == LightType::Point) return cube_.render(frame, config);
         map_.render(frame, config);
