@@ -742,8 +742,6 @@ INSTANTIATE_TEST_SUITE_P(CubeAndContact, PcfGather, ::testing::Values("cube", "c
 // run it, so the shadow term equals classify = none on every pixel (difference 0, not a tolerance),
 // for the three samplings, nearest and bilinear taps, small and large kernels, taps also at offset
 // scale 2, on cube and contact (320 x 240, map 1024), and forest (160 x 120, nearest taps).
-// classify = cells (pcfBlocks: per 4 x 4 cell of the kernel, the lookups of gather and folded)
-// likewise.
 // DecidesPixelsAndAWrongBoundShows below shows that the bounds do decide pixels and that wrong
 // bounds change pixels.
 namespace {
@@ -795,26 +793,22 @@ TEST(PcfClassify, DepthRangeChangesNoPixel) {
             const std::string label = pcfClassifyLabel(scene.scene, c);
             SCOPED_TRACE(label);
             const auto none = pcfShadow(*app, pcfClassifySets(c), "none");
-            // cells apply to gather and folded (the taps ignore them).
-            for (const char* classify : {"depth-range", "cells"}) {
-                if (std::string(classify) == "cells" && std::string(c.sampling) == "taps") continue;
-                const auto bounded = pcfShadow(*app, pcfClassifySets(c), classify);
-                ASSERT_EQ(none.size(), bounded.size());
-                double worst = 0.0;
-                int differing = 0, shadowed = 0, penumbra = 0;
-                for (size_t i = 0; i < none.size(); ++i) {
-                    const double difference = std::abs(double(bounded[i].r) - double(none[i].r));
-                    worst = std::max(worst, difference);
-                    differing += difference > 0.0;
-                    shadowed += none[i].r == 0.0f;
-                    penumbra += none[i].r > 0.0f && none[i].r < 1.0f;
-                }
-                std::printf("pcf classify on %s: %s vs none, largest difference %.3g on %d pixels (%d at 0, %d "
-                            "between 0 and 1)\n",
-                            label.c_str(), classify, worst, differing, shadowed, penumbra);
-                EXPECT_EQ(worst, 0.0) << classify;
-                EXPECT_GT(penumbra, 100) << "the comparison covers filtered edges";
+            const auto bounded = pcfShadow(*app, pcfClassifySets(c), "depth-range");
+            ASSERT_EQ(none.size(), bounded.size());
+            double worst = 0.0;
+            int differing = 0, shadowed = 0, penumbra = 0;
+            for (size_t i = 0; i < none.size(); ++i) {
+                const double difference = std::abs(double(bounded[i].r) - double(none[i].r));
+                worst = std::max(worst, difference);
+                differing += difference > 0.0;
+                shadowed += none[i].r == 0.0f;
+                penumbra += none[i].r > 0.0f && none[i].r < 1.0f;
             }
+            std::printf("pcf classify on %s: depth-range vs none, largest difference %.3g on %d pixels (%d at 0, %d "
+                        "between 0 and 1)\n",
+                        label.c_str(), worst, differing, shadowed, penumbra);
+            EXPECT_EQ(worst, 0.0);
+            EXPECT_GT(penumbra, 100) << "the comparison covers filtered edges";
         }
     }
 }
@@ -840,9 +834,7 @@ TEST(PcfClassify, DecidesPixelsAndAWrongBoundShows) {
     struct Mutation {
         const char* name;
         std::vector<std::pair<std::string, std::string>> edits;
-        const char* classify = "depth-range";
     };
-    const std::string cellDecision = "float decided = range.x >= reference ? 1.0 : (range.y < reference ? 0.0 : -1.0);";
     const std::vector<Mutation> mutations = {
         {"marked",
          {{"if (decided >= 0.0) return vec3(decided);", "if (decided >= 0.0) return vec3(decided > 0.5 ? -1.0 : -2.0);"}}},
@@ -850,11 +842,6 @@ TEST(PcfClassify, DecidesPixelsAndAWrongBoundShows) {
          {{"ivec2 lo = ivec2(floor(u - reach - h)) - 1;", "ivec2 lo = ivec2(floor(u - reach - h)) + 1;"},
           {"ivec2 hi = ivec2(floor(u + reach + h)) + 1;", "ivec2 hi = ivec2(floor(u + reach + h)) - 1;"}}},
         {"no cone", {{"range.y < coord.z - slope * (reach * 1.41436)", "range.y < coord.z"}}},
-        // cells: a decided block adds 1000 (its pixel's term goes far above 1); the neighbouring
-        // cell's bounds; the shadowed test against coord.z instead of the block's reference.
-        {"cells marked", {{cellDecision, cellDecision + " if (decided >= 0.0) lit += 1000.0;"}}, "cells"},
-        {"cells wrong cell", {{"clamp(ivec2(cx, cy), ivec2(0), cells - 1)", "clamp(ivec2(cx + 1, cy), ivec2(0), cells - 1)"}}, "cells"},
-        {"cells no cone", {{"(range.y < reference ? 0.0 : -1.0)", "(range.y < coord.z ? 0.0 : -1.0)"}}, "cells"},
     };
     const fs::path root = fs::temp_directory_path() / ("shadowlab-pcf-classify-" + std::to_string(::getpid()));
     const std::vector<PcfClassifyCase> cases = {{"taps", 3, false, 1}, {"taps", 3, true, 1}, {"gather", 11, true, 1},
@@ -879,25 +866,18 @@ TEST(PcfClassify, DecidesPixelsAndAWrongBoundShows) {
         for (const char* scene : {"cube", "contact"}) {
             auto app = test::makeHeadlessApp(scene, {320, 240});
             ASSERT_TRUE(app);
-            const bool cells = std::string(mutation.classify) == "cells";
             for (const PcfClassifyCase& c : cases) {
-                if (cells && std::string(c.sampling) == "taps") continue;
                 const std::string label = pcfClassifyLabel(scene, c);
                 SCOPED_TRACE(label);
                 // The visibility target as the main pass wrote it (Evaluation clamps to [0, 1]).
                 std::vector<std::string> sets = pcfClassifySets(c);
                 sets.push_back("classify=none");
                 const auto none = test::renderVisibility(*app, "pcf", sets);
-                sets.back() = std::string("classify=") + mutation.classify;
+                sets.back() = "classify=depth-range";
                 const auto bounded = test::renderVisibility(*app, "pcf", sets);
                 ASSERT_EQ(none.size(), bounded.size());
                 int lit = 0, shadowed = 0, differing = 0;
                 for (size_t i = 0; i < none.size(); ++i) {
-                    if (cells) {   // pixels with a decided block (marked: above 1)
-                        lit += bounded[i].r > 1.5f;
-                        differing += bounded[i].r != none[i].r;
-                        continue;
-                    }
                     lit += bounded[i].r == -1.0f;
                     shadowed += bounded[i].r == -2.0f;
                     differing += bounded[i].r != none[i].r;
@@ -921,14 +901,10 @@ TEST(PcfClassify, DecidesPixelsAndAWrongBoundShows) {
     EXPECT_GT(decidedShadowed["marked"], 1000) << "and shadowed ones";
     EXPECT_GT(changed["short"], 0) << "a region one texel short changes pixels";
     EXPECT_GT(changed["no cone"], 0) << "ignoring the cone bias changes pixels";
-    EXPECT_GT(decidedLit["cells marked"], 10000) << "cells decide blocks";
-    EXPECT_GT(changed["cells wrong cell"], 0) << "another cell's bounds change pixels";
-    EXPECT_GT(changed["cells no cone"], 0) << "ignoring the cone bias in a cell's test changes pixels";
 }
 
-// The mips exist only while classify = depth-range (or cells with gather or folded): none allocates
-// nothing, depth-range allocates them once (not again per frame, again only for a new map size),
-// none again frees them.
+// The mips exist only while classify = depth-range: none allocates nothing, depth-range allocates
+// them once (not again per frame, again only for a new map size), none again frees them.
 TEST(PcfClassify, MipsOnlyWhileClassifying) {
     auto app = test::makeHeadlessApp("cube", {160, 120});
     ASSERT_TRUE(app);
@@ -948,12 +924,6 @@ TEST(PcfClassify, MipsOnlyWhileClassifying) {
     EXPECT_EQ(mips(), first) << "the same texture next frame";
     render(*app, "pcf", {"resolution=512"});
     EXPECT_EQ(mips().size(), 1u) << "reallocated for the new map size, the old one freed";
-    render(*app, "pcf", {"classify=none"});
-    EXPECT_TRUE(mips().empty());
-    render(*app, "pcf", {"classify=cells"});
-    EXPECT_TRUE(mips().empty()) << "the taps ignore cells";
-    render(*app, "pcf", {"sampling=gather"});
-    EXPECT_EQ(mips().size(), 1u) << "gather reads them";
     render(*app, "pcf", {"classify=none"});
     EXPECT_TRUE(mips().empty());
 }

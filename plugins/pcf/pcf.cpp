@@ -15,12 +15,10 @@
 // price of some peter panning under large kernels.
 // Point lights: the kit's cube map (kit/cube_depth_map.h), the n x n taps laid across the ray from
 // the light (shaders/cube_shadow.glsl), with the cone bias; `sampling = gather | folded` use the taps there.
-// classify = depth-range | cells: the kit's depth-range mips (kit/depth_range_mips.h: min and max
-// depth mips built after the shadow pass, as pcss and adaptive-pcf use them) bound the depths
-// the kernel reads: depth-range skips the kernel of a pixel whose every comparison they decide,
-// cells (gather and folded) the lookups of every 4 x 4 cell of the kernel they decide, with the
-// same image either way (pcf.glsl: classifyByDepthRange, pcfBlocks). 2D maps only: point lights
-// always run the kernel.
+// classify = depth-range: the kit's depth-range mips (kit/depth_range_mips.h: min and max depth
+// mips built after the shadow pass, as pcss and adaptive-pcf use them) bound every depth the
+// kernel can read, and a pixel whose every comparison they decide skips the kernel, with the same
+// image (pcf.glsl, classifyByDepthRange). 2D maps only: point lights always run the kernel.
 #include <shadowlab/kit/cube_depth_map.h>
 #include <shadowlab/kit/depth_map.h>
 #include <shadowlab/kit/depth_range_mips.h>
@@ -58,20 +56,19 @@ constexpr ParamDesc kParams[] = {
      "little lighter (never darker) than with the taps. Both need offset scale 1 (neighbouring taps sharing "
      "texels); at other spacings, and for point lights, the taps are used.",
      "taps|gather|folded"},
-    {"classify", "decide lit and shadowed by", ParamType::Enum, 0, 2, 0, "",
-     "Skip lookups whose outcome min/max depth mips of the map already decide, with exactly the same image "
-     "as none. none: every pixel in the map runs the kernel. depth-range: first the nearest and farthest "
-     "depth stored anywhere the kernel reads (one extra pass after the shadow map, then at most four fetches "
-     "per pixel): nearest at or behind the receiver means every tap is lit, farthest in front of the most "
-     "cone-biased tap's depth every tap shadowed, and the kernel is skipped. It cannot decide a receiver "
-     "tilted against the light (the texels on its near side are closer to the light than it is; the cone "
-     "bias is what keeps its taps lit) once the region spans more than the depth bias covers: at 11 x 11 "
-     "nearly all of the lit ground in cube and contact. cells (gather and folded; taps ignore it): the same "
-     "test per 4 x 4 texels of the kernel (one fetch of the mips' second level), each against the references "
-     "of its own blocks, so that the cells away from a tilted receiver's centre are decided too and only the "
-     "undecided 2 x 2 blocks are fetched. Penumbra-heavy views (forest's foliage) decide little either way "
-     "and pay the mips and the tests. Point lights ignore it.",
-     "none|depth-range|cells"},
+    {"classify", "decide lit and shadowed by", ParamType::Enum, 0, 1, 0, "",
+     "none: every pixel in the map runs the kernel. depth-range: first the nearest and farthest depth "
+     "stored anywhere the kernel reads (depth-range mips: one extra pass after the shadow map, then at most "
+     "four fetches per pixel): nearest at or behind the receiver means every tap is lit, farthest in front "
+     "of the most cone-biased tap's depth every tap shadowed, and the kernel is skipped. Exactly the same "
+     "image as none, for every sampling. It saves the kernel on surfaces facing the light and under "
+     "casters well above the receiver. It cannot decide a receiver tilted against the light (the texels on "
+     "its near side are closer to the light than it is; the cone bias is what keeps its taps lit) once the "
+     "region, rounded up to the mips' power-of-two blocks, spans more than the depth bias covers: at 11 x 11 "
+     "that is nearly all of the lit ground in cube and contact, and penumbra-heavy views (forest's foliage) "
+     "decide little at any size. Those pixels pay the mips and the test and still run the kernel. Point "
+     "lights ignore it.",
+     "none|depth-range"},
     kit::coneBiasParam(),
     kit::constantBiasParam(),
     kit::slopeBiasParam(),
@@ -103,16 +100,10 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "tests (cost grows with n^2), the offset scale their spacing; bilinear taps remove the "
                     "banding. Sampling by gather or folded reads the same texels four at a time (Castano 2013) for the "
                     "same result (with the cone bias, a little lighter at contacts) at about a quarter of the lookups. The ramp has the same width everywhere: this is anti-aliasing, not a physically soft "
-                    "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause. Classify = depth-range skips the kernel where min/max depth mips prove every tap lit or every tap shadowed, classify = cells (gather and folded) every 4 x 4 cell of the kernel they decide, with the same image. Debug views: kernel (the n x n box around the pixel under the mouse, its taps lit or shadowed), footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), 'shadow map', and 'depth-range mips' (with classify = depth-range or cells).",
+                    "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause. Classify = depth-range skips the kernel where min/max depth mips prove every tap lit or every tap shadowed, with the same image. Debug views: kernel (the n x n box around the pixel under the mouse, its taps lit or shadowed), footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), 'shadow map', and 'depth-range mips' (with classify = depth-range).",
      .shadowGlsl = "pcf.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
     kParams);
-
-// The sampling the main pass runs: gather and folded read the texels of taps one texel apart;
-// other spacings use the taps.
-int blockSampling(const ParamValues& params) {
-    return params.asFloat(kOffsetScale) == 1.0f ? params.asInt(kSampling) : 0;
-}
 
 class PercentageCloserFiltering final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
@@ -136,21 +127,18 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
         footprint.bilinear = params.asBool(kHardwareFilter) ? 1 : 0;
         footprint.coneBias = params.asBool(kConeBias) ? 1.0f : 0.0f;
         kit::reportFilterFootprint(host(), footprint);
-        // classify = depth-range and cells bound the kernel with mips of the 2D map (allocated on
-        // first use and when the resolution changes; freed when classify goes back to none).
-        // cells read level 1 only (the taps ignore them: no mips).
-        const int classify = params.asInt(kClassify);
-        if (classify == 1)
+        // classify = depth-range bounds the kernel with mips of the 2D map (allocated on first use
+        // and when the resolution changes; freed when classify goes back to none).
+        if (params.asInt(kClassify) == 1)
             depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
-        else if (classify == 2 && blockSampling(params) != 0)
-            depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips", 2);
         else
             depthRange_.reset();
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
         const bool bilinear = params.asBool(kHardwareFilter);
-        const int sampling = blockSampling(params);
+        // Gather and folded read the texels of taps one texel apart; other spacings use the taps.
+        const int sampling = params.asFloat(kOffsetScale) == 1.0f ? params.asInt(kSampling) : 0;
         // Folded lookups are bilinear comparisons whatever the taps are (nearest taps: on texel corners).
         const bool linearSampler = bilinear || sampling == 2;
         const SamplerKind sampler = linearSampler ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;

@@ -4,25 +4,22 @@
 // each tap is itself the texture unit's 2x2 bilinear comparison (Fig. 3.11c).
 //
 // Three ways to evaluate the filter (the `sampling` parameter; the same filter without the cone
-// bias, and with it the same up to a cone at most one texel diagonal wider, see pcfBlocks):
+// bias, and with it the same up to a cone at most one texel diagonal wider, see pcfGather):
 //   taps    the loop of n^2 lookups (boxPcfDepth, shaders/box_pcf.glsl), one texture() per tap;
-//   gather  the texels the taps read, four at a time with textureGather (pcfBlocks), each weighted
+//   gather  the texels the taps read, four at a time with textureGather (pcfGather), each weighted
 //           by how much of it the taps take. The idea is Castano's ("Shadow Mapping Summary -
 //           Part 1", 2013: the optimised PCF of The Witness, also in MJP's Shadows sample), which
 //           folds the bilinear taps of a kernel onto its texels and fetches them with the fewest
 //           lookups; here the weights are chosen to reproduce this box of taps exactly rather than
 //           a wider tent, and the comparisons stay in the texture unit.
 //   folded  the same 2 x 2 blocks, each one bilinear comparison the texture unit weights
-//           (pcfBlocks: Castano's own form).
+//           (pcfFolded: Castano's own form).
 //
-// The `classify` parameter (uClassify, 2D maps only) skips lookups whose outcome the kit's
-// depth-range mips (min/max mips, kit/depth_range_mips.h) already decide, exactly:
-//   depth-range (1) before any sampling, the nearest and farthest depth of every texel the kernel
-//           can read (at most four fetches) decide the pixel where every one of sec. 3.2.4's binary
-//           tests agrees; the other pixels run the kernel (classifyByDepthRange below);
-//   cells (2) gather and folded only: each 4 x 4 cell of the kernel's texels (one texel of mips
-//           level 1) decides the 2 x 2 blocks it holds against their own references (pcfBlocks);
-//           taps ignore it.
+// classify = depth-range (uClassify 1, 2D maps only): before any of the above, the nearest and
+// farthest depth of every texel the kernel can read, from the kit's depth-range mips (min/max
+// mips as in kit/depth_range_mips.h, at most four fetches), decide the pixel where every one of
+// sec. 3.2.4's binary tests in the kernel agrees; the other pixels run the kernel
+// (classifyByDepthRange below).
 #include "light_space.glsl"
 #include "light_depth.glsl"
 #include "box_pcf.glsl"
@@ -36,7 +33,7 @@
 layout(binding = kDepthMapUnit) uniform sampler2DShadow uShadowMap;   // comparison: hardware PCF
 layout(binding = kDepthRangeMipsUnit) uniform sampler2D uDepthRange;  // classify = depth-range: (min, max) mips
 
-// Gather and folded, for unit spacing (pcf.cpp uses the taps otherwise). Derivation, per axis
+// The gather variant, for unit spacing (pcf.cpp uses the taps otherwise). Derivation, per axis
 // (the filter is separable apart from the references), in texel units: the point is at u, texel t
 // covers [t, t + 1), tap i (0 <= i < n) sits at u + i - c with c = (n - 1) / 2.
 //   Nearest taps read texel floor(u + i - c) = t0 + i with t0 = floor(u - c) (boxPcfDepth looks each up
@@ -49,20 +46,39 @@ layout(binding = kDepthRangeMipsUnit) uniform sampler2D uDepthRange;  // classif
 //       w_k = (1 - f) [k < n] + f [k > 0]  =  (1 - f, 1, 1, ..., 1, f),
 //   the box of n bilinear taps as an (n + 1)-texel kernel, the tent-convolved box of Castano's
 //   derivation without widening it. In 2D the weight of a texel is w_kx w_ky.
-// The m = n (nearest) or n + 1 (bilinear) texels per axis are fetched in 2 x 2 blocks at even
-// texel coordinates (pcfBlocks): ceil(m / 2)^2 lookups, or one more row and column when t0 is odd,
-// instead of n^2 (36 or 49 instead of 121 at 11 x 11). textureGather returns a block's texels in
-// the order (0, 1), (1, 1), (1, 0), (0, 0) (x right, y up) and clamps to the edge as the taps do.
+// The m = n (nearest) or n + 1 (bilinear) texels per axis are fetched in 2 x 2 blocks, one
+// textureGather at the corner the block's four texels share: ceil(m / 2)^2 lookups instead of n^2
+// (36 instead of 121 at 11 x 11). textureGather returns the block's texels in the order (0, 1),
+// (1, 1), (1, 0), (0, 0) (x right, y up) and clamps to the edge as the taps do.
+// Every block is one comparing gather (textureGather on the sampler2DShadow: four `ref <= depth`
+// tests in the texture unit) against one reference depth. Without the cone bias that reference is
+// every tap's, and the gather is the taps' filter exactly. With it each tap has its own reference,
+// z - slope * r (r: the tap's distance from the centre), and a block's texels are read by up to
+// 2 x 2 (nearest) or 3 x 3 (bilinear) taps; the block compares against the smallest of their
+// references, the one of the farthest tap. That keeps the cone conservative (a texel is never
+// darker than in the taps: every pixel's gather term is >= its taps term) and moves it outwards by
+// at most one texel diagonal (slope * sqrt 2 of extra bias, seen at contacts and where a receiver
+// turns away from the light; the block's centroid instead, not conservative, was further from the
+// taps and darker at contacts on llvmpipe: tests/test_soft_filtering.cpp), where an exact
+// per-tap comparison would need raw depths and up to 16 shader comparisons per block. On an H200
+// that exact version was 1.3-1.5x slower than the taps (build c84cf6c); this one needs four weights
+// and one gather per block, and measured 0.62-0.65x the taps' shadow term at 11 x 11 and 0.89-0.95x
+// at 5 x 5, folded the same (docs/results/h200-2026-12-02-issue10): there each 2 x 2 lookup costs
+// 2.1-2.5 taps, whatever the arithmetic around it (the cone bias off changes nothing).
 
 // Weight of texel k of the kernel along one axis (nearest taps: f = 0 and k < n).
 float texelWeight(int k, float f) {
     return (k < uKernel ? 1.0 - f : 0.0) + (k > 0 ? f : 0.0);
 }
 
+// Weights of the pair of texels k0, k0 + 1 along one axis; 0 past the kernel (the last pair of an odd m).
+vec2 pairWeights(int k0, float f, int texels) {
+    return vec2(texelWeight(k0, f), k0 + 1 < texels ? texelWeight(k0 + 1, f) : 0.0);
+}
+
 // Cone-bias distance, along one axis, of the farthest tap reading the pair k0, k0 + 1: taps k0 ..
 // k0 + 1 (nearest: texel k is tap k) or k0 - 1 .. k0 + 1 (bilinear: texel k is read by taps k - 1
-// and k), within the kernel; the farthest from the centre is at one end of that range. k0 is -1
-// for the first block of a kernel starting at an odd texel (its texel -1 has weight 0).
+// and k), within the kernel; the farthest from the centre is at one end of that range.
 float pairReach(int k0, bool bilinear, float centre) {
     float first = float(max(k0 - (bilinear ? 1 : 0), 0));
     float last = float(min(k0 + 1, uKernel - 1));
@@ -81,94 +97,61 @@ KernelTexels kernelTexels(vec3 coord, bool bilinear) {
     vec2 start = coord.xy * uLightDepth.w - centre - (bilinear ? 0.5 : 0.0);
     KernelTexels k;
     k.origin = floor(start);
-    // f in steps of 1/256, the texture unit's own precision for a bilinear weight: every weight
-    // product then has at most 16 fractional bits and every sum of them (n^2 <= 225) is exact in
-    // a float, so a pixel whose every comparison passes sums to exactly n^2 (1 after the division,
-    // as a decided pixel; with unrounded weights a few ulps below it, which a half-float target
-    // may store as 1 - 2^-11).
-    k.f = bilinear ? floor((start - k.origin) * 256.0 + 0.5) / 256.0 : vec2(0.0);
+    k.f = bilinear ? start - k.origin : vec2(0.0);
     k.texels = uKernel + (bilinear ? 1 : 0);
     return k;
 }
 
-// Weight of kernel texel k along one axis, 0 outside the kernel's `texels` texels.
-float kernelTexelWeight(int k, float f, int texels) {
-    return k >= 0 && k < texels ? texelWeight(k, f) : 0.0;
-}
-
-// Gather and folded: the kernel's texels in 2 x 2 blocks at even texel coordinates (the kernel's
-// first texel t0 rounded down to even), visited cell by cell, a cell being the 4 x 4 texels of one
-// texel of the depth-range mips' level 1 (two blocks by two). A block's texels k0, k0 + 1 (k
-// counted from t0: k0 is -1 when t0 is odd, and the last block may hold texel m) take the weights
-// of the kernel, 0 outside it (kernelTexelWeight); a block of weight 0 is skipped.
-// Gather: one comparing textureGather at the corner the block's four texels share, the four weighted
-// in the shader. Folded: one bilinear comparison placed so that the texture unit's weights are the
-// block's (a pair weighted (w0, w1) is the bilinear lookup w1 / (w0 + w1) of the way from the first
-// texel's centre to the second's, times w0 + w1; in 2D the product of the two axes: Castano 2013's
-// optimised PCF). Nearest taps put folded lookups on texel corners (1/2, 1/2) or centres (1, 0).
-// Weights are in steps of 1/256 (kernelTexels), as the texture unit keeps a bilinear weight; it may
-// round a tap's own weight the other way, by up to 1/512.
-// References: every block is compared against one depth. Without the cone bias that is every
-// tap's, and both samplings are the taps' filter exactly. With it each tap has its own,
-// z - slope * r (r: the tap's distance from the centre), and a block's texels are read by up to
-// 2 x 2 (nearest) or 3 x 3 (bilinear) taps; the block compares against the smallest of theirs,
-// the farthest tap's (pairReach). That keeps the cone conservative (a texel is never darker than
-// in the taps: every pixel's term here is >= its taps term) and moves it outwards by at most one
-// texel diagonal (slope * sqrt 2 of extra bias, seen at contacts and where a receiver turns away
-// from the light; a block's centroid instead, not conservative, was further from the taps and
-// darker at contacts on llvmpipe: tests/test_soft_filtering.cpp). An exact per-tap comparison
-// would need raw depths and up to 16 shader comparisons per block: on an H200 that was 1.3-1.5x
-// slower than the taps (build c84cf6c).
-// classify = cells (`decide`): before a cell's blocks, its nearest and farthest depth (one fetch
-// of mips level 1, the cell clamped to the map as the lookups clamp their texels) decide every
-// block whose reference is at or in front of the nearest depth (all four comparisons pass: 1) or
-// behind the farthest (all four fail: 0), exactly as the lookup would; only the other blocks are
-// fetched. Where the whole kernel cannot be decided (classify = depth-range: a receiver tilted
-// against the light has texels on its near side closer to the light than its own depth), most of
-// its cells still can, each against its own blocks' cone-biased references.
-// Cost, measured on an H200 (docs/results/h200-2026-12-03-issue10): one 2 x 2 lookup costs 2.0
-// single taps whatever the arithmetic around it, so without decisions the 36 lookups at 11 x 11
-// are 0.60-0.66x of the 121 taps, not 0.30x.
-float pcfBlocks(vec3 coord, float slope, bool folded, bool decide) {
+float pcfGather(vec3 coord, float slope) {
     float resolution = uLightDepth.w;
     float centre = 0.5 * float(uKernel - 1);
     bool bilinear = uBilinear != 0;
     KernelTexels kernel = kernelTexels(coord, bilinear);
-    ivec2 first = ivec2(kernel.origin);   // t0
-    ivec2 last = first + kernel.texels - 1;
-    ivec2 firstCell = ivec2(floor(vec2(first) * 0.25));   // floor(t / 4), below 0 too
-    ivec2 lastCell = ivec2(floor(vec2(last) * 0.25));
-    ivec2 cells = max(textureSize(uDepthRange, 0) >> 1, ivec2(1));   // level 1's size, from level 0 (see depth_range.glsl)
+    int blocks = (kernel.texels + 1) / 2;
     float lit = 0.0;
-    for (int cy = firstCell.y; cy <= lastCell.y; ++cy) {
-        for (int cx = firstCell.x; cx <= lastCell.x; ++cx) {
-            // Undecided unless the bounds say otherwise: no reference is below -1e30 or above 1e30.
-            vec2 range = decide ? texelFetch(uDepthRange, clamp(ivec2(cx, cy), ivec2(0), cells - 1), 1).rg : vec2(-1e30, 1e30);
-            for (int j = 0; j < 2; ++j) {
-                int by = 4 * cy + 2 * j;
-                int ky = by - first.y;
-                vec2 wy = vec2(kernelTexelWeight(ky, kernel.f.y, kernel.texels), kernelTexelWeight(ky + 1, kernel.f.y, kernel.texels));
-                float sy = wy.x + wy.y;
-                if (sy == 0.0) continue;
-                float reachY = pairReach(ky, bilinear, centre);
-                for (int i = 0; i < 2; ++i) {
-                    int bx = 4 * cx + 2 * i;
-                    int kx = bx - first.x;
-                    vec2 wx = vec2(kernelTexelWeight(kx, kernel.f.x, kernel.texels), kernelTexelWeight(kx + 1, kernel.f.x, kernel.texels));
-                    float sx = wx.x + wx.y;
-                    if (sx == 0.0) continue;
-                    float reference = coord.z - slope * length(vec2(pairReach(kx, bilinear, centre), reachY));
-                    float decided = range.x >= reference ? 1.0 : (range.y < reference ? 0.0 : -1.0);
-                    if (folded) {
-                        vec2 at = (vec2(bx, by) + 0.5 + vec2(wx.y / sx, wy.y / sy)) / resolution;
-                        lit += sx * sy * (decided >= 0.0 ? decided : texture(uShadowMap, vec3(at, reference)));
-                    } else {
-                        vec4 visible = decided >= 0.0 ? vec4(decided)
-                                                      : textureGather(uShadowMap, vec2(bx + 1, by + 1) / resolution, reference);
-                        lit += dot(visible, vec4(wx.x * wy.y, wx.y * wy.y, wx.y * wy.x, wx.x * wy.x));
-                    }
-                }
-            }
+    for (int b = 0; b < blocks; ++b) {
+        vec2 wy = pairWeights(2 * b, kernel.f.y, kernel.texels);
+        float reachY = pairReach(2 * b, bilinear, centre);
+        float cornerY = (kernel.origin.y + float(2 * b + 1)) / resolution;
+        for (int a = 0; a < blocks; ++a) {
+            vec2 wx = pairWeights(2 * a, kernel.f.x, kernel.texels);
+            vec2 corner = vec2((kernel.origin.x + float(2 * a + 1)) / resolution, cornerY);   // shared by the block's four texels
+            float reference = coord.z - slope * length(vec2(pairReach(2 * a, bilinear, centre), reachY));
+            vec4 visible = textureGather(uShadowMap, corner, reference);
+            lit += dot(visible, vec4(wx.x * wy.y, wx.y * wy.y, wx.y * wy.x, wx.x * wy.x));
+        }
+    }
+    return lit;
+}
+
+// The folded variant: the same 2 x 2 blocks of texels, each read by one bilinear comparison
+// (texture() on the GL_LINEAR comparison sampler) placed so that the texture unit's own weights are
+// the block's: a pair of texels weighted (w0, w1) along an axis is the bilinear lookup at
+// w1 / (w0 + w1) of the way from the first texel's centre to the second's, times w0 + w1; in 2D
+// the product of the two axes (Castano 2013's optimised PCF, where the texture unit also does the
+// weighting). Nearest taps put every lookup on a texel corner (weights 1/2, 1/2) or, for the last
+// pair of an odd m, on a texel centre (1, 0); bilinear taps move the two end pairs by f. The
+// texture unit holds a weight with 8 fractional bits, so off-centre end pairs may differ from the
+// taps (which are quantised the same way) by about 1/512 of their weight. Same references per
+// block as pcfGather; one lookup and two weights per block instead of four weights and a dot.
+float pcfFolded(vec3 coord, float slope) {
+    float resolution = uLightDepth.w;
+    float centre = 0.5 * float(uKernel - 1);
+    bool bilinear = uBilinear != 0;
+    KernelTexels kernel = kernelTexels(coord, bilinear);
+    int blocks = (kernel.texels + 1) / 2;
+    float lit = 0.0;
+    for (int b = 0; b < blocks; ++b) {
+        vec2 wy = pairWeights(2 * b, kernel.f.y, kernel.texels);
+        float sy = wy.x + wy.y;
+        float y = (kernel.origin.y + float(2 * b) + 0.5 + (sy > 0.0 ? wy.y / sy : 0.0)) / resolution;
+        float reachY = pairReach(2 * b, bilinear, centre);
+        for (int a = 0; a < blocks; ++a) {
+            vec2 wx = pairWeights(2 * a, kernel.f.x, kernel.texels);
+            float sx = wx.x + wx.y;
+            float x = (kernel.origin.x + float(2 * a) + 0.5 + (sx > 0.0 ? wx.y / sx : 0.0)) / resolution;
+            float reference = coord.z - slope * length(vec2(pairReach(2 * a, bilinear, centre), reachY));
+            lit += sx * sy * texture(uShadowMap, vec3(x, y, reference));
         }
     }
     return lit;
@@ -221,6 +204,7 @@ vec3 shadowTerm(ShadowInput s) {
         float decided = classifyByDepthRange(coord, slope);
         if (decided >= 0.0) return vec3(decided);
     }
-    if (uSampling != 0) return vec3(pcfBlocks(coord, slope, uSampling == 2, uClassify == 2) / float(uKernel * uKernel));
+    if (uSampling == 1) return vec3(pcfGather(coord, slope) / float(uKernel * uKernel));
+    if (uSampling == 2) return vec3(pcfFolded(coord, slope) / float(uKernel * uKernel));
     return vec3(boxPcfDepth(uShadowMap, coord, uLightDepth.w, uKernel, uOffsetScale, slope, uBilinear != 0));
 }

@@ -10,7 +10,7 @@ SHADOWLAB_UNIFORM_BLOCK(PcfUniforms, 2) {
     float uConeBias;       // 0 off, else multiplier of the receiver slope
     int uSampling;         // 0 taps, 1 gather (textureGather), 2 folded (bilinear comparisons); 1, 2: unit spacing only
     int uBilinear;         // 1: the taps are bilinear comparisons (gather and folded weight their texels so)
-    int uClassify;         // 1: decide lit and shadowed pixels by the depth-range mips first, 2: per 4 x 4 cell (unit 7: kit/depth_range_mips_shared.h)
+    int uClassify;         // 1: decide lit and shadowed pixels by the depth-range mips first (unit 7: kit/depth_range_mips_shared.h)
     int uPcfPad1;
     int uPcfPad2;
 };

@@ -4,7 +4,7 @@
 // (shaders/depth_range.glsl) to bound every depth in a kernel's region with at most four fetches:
 // pcss narrows its blocker search with the minimum and stops where the whole region blocks;
 // adaptive-pcf decides lit and shadowed pixels before its ring of taps, pcf before its n x n kernel
-// (depthRangeInTexels) or, per 4 x 4 cell of its kernel, before the cell's lookups (level 1). Reallocated with the map only.
+// (depthRangeInTexels). Reallocated with the map only.
 #pragma once
 
 #include <algorithm>
@@ -28,17 +28,15 @@ public:
     }
 
     // Builds the mips of `depthMap` (resolution x resolution, level 0), allocating them first when
-    // the size changed. `label` names them in the memory table and the debug images. `levels`
-    // limits the draws to the first levels (pcf's cells read level 1 only); the others keep what
-    // an earlier build left and must not be read.
-    void build(GLuint depthMap, int resolution, const char* label, int levels = kMaxLevels) {
+    // the size changed. `label` names them in the memory table and the debug images.
+    void build(GLuint depthMap, int resolution, const char* label) {
         ensure(resolution, label);
         GpuPass pass(*host_, label);
         glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
         glDisable(GL_DEPTH_TEST);
         program_.use();
         glBindSampler(shared::depth_range::kDepthRangeSourceUnit, 0);   // raw depths, whatever a main pass left bound
-        for (int level = 0; level < levels_ && level < std::min(levels, kMaxLevels); ++level) {
+        for (int level = 0; level < levels_ && level < kMaxLevels; ++level) {
             glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, mips_, level);
             glNamedFramebufferDrawBuffer(fbo_, GL_COLOR_ATTACHMENT0);
             const int size = std::max(size_ >> level, 1);
