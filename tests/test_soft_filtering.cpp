@@ -903,6 +903,57 @@ TEST(PcfClassify, DecidesPixelsAndAWrongBoundShows) {
     EXPECT_GT(changed["no cone"], 0) << "ignoring the cone bias changes pixels";
 }
 
+// pcf.glsl runs the 3, 5 and 7 taps with the kernel size a constant (a switch calling the loop
+// with a literal, for the GPU's scheduling); the image must be the loop's. A private data root
+// (as DecidesPixelsAndAWrongBoundShows) holds pcf.glsl with the switch never taken.
+TEST(PcfTaps, FixedKernelSizesDrawTheLoopsImage) {
+    namespace fs = std::filesystem;
+    const fs::path source = SHADOWLAB_SOURCE_DIR;
+    std::string glsl;
+    {
+        std::ifstream in(source / "plugins" / "pcf" / "pcf.glsl");
+        glsl.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    const std::string from = "switch (uKernel) {";
+    const size_t at = glsl.find(from);
+    ASSERT_NE(at, std::string::npos) << "pcf.glsl no longer has: " << from;
+    glsl.replace(at, from.size(), "switch (0) {");
+    const fs::path root = fs::temp_directory_path() / ("shadowlab-pcf-taps-" + std::to_string(::getpid()));
+    fs::remove_all(root);
+    fs::create_directories(root / "app");
+    fs::create_directories(root / "plugins");
+    fs::copy(source / "shaders", root / "shaders", fs::copy_options::recursive);
+    fs::copy(source / "app" / "include", root / "app" / "include", fs::copy_options::recursive);
+    fs::copy(source / "plugins" / "pcf", root / "plugins" / "pcf", fs::copy_options::recursive);
+    std::ofstream(root / "plugins" / "pcf" / "pcf.glsl") << glsl;
+    auto renderAll = [](std::map<std::string, std::vector<glm::vec4>>& out) {
+        auto app = test::makeHeadlessApp("contact", {320, 240});
+        ASSERT_TRUE(app);
+        for (const int kernel : {3, 5, 7})
+            for (const char* bilinear : {"hardware_filter=0", "hardware_filter=1"})
+                out[std::to_string(kernel) + " " + bilinear] =
+                    test::renderVisibility(*app, "pcf", {"resolution=1024", "kernel=" + std::to_string(kernel), bilinear});
+    };
+    std::map<std::string, std::vector<glm::vec4>> fixed, loop;
+    renderAll(fixed);
+    setenv("SHADOWLAB_DATA_DIR", root.c_str(), 1);
+    renderAll(loop);
+    unsetenv("SHADOWLAB_DATA_DIR");
+    fs::remove_all(root);
+    for (const auto& [name, image] : fixed) {
+        SCOPED_TRACE(name);
+        const auto& other = loop.at(name);
+        ASSERT_EQ(image.size(), other.size());
+        int differing = 0, penumbra = 0;
+        for (size_t i = 0; i < image.size(); ++i) {
+            differing += image[i].r != other[i].r;
+            penumbra += image[i].r > 0.0f && image[i].r < 1.0f;
+        }
+        EXPECT_EQ(differing, 0);
+        EXPECT_GT(penumbra, 100) << "the comparison covers filtered edges";
+    }
+}
+
 // The mips exist only while classify = depth-range: none allocates nothing, depth-range allocates
 // them once (not again per frame, again only for a new map size), none again frees them.
 TEST(PcfClassify, MipsOnlyWhileClassifying) {
