@@ -206,15 +206,14 @@ vec3 shadowTerm(ShadowInput s) {
     }
     if (uSampling == 1) return vec3(pcfGather(coord, slope) / float(uKernel * uKernel));
     if (uSampling == 2) return vec3(pcfFolded(coord, slope) / float(uKernel * uKernel));
-    // The small kernels with the size a constant (the call is inlined, so its loops have fixed
-    // bounds): on an H200 the 5 x 5 taps' shadow term fell 7-9% on cube and contact and 19% on
-    // forest, the same image; at 11 x 11, and for gather and folded, it changed nothing
-    // (docs/results/h200-2026-12-03-issue10, pcfu).
+    // The smallest kernels with the size a constant (the call is inlined, so its loops have fixed
+    // bounds). On an H200 (docs/results/h200-2026-12-03-issue10) the shadow term fell 46% at 3 x 3
+    // and 6-21% at 5 x 5 (forest the most), with the same image; from 7 x 7 up, and for gather and
+    // folded, it changed nothing, so those keep the loop.
     bool bilinear = uBilinear != 0;
     switch (uKernel) {
     case 3: return vec3(boxPcfDepth(uShadowMap, coord, uLightDepth.w, 3, uOffsetScale, slope, bilinear));
     case 5: return vec3(boxPcfDepth(uShadowMap, coord, uLightDepth.w, 5, uOffsetScale, slope, bilinear));
-    case 7: return vec3(boxPcfDepth(uShadowMap, coord, uLightDepth.w, 7, uOffsetScale, slope, bilinear));
     }
     return vec3(boxPcfDepth(uShadowMap, coord, uLightDepth.w, uKernel, uOffsetScale, slope, bilinear));
 }
