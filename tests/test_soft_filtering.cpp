@@ -763,6 +763,26 @@ std::string pcfClassifyLabel(const std::string& scene, const PcfClassifyCase& c)
            " offset scale " + std::to_string(c.offsetScale);
 }
 
+// pcf.glsl as in the source tree.
+std::string pcfGlsl() {
+    std::ifstream in(std::filesystem::path(SHADOWLAB_SOURCE_DIR) / "plugins" / "pcf" / "pcf.glsl");
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A private data root (SHADOWLAB_DATA_DIR, as test_plugins.cpp's sandbox) at `root`, replaced if
+// there: the shaders, the kit's headers and plugins/pcf, with `glsl` as its pcf.glsl.
+void writePcfSandbox(const std::filesystem::path& root, const std::string& glsl) {
+    namespace fs = std::filesystem;
+    const fs::path source = SHADOWLAB_SOURCE_DIR;
+    fs::remove_all(root);
+    fs::create_directories(root / "app");
+    fs::create_directories(root / "plugins");
+    fs::copy(source / "shaders", root / "shaders", fs::copy_options::recursive);
+    fs::copy(source / "app" / "include", root / "app" / "include", fs::copy_options::recursive);
+    fs::copy(source / "plugins" / "pcf", root / "plugins" / "pcf", fs::copy_options::recursive);
+    std::ofstream(root / "plugins" / "pcf" / "pcf.glsl") << glsl;
+}
+
 // pcf's shadow term with `sets` and classify = `classify`.
 std::vector<glm::vec3> pcfShadow(App& app, std::vector<std::string> sets, const char* classify) {
     sets.push_back(std::string("classify=") + classify);
@@ -824,12 +844,7 @@ TEST(PcfClassify, DepthRangeChangesNoPixel) {
 // The plugin's own file is not touched; its classify = none runs the same kernel in the sandbox.
 TEST(PcfClassify, DecidesPixelsAndAWrongBoundShows) {
     namespace fs = std::filesystem;
-    const fs::path source = SHADOWLAB_SOURCE_DIR;
-    std::string glsl;
-    {
-        std::ifstream in(source / "plugins" / "pcf" / "pcf.glsl");
-        glsl.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    }
+    std::string glsl = pcfGlsl();
     ASSERT_FALSE(glsl.empty());
     struct Mutation {
         const char* name;
@@ -855,13 +870,7 @@ TEST(PcfClassify, DecidesPixelsAndAWrongBoundShows) {
             ASSERT_NE(at, std::string::npos) << "pcf.glsl no longer has: " << from;
             mutated.replace(at, from.size(), to);
         }
-        fs::remove_all(root);
-        fs::create_directories(root / "app");
-        fs::create_directories(root / "plugins");
-        fs::copy(source / "shaders", root / "shaders", fs::copy_options::recursive);
-        fs::copy(source / "app" / "include", root / "app" / "include", fs::copy_options::recursive);
-        fs::copy(source / "plugins" / "pcf", root / "plugins" / "pcf", fs::copy_options::recursive);
-        std::ofstream(root / "plugins" / "pcf" / "pcf.glsl") << mutated;
+        writePcfSandbox(root, mutated);
         setenv("SHADOWLAB_DATA_DIR", root.c_str(), 1);
         for (const char* scene : {"cube", "contact"}) {
             auto app = test::makeHeadlessApp(scene, {320, 240});
@@ -908,24 +917,13 @@ TEST(PcfClassify, DecidesPixelsAndAWrongBoundShows) {
 // (as DecidesPixelsAndAWrongBoundShows) holds pcf.glsl with the switch never taken.
 TEST(PcfTaps, FixedKernelSizesDrawTheLoopsImage) {
     namespace fs = std::filesystem;
-    const fs::path source = SHADOWLAB_SOURCE_DIR;
-    std::string glsl;
-    {
-        std::ifstream in(source / "plugins" / "pcf" / "pcf.glsl");
-        glsl.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    }
+    std::string glsl = pcfGlsl();
     const std::string from = "switch (uKernel) {";
     const size_t at = glsl.find(from);
     ASSERT_NE(at, std::string::npos) << "pcf.glsl no longer has: " << from;
     glsl.replace(at, from.size(), "switch (0) {");
     const fs::path root = fs::temp_directory_path() / ("shadowlab-pcf-taps-" + std::to_string(::getpid()));
-    fs::remove_all(root);
-    fs::create_directories(root / "app");
-    fs::create_directories(root / "plugins");
-    fs::copy(source / "shaders", root / "shaders", fs::copy_options::recursive);
-    fs::copy(source / "app" / "include", root / "app" / "include", fs::copy_options::recursive);
-    fs::copy(source / "plugins" / "pcf", root / "plugins" / "pcf", fs::copy_options::recursive);
-    std::ofstream(root / "plugins" / "pcf" / "pcf.glsl") << glsl;
+    writePcfSandbox(root, glsl);
     auto renderAll = [](std::map<std::string, std::vector<glm::vec4>>& out) {
         auto app = test::makeHeadlessApp("contact", {320, 240});
         ASSERT_TRUE(app);
