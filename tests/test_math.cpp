@@ -6,7 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "../plugins/planar/planar_projection.h"
+#include "shadowlab/kit/planar_projection.h"
 #include "render/light_space.h"
 #include "util/stats.h"
 

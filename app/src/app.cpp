@@ -16,7 +16,7 @@
 #include "groundtruth/reference_technique.h"
 #include "render/light_space.h"
 #include "shadowlab/kit/depth_map_shared.h"
-#include "util/gl_limits.h"
+#include "render/render_limits.h"
 #include "util/log.h"
 #include "util/paths.h"
 
@@ -75,7 +75,7 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
     depthPrepass_ = options.depthPrepass;
     translucentLayers_ = options.translucentLayers;
     techniques_ = std::make_unique<TechniqueManager>(HostContext{*renderer_, *shaders_, *timer_, backend_->loader()}, pluginDir());
-    techniques_->scan();
+    techniques_->scan({referenceDescriptor().id});
     techniques_->registerBuiltin(copyDescriptor(referenceDescriptor(), {}), [this] {
         return std::make_unique<ReferenceTechnique>(
             [this](const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,

@@ -28,11 +28,11 @@
 #include "ui/session.h"
 #include "ui/tour.h"
 #include "ui/tour_pages.h"
-#include "util/gl_limits.h"
+#include "render/render_limits.h"
 #include "util/log.h"
 #include "util/paths.h"
 #include "util/text_file.h"
-#include "shadowlab/translucent_layers_shared.h"
+#include "host_shared/translucent_layers_shared.h"
 
 using namespace shadowlab;
 
@@ -237,7 +237,7 @@ int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& te
 // The techniques as their descriptors say, without GL (list, and checking tours and sessions
 // before anything is created).
 std::vector<TechniqueInfo> describedTechniques() {
-    PluginScan scan = scanPlugins(pluginDir());
+    PluginScan scan = scanPlugins(pluginDir(), {referenceDescriptor().id});
     scan.techniques.push_back(copyDescriptor(referenceDescriptor(), {}));   // built into the host
     return scan.techniques;
 }
@@ -282,7 +282,7 @@ int commandTour(const CommonOptions& common, const std::string& name, const Tour
 }
 
 int commandList(bool json) {
-    PluginScan scan = scanPlugins(pluginDir());
+    PluginScan scan = scanPlugins(pluginDir(), {referenceDescriptor().id});
     for (const auto& error : scan.errors) logWarning("skipped plugin: " + error);
     scan.techniques.push_back(copyDescriptor(referenceDescriptor(), {}));   // built into the host
     if (json) {
@@ -609,7 +609,7 @@ int commandBench(const CommonOptions& common, std::vector<BenchSpec> specs, cons
     // Everything checked before a context exists or a frame is drawn: techniques from their
     // descriptors (no GL), scenes with checkScene. The device's limits come right after.
     {
-        PluginScan scan = scanPlugins(pluginDir());
+        PluginScan scan = scanPlugins(pluginDir(), {referenceDescriptor().id});
         scan.techniques.push_back(copyDescriptor(referenceDescriptor(), {}));
         std::string error;
         for (size_t i = 0; i < specs.size(); ++i) {
