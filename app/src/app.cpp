@@ -565,7 +565,18 @@ bool App::traceReference(const GBufferView& gbuffer, const ReferenceOptions& opt
             groundTruth_->setScene(*scene_);   // the BVH is built once per scene
             groundTruthGeneration_ = sceneGeneration_;
         }
-        groundTruth_->trace(gbuffer, light_, options, visibility, stats);
+        // Every technique of a frame has the same G-buffer: its reference is traced once.
+        const ReferenceCache::Key key = ReferenceCache::keyOf(gbuffer, light_, options, sceneGeneration_);
+        const ReferenceStats* cachedStats = nullptr;
+        if (const auto* cached = referenceCache_.find(key, &cachedStats)) {
+            visibility = *cached;
+            if (stats) *stats = *cachedStats;
+            return true;
+        }
+        ReferenceStats traced;
+        groundTruth_->trace(gbuffer, light_, options, visibility, &traced);
+        referenceCache_.insert(key, visibility, traced);
+        if (stats) *stats = std::move(traced);
     } catch (const std::exception& e) {
         error = std::string("ground truth: ") + e.what();
         return false;

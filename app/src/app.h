@@ -13,6 +13,7 @@
 #include "camera.h"
 #include "groundtruth/groundtruth.h"
 #include "groundtruth/metrics.h"
+#include "groundtruth/reference_cache.h"
 #include "groundtruth/texel_footprint.h"
 #include "plugin/host_params.h"
 #include "plugin/params.h"
@@ -175,6 +176,9 @@ public:
     // Traces the current scene and light for `gbuffer` (loads the Embree module on first use).
     bool traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
                         std::string& error, ReferenceStats* stats = nullptr);
+    // The traces of this run, shared by every technique measured on the same G-buffer, light and
+    // options (groundtruth/reference_cache.h); `enabled = false` traces every time.
+    ReferenceCache& referenceCache() { return referenceCache_; }
 
     GlBackend& backend() { return *backend_; }
     Renderer& renderer() { return *renderer_; }
@@ -223,6 +227,7 @@ private:
     double lastCpuFrameMs_ = 0.0;
     std::vector<std::string> lastReloaded_;
     GroundTruthPtr groundTruth_;
+    ReferenceCache referenceCache_;
     uint64_t sceneGeneration_ = 0;         // bumped when the scene changes
     uint64_t groundTruthGeneration_ = ~0ull;
 };
