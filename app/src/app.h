@@ -189,6 +189,7 @@ public:
     const Scene& scene() const { return *scene_; }
     LightInfo& light() { return light_; }
     CameraController& camera() { return camera_; }
+    const AppOptions& options() const { return options_; }
     std::string firstTechnique() const;
     double lastCpuFrameMs() const { return lastCpuFrameMs_; }
     const FrameContext& lastFrame() const { return frame_; }

@@ -21,7 +21,7 @@
 #include "render/render_limits.h"
 #include "ui/session.h"
 #include "ui/tour.h"
-#include "ui/tour_pages.h"
+#include "bench/tour_pages.h"
 #include "util/log.h"
 #include "util/paths.h"
 #include "util/stats.h"
