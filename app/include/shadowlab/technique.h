@@ -48,7 +48,8 @@
 // the entry's minor version) says they exist. PluginEntry::abiVersion carries both:
 // (minor << 16) | major; ABI 3.0 plugins wrote a bare 3, which reads as 3.0.
 //   3.0  the interface below without PluginEntry::structSize;
-//   3.1  PluginEntry::structSize; every extension struct initialises its structSize.
+//   3.1  PluginEntry::structSize; every extension struct initialises its structSize;
+//        DrawRequest::primitive (triangles with adjacency).
 //
 // Growing without breaking plugins: structs that cross the boundary and may grow start with
 // structSize (the host reads only what the plugin's size covers, and fills only what the plugin's
@@ -251,6 +252,19 @@ struct ObjectInfo {
 
 enum class DrawOrder : uint32_t { Scene, FrontToBack, BackToFront };
 
+// What a draw hands the vertex stages (DrawRequest::primitive, ABI 3.1).
+enum class DrawPrimitive : uint32_t {
+    Triangles = 0,
+    // GL_TRIANGLES_ADJACENCY, 6 vertices a triangle (a, n_ab, b, n_bc, c, n_ca): n_xy is the corner
+    // opposite edge xy in the mesh's one other triangle that has the edge the other way round
+    // (vertices welded by position). Where there is no such neighbour (an open boundary, an edge of
+    // three or more triangles, a neighbour wound the other way) n_xy is the triangle's own
+    // opposite corner (n_ab = c). The host also sets `layout(location = 6) uniform int`
+    // (uClosedMesh) to 1 for meshes in which every edge has its neighbour. Built once per scene
+    // load, on the first such draw (render/mesh_adjacency.h). For shadow volumes' silhouettes.
+    TrianglesAdjacency = 1,
+};
+
 // One drawScene() call. Objects that share mesh and material are drawn as one instanced draw
 // where order and culling allow.
 struct DrawRequest {
@@ -264,6 +278,8 @@ struct DrawRequest {
     // (dot(plane.xyz, p) + plane.w >= 0 for some corner p): a frustum or a focus body.
     const glm::vec4* cullPlanes = nullptr;
     uint32_t cullPlaneCount = 0;
+    // Added in ABI 3.1, read only when structSize covers it (older plugins: triangles).
+    DrawPrimitive primitive = DrawPrimitive::Triangles;
 };
 
 enum class DebugImageKind : uint32_t { Depth, Color, Moments, Mask };

@@ -161,6 +161,10 @@ void PluginHost::drawScene(const DrawRequest& request, uint32_t glProgram) {
     DrawRequest known;
     std::memcpy(&known, &request, std::min<size_t>(sizeof(DrawRequest), std::max<size_t>(request.structSize, sizeof(uint32_t))));
     known.structSize = sizeof(DrawRequest);
+    if (uint32_t(known.primitive) > uint32_t(DrawPrimitive::TrianglesAdjacency)) {
+        log(LogLevel::Warning, "drawScene: unknown DrawRequest::primitive; drawn as triangles");
+        known.primitive = DrawPrimitive::Triangles;
+    }
     context_.renderer.drawScene(known, glProgram);
 }
 

@@ -1,5 +1,6 @@
 // Host passes (see renderer.h).
 #include "render/renderer.h"
+#include "render/mesh_adjacency.h"
 
 #include <algorithm>
 #include <array>
@@ -131,6 +132,8 @@ GLuint Renderer::sampler(SamplerKind kind) const {
 
 void Renderer::setScene(const Scene& scene) {
     scene_ = &scene;
+    adjacencyRanges_.clear();   // rebuilt on the first adjacency draw of this scene
+    meshClosed_.clear();
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
     meshRanges_.clear();
@@ -313,7 +316,7 @@ const ObjectInfo* Renderer::objects() const {
     return scene_ && scene_->objectInfo.size() == scene_->objects.size() ? scene_->objectInfo.data() : nullptr;
 }
 
-void Renderer::drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, uint32_t material) {
+void Renderer::drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, uint32_t material, DrawPrimitive primitive) {
     const Material& m = scene_->materials[material];
     glUniform1i(0, GLint(firstObject));
     glUniform4f(2, m.baseColor.r, m.baseColor.g, m.baseColor.b, m.alpha);
@@ -323,10 +326,42 @@ void Renderer::drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, ui
     glUniform4i(5, transmissionMap ? 1 : 0, baseColorMap ? 1 : 0, 0, 0);
     glBindTextureUnit(1, transmissionMap ? transmissionTextures_[size_t(m.transmissionTexture)].get() : whiteTexture_.get());
     glBindTextureUnit(2, baseColorMap ? baseColorTextures_[size_t(m.baseColorTexture)].get() : whiteTexture_.get());
-    const MeshRange& range = meshRanges_[mesh];
-    glDrawElementsInstancedBaseVertex(GL_TRIANGLES, GLsizei(range.indexCount), GL_UNSIGNED_INT,
+    const bool adjacency = primitive == DrawPrimitive::TrianglesAdjacency;
+    if (adjacency) glUniform1i(6, meshClosed_[mesh]);
+    const MeshRange& range = adjacency ? adjacencyRanges_[mesh] : meshRanges_[mesh];
+    glDrawElementsInstancedBaseVertex(adjacency ? GL_TRIANGLES_ADJACENCY : GL_TRIANGLES, GLsizei(range.indexCount),
+                                      GL_UNSIGNED_INT,
                                       reinterpret_cast<const void*>(uintptr_t(range.firstIndex) * sizeof(uint32_t)),
                                       GLsizei(count), range.baseVertex);
+}
+
+void Renderer::prepareAdjacency() {
+    if (!scene_ || !adjacencyRanges_.empty()) return;
+    std::vector<uint32_t> indices;
+    for (size_t m = 0; m < scene_->meshes.size(); ++m) {
+        MeshAdjacency adjacency = buildMeshAdjacency(scene_->meshes[m]);
+        adjacencyRanges_.push_back({uint32_t(indices.size()), uint32_t(adjacency.indices.size()), meshRanges_[m].baseVertex});
+        meshClosed_.push_back(adjacency.closed ? 1 : 0);
+        indices.insert(indices.end(), adjacency.indices.begin(), adjacency.indices.end());
+    }
+    GLuint name = 0;
+    glCreateBuffers(1, &name);
+    adjacencyIndices_.reset(name);
+    glNamedBufferStorage(name, GLsizeiptr(std::max<size_t>(1, indices.size() * sizeof(uint32_t))),
+                         indices.empty() ? nullptr : indices.data(), 0);
+    glObjectLabel(GL_BUFFER, name, -1, "scene triangles with adjacency");
+    // The scene's vertex layout with the adjacency indices.
+    glCreateVertexArrays(1, &name);
+    adjacencyVao_.reset(name);
+    glVertexArrayVertexBuffer(name, 0, vertexBuffer_.get(), 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(name, adjacencyIndices_.get());
+    for (GLuint attribute = 0; attribute < 3; ++attribute) {
+        glEnableVertexArrayAttrib(name, attribute);
+        glVertexArrayAttribBinding(name, attribute, 0);
+    }
+    glVertexArrayAttribFormat(name, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, position));
+    glVertexArrayAttribFormat(name, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, normal));
+    glVertexArrayAttribFormat(name, 2, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
 }
 
 void Renderer::bindSceneGeometry(GLuint program) {
@@ -346,12 +381,17 @@ void Renderer::drawObject(uint32_t index, GLuint program) {
 void Renderer::drawScene(const DrawRequest& request, GLuint program) {
     if (!scene_) return;
     bindSceneGeometry(program);
+    const DrawPrimitive primitive = request.primitive;
+    if (primitive == DrawPrimitive::TrianglesAdjacency) {
+        prepareAdjacency();
+        glBindVertexArray(adjacencyVao_.get());
+    }
     const bool culled = request.cullPlanes && request.cullPlaneCount > 0;
     if (request.order == DrawOrder::Scene && !culled) {
         // A batch shares its objects' flags, so its first object decides for all of it.
         for (const Batch& batch : batches_)
             if (scene_->inSet(scene_->objects[batch.firstObject], request.set))
-                drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
+                drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material, primitive);
         return;
     }
     // The objects that pass, sorted if asked, then drawn in runs of consecutive objects of one
@@ -364,7 +404,7 @@ void Renderer::drawScene(const DrawRequest& request, GLuint program) {
                batchOfObject_[drawOrder_[end].second] == batchOfObject_[first])
             ++end;
         const SceneObject& object = scene_->objects[first];
-        drawBatch(first, uint32_t(end - k), object.mesh, object.material);
+        drawBatch(first, uint32_t(end - k), object.mesh, object.material, primitive);
         k = end;
     }
 }

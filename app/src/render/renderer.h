@@ -190,7 +190,11 @@ private:
     void allocateLayerTargets();
     void endMainPass(FrameOutputs outputs);
     void clearMainTargets(GLuint fbo, FrameOutputs outputs, bool depth);
-    void drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, uint32_t material);
+    void drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, uint32_t material,
+                   DrawPrimitive primitive = DrawPrimitive::Triangles);
+    // Triangles with adjacency of every mesh (DrawPrimitive::TrianglesAdjacency), built on the
+    // first draw that asks after a scene load.
+    void prepareAdjacency();
     void bindSceneGeometry(GLuint program);
     void allocatePrepassTargets();
 
@@ -204,6 +208,10 @@ private:
     std::vector<GlTexture> transmissionTextures_, baseColorTextures_;
     GlTexture whiteTexture_;
     std::vector<MeshRange> meshRanges_;
+    GlBuffer adjacencyIndices_;
+    GlVertexArray adjacencyVao_;
+    std::vector<MeshRange> adjacencyRanges_;     // empty until prepareAdjacency()
+    std::vector<uint8_t> meshClosed_;
     std::vector<Batch> batches_;                 // every object, in scene order
     std::vector<uint32_t> batchOfObject_;        // object index -> its batch
     std::vector<uint32_t> opaqueBatches_;        // indices into batches_

@@ -1,0 +1,8 @@
+// Shadow volumes: one fragment of a volume face. The count itself is the stencil's; the debug
+// passes add a constant (overdraw: 1/16 a fragment, saturating at 16) or mark an edge.
+layout(location = 0) out vec4 outColor;
+layout(location = 17) uniform float uIncrement;
+
+void main() {
+    outColor = vec4(uIncrement);
+}
