@@ -37,68 +37,62 @@ using namespace shadowlab;
 
 enum class CsmFit : int { Frustum = 0, FocusBody = 1, Sdsm = 2 };
 
-constexpr ParamDesc kParams[] = {
-    {"resolution", "resolution per cascade", ParamType::Int, 256, 4096, 1024, "texels",
+constexpr ParamDesc kResolution{"resolution", "resolution per cascade", ParamType::Int, 256, 4096, 1024, "texels",
      "Width and height of each cascade's map (a layer of the 2D array; the cube's faces for a point "
      "light). Total texels are cascades x resolution^2: four 1024 cascades hold as many as one 2048 map.",
-     nullptr},
-    {"cascades", "cascades", ParamType::Int, 1, 8, 4, "",
+     nullptr};
+constexpr ParamDesc kCascades{"cascades", "cascades", ParamType::Int, 1, 8, 4, "",
      "Slices of the view frustum, each with its own map. 1 is one map fitted to the whole view; more "
      "put texels near the viewer where they are needed, at the cost of memory and of drawing casters "
      "into every cascade they reach (one pass, a geometry-stage invocation per cascade).",
-     nullptr},
-    {"lambda", "split lambda", ParamType::Float, 0, 1, 0.75, "",
+     nullptr};
+constexpr ParamDesc kLambda{"lambda", "split lambda", ParamType::Float, 0, 1, 0.75, "",
      "Practical split scheme (Zhang et al. 2006): C_i = lambda n (f/n)^(i/N) + (1 - lambda) (n + (f - n) i/N). "
      "1 is logarithmic (the ideal distribution of perspective aliasing, seed 002 eq. 8.4, but a "
      "near cascade so thin it is wasted when the near plane is small); 0 uniform (far cascades too "
      "fine, the near one blocky).",
-     nullptr},
-    {"fit", "fit", ParamType::Enum, 0, 2, 1, "",
+     nullptr};
+constexpr ParamDesc kFit{"fit", "fit", ParamType::Enum, 0, 2, 1, "",
      "Depth range the splits divide and what each cascade is fitted around. frustum: the camera's near "
      "to far, each slice's 8 corners (the classic scheme). focus-body: the range where the view meets "
      "the scene's bounds, each slice clipped to them (a far plane beyond the scene wastes nothing). "
      "sdsm: sample distribution shadow maps (Lauritzen 2010): the nearest and farthest depth the "
      "camera actually sees, reduced on the GPU from the camera pre-pass and read back a few frames "
      "late; the tightest, but a fast camera motion briefly leaves pixels beyond the range.",
-     "frustum|focus-body|sdsm"},
-    {"snap", "stabilise (sphere + snap)", ParamType::Bool, 0, 1, 1, "",
+     "frustum|focus-body|sdsm"};
+constexpr ParamDesc kSnap{"snap", "stabilise (sphere + snap)", ParamType::Bool, 0, 1, 1, "",
      "Stabilised cascades: each fitted as the square around its slice's bounding sphere (the same size "
      "whatever the camera's direction) moved in whole texels, so shadow edges stand still while the "
      "camera moves (no shimmer). Off: the tight rectangle around each slice, sharper (about half the "
      "texel size) but its texel grid slides and edges crawl and flicker under camera motion.",
-     nullptr},
-    {"blend_band", "blend band", ParamType::Float, 0, 0.5, 0.1, "of a cascade",
+     nullptr};
+constexpr ParamDesc kBlendBand{"blend_band", "blend band", ParamType::Float, 0, 0.5, 0.1, "of a cascade",
      "Fraction of each cascade's depth range, at its far end, over which it fades into the next one, "
      "hiding the seam where the texel size changes. 0 shows a hard seam; large bands look up two "
      "cascades for more pixels.",
-     nullptr},
-    {"debug_colours", "cascade colours", ParamType::Bool, 0, 1, 0, "",
+     nullptr};
+constexpr ParamDesc kDebugColours{"debug_colours", "cascade colours", ParamType::Bool, 0, 1, 0, "",
      "Tints each pixel by the cascade it reads (red, green, blue, yellow, magenta, cyan, orange, grey): "
      "shows where the splits fall and how the blend band mixes them.",
-     nullptr},
-    {"kernel", "PCF kernel n", ParamType::Int, 1, 7, 1, "taps",
+     nullptr};
+constexpr ParamDesc kKernel{"kernel", "PCF kernel n", ParamType::Int, 1, 7, 1, "taps",
      "n x n comparisons one texel apart in the cascade's map (percentage-closer filtering): 1 is plain "
      "shadow mapping; the ramp is n texels of that cascade wide, so it narrows in farther cascades.",
-     nullptr},
-    kit::hardwareFilterParam(),
-    kit::constantBiasParam(),
-    kit::slopeBiasParam(),
-    kit::cullParam(),
-};
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kCascades = kit::paramIndex(kParams, "cascades"),
-    kLambda = kit::paramIndex(kParams, "lambda"),
-    kFit = kit::paramIndex(kParams, "fit"),
-    kSnap = kit::paramIndex(kParams, "snap"),
-    kBlendBand = kit::paramIndex(kParams, "blend_band"),
-    kDebugColours = kit::paramIndex(kParams, "debug_colours"),
-    kKernel = kit::paramIndex(kParams, "kernel"),
-    kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
-    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
-    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
-    kCull = kit::paramIndex(kParams, "cull"),
-};
+     nullptr};
+
+#define CSM_PARAMS(X)                                    \
+    X(int, resolution, kResolution)                      \
+    X(int, cascades, kCascades)                          \
+    X(float, lambda, kLambda)                            \
+    X(int, fit, kFit)                                    \
+    X(bool, snap, kSnap)                                 \
+    X(float, blend_band, kBlendBand)                     \
+    X(bool, debug_colours, kDebugColours)                \
+    X(int, kernel, kKernel)                              \
+    X(bool, hardware_filter, kit::hardwareFilterParam()) \
+    SHADOWLAB_BIAS_PARAMS(X, 64, 1)
+SHADOWLAB_PARAMS(Params, CSM_PARAMS);
+using Id = Params::Id;
 
 // The camera pre-pass only feeds sdsm's depth reduction: asked for on those frames alone (it cost
 // 4.26 of csm's 5.6 ms on an H200 when the flag held for every fit).
@@ -113,13 +107,14 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "view needs them. The practical split scheme blends logarithmic and uniform splits (lambda). "
                     "Stabilised cascades (snap) hold shadow edges still while the camera moves; without it they "
                     "shimmer. fit = sdsm measures the depth range the camera really sees on the GPU (sample "
-                    "distribution shadow maps). Turn on the cascade colours and move the camera. Debug views: coverage (each pixel in its cascade's colour, the cascades' boxes), footprint and texel-grid (per cascade).",
+                    "distribution shadow maps). Turn on the cascade colours and move the camera.",
      .shadowGlsl = "csm.glsl",
      .flags = kTechniqueNeedsCameraPrepass,   // fit = sdsm reduces the pre-pass's depth
      .translucencyModel = TranslucencyModel::Ignore,   // its maps hold opaque casters only
      .flagConditions = kFlagConditions,
-     .flagConditionCount = 1},
-    kParams);
+     .flagConditionCount = 1,
+     .debugViews = "footprint|texel-grid|coverage"},
+    Params::table);
 
 // The depth reduction's results come back through a ring of buffers, each with a timestamp query
 // issued after its dispatch: a slot is read only once its query is available (the GPU is past it),
@@ -151,15 +146,15 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
     void shutdown() override { glDeleteQueries(kRingSize, queries_.data()); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const kit::DepthMapConfig depth{.resolution = params.asInt(kResolution),
-                                        .constantBias = params.asFloat(kConstantBias),
-                                        .slopeBias = params.asFloat(kSlopeBias),
-                                        .cull = kit::Cull(params.asInt(kCull))};
+        const kit::DepthMapConfig depth{.resolution = params.asInt(Id::resolution),
+                                        .constantBias = params.asFloat(Id::constant_bias),
+                                        .slopeBias = params.asFloat(Id::slope_bias),
+                                        .cull = kit::Cull(params.asInt(Id::cull))};
         if (frame.light.type == LightType::Point) return cube_.render(frame, depth);
 
-        const int count = std::clamp(params.asInt(kCascades), 1, kit::kMaxCascades);
-        const CsmFit fit = CsmFit(std::clamp(params.asInt(kFit), 0, 2));
-        const float band = params.asFloat(kBlendBand);
+        const int count = std::clamp(params.asInt(Id::cascades), 1, kit::kMaxCascades);
+        const CsmFit fit = CsmFit(std::clamp(params.asInt(Id::fit), 0, 2));
+        const float band = params.asFloat(Id::blend_band);
         ensureMaps(depth.resolution, count);
 
         const Bounds scene = host().bounds(DrawSet::All);
@@ -174,8 +169,8 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
             }
         }
         const kit::CascadeRanges ranges = kit::cascadeRanges(range.nearDistance, range.farDistance, count,
-                                                             params.asFloat(kLambda), band);
-        fitCascades(frame, ranges, {.resolution = depth.resolution, .stabilise = params.asBool(kSnap),
+                                                             params.asFloat(Id::lambda), band);
+        fitCascades(frame, ranges, {.resolution = depth.resolution, .stabilise = params.asBool(Id::snap),
                                     .clipToScene = fit != CsmFit::Frustum});
         writeUniforms(params, count, ranges);
 
@@ -196,11 +191,11 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
-        const SamplerKind sampling = params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
+        const SamplerKind sampling = params.asBool(Id::hardware_filter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
         if (frame.light.type == LightType::Point) {
             cube_.bindMainPass(sampling);
             CsmUniforms u{};
-            u.uCsmOptions = {std::clamp(params.asInt(kKernel), 1, 7), 0, 0, 0};
+            u.uCsmOptions = {std::clamp(params.asInt(Id::kernel), 1, 7), 0, 0, 0};
             uniforms_.set(u);
             return;
         }
@@ -267,9 +262,9 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
             u.uCascadeMatrix[i] = c.light.viewProjection;
             u.uCascadeRange[i] = {c.viewDistanceBegin, c.viewDistanceEnd, ranges.fitBegin[size_t(i)], c.texelWorldSize};
         }
-        u.uCsmParams = {float(count), params.asFloat(kBlendBand), params.asBool(kDebugColours) ? 1.0f : 0.0f,
+        u.uCsmParams = {float(count), params.asFloat(Id::blend_band), params.asBool(Id::debug_colours) ? 1.0f : 0.0f,
                         float(resolution_)};
-        u.uCsmOptions = {std::clamp(params.asInt(kKernel), 1, 7), params.asBool(kHardwareFilter) ? 1 : 0, 0, 0};
+        u.uCsmOptions = {std::clamp(params.asInt(Id::kernel), 1, 7), params.asBool(Id::hardware_filter) ? 1 : 0, 0, 0};
         uniforms_.set(u);
     }
 
