@@ -22,6 +22,7 @@
 #include <optional>
 #include <vector>
 
+#include <shadowlab/kit/cascade_maps.h>
 #include <shadowlab/kit/cascades.h>
 #include <shadowlab/kit/cube_depth_map.h>
 #include <shadowlab/kit/depth_map.h>
@@ -116,11 +117,6 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .debugViews = "footprint|texel-grid|coverage"},
     Params::table);
 
-// The depth reduction's results come back through a ring of buffers, each with a timestamp query
-// issued after its dispatch: a slot is read only once its query is available (the GPU is past it),
-// so glGetNamedBufferSubData never waits. With three slots a result is one to three frames old.
-constexpr int kRingSize = 3;
-
 class CascadedShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         // One program per cascade count: the geometry stage runs `invocations` instances per
@@ -136,14 +132,11 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
         if (!reduceProgram_.build(host(), {.computeFile = "csm_depth_bounds.comp"}, error)) return false;
         framebuffer_ = kit::makeFramebuffer(host(), "cascades");
         uniforms_.create(host(), "csm uniforms");
-        for (auto& slot : ring_)
-            slot.buffer = kit::Buffer(host(), host().createBuffer(2 * sizeof(uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT,
-                                                                  "csm depth bounds"));
-        glCreateQueries(GL_TIMESTAMP, kRingSize, queries_.data());
+        depthBounds_.create(host());
         return cube_.create(host(), error);
     }
 
-    void shutdown() override { glDeleteQueries(kRingSize, queries_.data()); }
+    void shutdown() override { depthBounds_.destroy(); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const kit::DepthMapConfig depth{.resolution = params.asInt(Id::resolution),
@@ -161,17 +154,18 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
         kit::DepthRange range{frame.camera.nearPlane, frame.camera.farPlane};
         if (fit != CsmFit::Frustum) range = kit::visibleDepthRange(frame.camera, scene);
         if (fit == CsmFit::Sdsm) {
-            reduceDepth();
-            if (depthBounds_) {
+            depthBounds_.reduce(reduceProgram_);
+            if (const auto bounds = depthBounds_.latest()) {
                 // A few frames old: 2% of slack either way, and never beyond what the view can reach.
-                range.nearDistance = std::clamp(depthBounds_->nearDistance / 1.02f, range.nearDistance, range.farDistance);
-                range.farDistance = std::clamp(depthBounds_->farDistance * 1.02f, range.nearDistance * 1.001f, range.farDistance);
+                range.nearDistance = std::clamp(bounds->nearDistance / 1.02f, range.nearDistance, range.farDistance);
+                range.farDistance = std::clamp(bounds->farDistance * 1.02f, range.nearDistance * 1.001f, range.farDistance);
             }
         }
         const kit::CascadeRanges ranges = kit::cascadeRanges(range.nearDistance, range.farDistance, count,
                                                              params.asFloat(Id::lambda), band);
-        fitCascades(frame, ranges, {.resolution = depth.resolution, .stabilise = params.asBool(Id::snap),
-                                    .clipToScene = fit != CsmFit::Frustum});
+        kit::fitCascades(host(), frame, ranges,
+                         {.resolution = depth.resolution, .stabilise = params.asBool(Id::snap), .clipToScene = fit != CsmFit::Frustum},
+                         cascades_, cullPlanes_);
         writeUniforms(params, count, ranges);
 
         GpuPass pass(host(), "shadow map");
@@ -187,7 +181,7 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
         request.cullPlanes = cullPlanes_.data();
         request.cullPlaneCount = uint32_t(cullPlanes_.size());
         host().drawScene(request, depthPrograms_[size_t(count - 1)].use());
-        report(count);
+        kit::reportCascades(host(), cascades_, count, resolution_);
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
@@ -219,42 +213,6 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
         kit::attachDepthTarget(host(), framebuffer_, maps_, "cascades");   // layered: gl_Layer picks the cascade
     }
 
-    void fitCascades(const FrameContext& frame, const kit::CascadeRanges& ranges, const kit::CascadeFitConfig& config) {
-        const Bounds scene = host().bounds(DrawSet::All);
-        const size_t count = ranges.fitBegin.size();
-        cascades_.assign(count, {});
-        cullPlanes_.clear();
-        if (frame.light.type == LightType::Directional) {
-            const glm::mat4 lightView = kit::stableLightView(frame.light);
-            const Bounds casters = host().bounds(DrawSet::Casters);
-            glm::vec2 lo(1e30f), hi(-1e30f);
-            for (size_t i = 0; i < count; ++i) {
-                cascades_[i] = kit::fitDirectionalCascade(frame.camera, lightView, ranges.fitBegin[i], ranges.splits[i + 1],
-                                                          config, scene, casters);
-                // The rectangle in the shared light view, from the orthographic matrix.
-                const glm::mat4& p = cascades_[i].light.projection;
-                lo = glm::min(lo, glm::vec2((-1.0f - p[3][0]) / p[0][0], (-1.0f - p[3][1]) / p[1][1]));
-                hi = glm::max(hi, glm::vec2((1.0f - p[3][0]) / p[0][0], (1.0f - p[3][1]) / p[1][1]));
-            }
-            // Casters outside every cascade's rectangle reach no map (one set of planes for the
-            // single pass; the geometry stage culls per cascade).
-            LightSpace all = cascades_[0].light;
-            all.projection = glm::ortho(lo.x, hi.x, lo.y, hi.y, all.nearPlane, all.farPlane);
-            all.viewProjection = all.projection * all.view;
-            const float margin = 1e-4f * std::max(glm::length(scene.max - scene.min), 1.0f);
-            cullPlanes_ = kit::mapSidePlanes(all, margin);
-        } else {
-            const LightSpace sceneFit = host().fitLightSpace(frame.light, DrawSet::All);
-            for (size_t i = 0; i < count; ++i)
-                cascades_[i] = kit::fitPerspectiveCascade(frame.camera, sceneFit, ranges.fitBegin[i], ranges.splits[i + 1],
-                                                          config, scene);
-        }
-        for (size_t i = 0; i < count; ++i) {
-            cascades_[i].viewDistanceBegin = ranges.splits[i];
-            cascades_[i].viewDistanceEnd = ranges.splits[i + 1];
-        }
-    }
-
     void writeUniforms(const ParamValues& params, int count, const kit::CascadeRanges& ranges) {
         CsmUniforms u{};
         for (int i = 0; i < count; ++i) {
@@ -268,72 +226,6 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
         uniforms_.set(u);
     }
 
-    // Tells the host which maps a pixel reads: in order, each serving its split range; the first
-    // from view depth 0 and the last to any depth, as the shader picks them.
-    void report(int count) {
-        static const char* kLabels[kit::kMaxCascades] = {"cascade 0", "cascade 1", "cascade 2", "cascade 3",
-                                                         "cascade 4", "cascade 5", "cascade 6", "cascade 7"};
-        std::array<ShadowMapInfo, kit::kMaxCascades> maps;
-        for (int i = 0; i < count; ++i) {
-            ShadowMapInfo& m = maps[size_t(i)];
-            m.worldToClip = cascades_[size_t(i)].light.viewProjection;
-            m.size = glm::ivec2(resolution_);
-            m.viewDistanceBegin = i == 0 ? 0.0f : cascades_[size_t(i)].viewDistanceBegin;
-            m.viewDistanceEnd = i == count - 1 ? 1e30f : cascades_[size_t(i)].viewDistanceEnd;
-            m.layer = uint32_t(i);
-            m.label = kLabels[i];
-        }
-        kit::reportShadowMaps(host(), maps.data(), uint32_t(count));
-    }
-
-    // fit = sdsm: first collects the newest result the GPU has finished (never waiting), then
-    // reduces this frame's pre-pass into the next slot of the ring.
-    void reduceDepth() {
-        for (int age = 1; age <= kRingSize; ++age) {   // newest pending first
-            Slot& slot = ring_[size_t((next_ + kRingSize - age) % kRingSize)];
-            if (!slot.pending) continue;
-            const GLuint query = queries_[size_t(&slot - ring_.data())];
-            GLuint available = 0;
-            glGetQueryObjectuiv(query, GL_QUERY_RESULT_AVAILABLE, &available);
-            if (!available) continue;
-            uint32_t bits[2] = {0, 0};
-            glGetNamedBufferSubData(slot.buffer, 0, sizeof(bits), bits);
-            for (Slot& older : ring_)
-                if (older.pending && older.serial <= slot.serial) older.pending = false;
-            const uint32_t maxBits = ~bits[1];
-            float nearest = 0.0f, farthest = 0.0f;
-            std::memcpy(&nearest, &bits[0], sizeof(float));
-            std::memcpy(&farthest, &maxBits, sizeof(float));
-            // Nothing drawn (cleared values) or nonsense: keep the previous bounds.
-            if (bits[0] != 0xFFFFFFFFu && std::isfinite(nearest) && std::isfinite(farthest) && farthest >= nearest &&
-                nearest > 0.0f)
-                depthBounds_ = kit::DepthRange{nearest, farthest};
-            break;
-        }
-        const auto* prepass = static_cast<const CameraPrepass*>(host().extension(SHADOWLAB_EXT_CAMERA_PREPASS));
-        if (!prepass || !prepass->position) return;
-        Slot& slot = ring_[size_t(next_)];
-        GpuPass pass(host(), "depth bounds");
-        const uint32_t ones = 0xFFFFFFFFu;
-        glClearNamedBufferData(slot.buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CSM_DEPTH_BOUNDS_BINDING, slot.buffer);
-        glBindTextureUnit(shared::csm::kPrepassPositionUnit, prepass->position);
-        glBindSampler(shared::csm::kPrepassPositionUnit, host().sampler(SamplerKind::Nearest));
-        glUseProgram(reduceProgram_.get());
-        glDispatchCompute(GLuint((prepass->size.x + 15) / 16), GLuint((prepass->size.y + 15) / 16), 1);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        glQueryCounter(queries_[size_t(next_)], GL_TIMESTAMP);
-        slot.pending = true;
-        slot.serial = ++serial_;
-        next_ = (next_ + 1) % kRingSize;
-    }
-
-    struct Slot {
-        kit::Buffer buffer;
-        bool pending = false;
-        uint64_t serial = 0;
-    };
-
     std::array<kit::Program, kit::kMaxCascades> depthPrograms_;   // [n - 1]: the geometry stage for n cascades
     kit::Program reduceProgram_;
     kit::Framebuffer framebuffer_;
@@ -344,11 +236,7 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
     int layers_ = 0;
     std::vector<kit::Cascade> cascades_;
     std::vector<glm::vec4> cullPlanes_;
-    std::array<Slot, kRingSize> ring_;
-    std::array<GLuint, kRingSize> queries_{};
-    int next_ = 0;
-    uint64_t serial_ = 0;
-    std::optional<kit::DepthRange> depthBounds_;
+    kit::ViewDepthBounds depthBounds_;
 };
 
 } // namespace
