@@ -97,7 +97,7 @@ TechniqueInfo copyDescriptor(const TechniqueDesc& desc, const std::filesystem::p
                                text(p.unit), text(p.help), splitLabels(p.type == ParamType::Enum ? p.enumLabels : nullptr)});
     }
     if (has(offsetof(TechniqueDesc, debugViews), sizeof(desc.debugViews)) && desc.debugViews) {
-        info.debugViews = splitLabels(desc.debugViews);
+        if (*desc.debugViews) info.debugViews = splitLabels(desc.debugViews);   // "": none
         info.debugViewsDeclared = true;
     }
     // Conditions were checked by validateDescriptor; one that still does not resolve is dropped.
