@@ -74,7 +74,6 @@ constexpr ParamDesc kCountEarlyOuts{"count_early_outs", "count early outs", Para
     X(bool, count_early_outs, kCountEarlyOuts) \
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, ADAPTIVE_PCF_PARAMS);
-using Id = Params::Id;
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "adaptive-pcf",
@@ -169,40 +168,42 @@ class AdaptivePcf final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        offsets_.ensure(host(), params.asInt(Id::grid), params.asInt(Id::sets), "disc offsets (m x m x n^2/2)");
+        const Params p = Params::read(params);
+        offsets_.ensure(host(), p.grid, p.sets, "disc offsets (m x m x n^2/2)");
         counters_.beginFrame();
-        const kit::DepthMapConfig config = kit::depthMapConfig(Params::read(params));
+        const kit::DepthMapConfig config = kit::depthMapConfig(p);
         if (frame.light.type == LightType::Point) return cube_.render(frame, config);
         map_.render(frame, config);
         // The disc adaptive-pcf.glsl filters over (seed 000 eq. 3.11-3.12), for the host's kernel view.
         FilterFootprint footprint = map_.filterFootprint();
         footprint.kernel = FilterKernel::Disc;
         footprint.taps = offsets_.n();
-        footprint.spacing = params.asFloat(Id::radius);
-        footprint.bilinear = params.asBool(Id::hardware_filter) ? 1 : 0;
-        footprint.sets = params.asInt(Id::sets);
+        footprint.spacing = p.radius;
+        footprint.bilinear = p.hardware_filter ? 1 : 0;
+        footprint.sets = p.sets;
         footprint.discSeed = 1;   // offsets_.ensure's default
-        footprint.coneBias = params.asBool(Id::cone_bias) ? 1.0f : 0.0f;
-        footprint.coherent = params.asBool(Id::coherent) ? 1 : 0;
+        footprint.coneBias = p.cone_bias ? 1.0f : 0.0f;
+        footprint.coherent = p.coherent ? 1 : 0;
         kit::reportFilterFootprint(host(), footprint);
         // classify = depth-range reads mips of the 2D map (the cube path takes the ring test).
-        if (params.asInt(Id::classify) == 1)
+        if (p.classify == 1)
             depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
         else
             depthRange_.reset();
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
-        const SamplerKind sampling = params.asBool(Id::hardware_filter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
+        const Params p = Params::read(params);
+        const SamplerKind sampling = p.hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
         if (frame.light.type == LightType::Point)
             cube_.bindMainPass(sampling);
         else
             map_.bindMainPass(sampling);
         glBindTextureUnit(shared::adaptive_pcf::kDiscOffsetsUnit, offsets_.texture());
         depthRange_.bindMainPass();
-        uniforms_.set({{}, offsets_.n(), params.asFloat(Id::radius), params.asBool(Id::cone_bias) ? 1.0f : 0.0f,
-                       params.asBool(Id::coherent) ? 1 : 0, params.asBool(Id::count_early_outs) ? 1 : 0,
-                       frame.light.type == LightType::Point ? 0 : params.asInt(Id::classify), 0, 0});
+        uniforms_.set({{}, offsets_.n(), p.radius, p.cone_bias ? 1.0f : 0.0f,
+                       p.coherent ? 1 : 0, p.count_early_outs ? 1 : 0,
+                       frame.light.type == LightType::Point ? 0 : p.classify, 0, 0});
         counters_.bindMainPass();
     }
 

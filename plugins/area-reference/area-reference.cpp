@@ -43,7 +43,6 @@ constexpr ParamDesc kResolution{"resolution", "resolution", ParamType::Int, 256,
     X(float, constant_bias, kit::constantBiasParam()) \
     X(float, slope_bias, kit::slopeBiasParam())
 SHADOWLAB_PARAMS(Params, AREA_REFERENCE_PARAMS);
-using Id = Params::Id;
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "area-reference",
@@ -116,10 +115,11 @@ class AreaReference final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        const Params p = Params::read(params);
         const auto* prepass = static_cast<const CameraPrepass*>(host().extension(SHADOWLAB_EXT_CAMERA_PREPASS));
         if (!prepass) return;
         ensureAccumulation(prepass->size);
-        sampleMap_.ensureTexture(params.asInt(Id::resolution));
+        sampleMap_.ensureTexture(p.resolution);
         accumulateSamples(frame, *prepass, params);
     }
 
@@ -143,12 +143,13 @@ class AreaReference final : public kit::TechniqueBase {
 
     // For each light sample: its shadow map, then its visibility of every pixel added (times 1/N).
     void accumulateSamples(const FrameContext& frame, const CameraPrepass& prepass, const ParamValues& params) {
+        const Params p = Params::read(params);
         GpuPass pass(host(), "light samples");
-        const int samples = params.asInt(Id::samples);
+        const int samples = p.samples;
         const Bounds bounds = host().bounds(DrawSet::All);
         const kit::DepthMapConfig config{.resolution = sampleMap_.resolution(),
-                                         .constantBias = params.asFloat(Id::constant_bias),
-                                         .slopeBias = params.asFloat(Id::slope_bias)};
+                                         .constantBias = p.constant_bias,
+                                         .slopeBias = p.slope_bias};
         const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         glClearNamedFramebufferfv(accumulationFbo_, GL_COLOR, 0, zero);
         for (int i = 0; i < samples; ++i) {

@@ -139,15 +139,16 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
     void shutdown() override { depthBounds_.destroy(); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const kit::DepthMapConfig depth{.resolution = params.asInt(Id::resolution),
-                                        .constantBias = params.asFloat(Id::constant_bias),
-                                        .slopeBias = params.asFloat(Id::slope_bias),
-                                        .cull = kit::Cull(params.asInt(Id::cull))};
+        const Params p = Params::read(params);
+        const kit::DepthMapConfig depth{.resolution = p.resolution,
+                                        .constantBias = p.constant_bias,
+                                        .slopeBias = p.slope_bias,
+                                        .cull = kit::Cull(p.cull)};
         if (frame.light.type == LightType::Point) return cube_.render(frame, depth);
 
-        const int count = std::clamp(params.asInt(Id::cascades), 1, kit::kMaxCascades);
-        const CsmFit fit = CsmFit(std::clamp(params.asInt(Id::fit), 0, 2));
-        const float band = params.asFloat(Id::blend_band);
+        const int count = std::clamp(p.cascades, 1, kit::kMaxCascades);
+        const CsmFit fit = CsmFit(std::clamp(p.fit, 0, 2));
+        const float band = p.blend_band;
         ensureMaps(depth.resolution, count);
 
         const Bounds scene = host().bounds(DrawSet::All);
@@ -162,9 +163,9 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
             }
         }
         const kit::CascadeRanges ranges = kit::cascadeRanges(range.nearDistance, range.farDistance, count,
-                                                             params.asFloat(Id::lambda), band);
+                                                             p.lambda, band);
         kit::fitCascades(host(), frame, ranges,
-                         {.resolution = depth.resolution, .stabilise = params.asBool(Id::snap), .clipToScene = fit != CsmFit::Frustum},
+                         {.resolution = depth.resolution, .stabilise = p.snap, .clipToScene = fit != CsmFit::Frustum},
                          cascades_, cullPlanes_);
         writeUniforms(params, count, ranges);
 
@@ -185,11 +186,12 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
-        const SamplerKind sampling = params.asBool(Id::hardware_filter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
+        const Params p = Params::read(params);
+        const SamplerKind sampling = p.hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
         if (frame.light.type == LightType::Point) {
             cube_.bindMainPass(sampling);
             CsmUniforms u{};
-            u.uCsmOptions = {std::clamp(params.asInt(Id::kernel), 1, 7), 0, 0, 0};
+            u.uCsmOptions = {std::clamp(p.kernel, 1, 7), 0, 0, 0};
             uniforms_.set(u);
             return;
         }

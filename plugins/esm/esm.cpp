@@ -28,7 +28,6 @@ constexpr ParamDesc kExponent{"exponent", "exponent c", ParamType::Float, 1, 85,
     SHADOWLAB_MOMENT_MAP_PARAMS(X, 1024) \
     X(float, exponent, kExponent)
 SHADOWLAB_PARAMS(Params, ESM_PARAMS);
-using Id = Params::Id;
 
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -51,10 +50,11 @@ public:
 
 private:
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        const Params p = Params::read(params);
         kit::MomentMapConfig config = kit::readCommonParams(params);
         config.format = GL_R32F;
         config.clearValue = glm::vec4(1.0f);   // exp(c (1 - 1)): depth 1, nothing occludes
-        render(frame, config, {{}, params.asFloat(Id::exponent), 0.0f, 0.0f, 0.0f});
+        render(frame, config, {{}, p.exponent, 0.0f, 0.0f, 0.0f});
     }
 };
 

@@ -44,7 +44,6 @@ constexpr ParamDesc kLightBleeding{"light_bleeding", "light-bleeding reduction",
     X(float, depth_bias, kDepthBias)         \
     X(float, light_bleeding, kLightBleeding)
 SHADOWLAB_PARAMS(Params, MSM_PARAMS);
-using Id = Params::Id;
 
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -67,14 +66,15 @@ public:
 
 private:
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        const Params p = Params::read(params);
         kit::MomentMapConfig config = kit::readCommonParams(params);
-        const bool quantized = params.asInt(Id::storage) == 1;
+        const bool quantized = p.storage == 1;
         config.format = quantized ? GL_RGBA16 : GL_RGBA32F;
         // Depth 1: nothing occludes there.
         const glm::vec4 farMoments = msm::momentsOfDepth(1.0f);
         config.clearValue = quantized ? glm::clamp(msm::quantizeMoments(farMoments), 0.0f, 1.0f) : farMoments;
-        render(frame, config, {{}, quantized ? 1 : 0, params.asFloat(Id::moment_bias), params.asFloat(Id::depth_bias),
-                       params.asFloat(Id::light_bleeding)});
+        render(frame, config, {{}, quantized ? 1 : 0, p.moment_bias, p.depth_bias,
+                       p.light_bleeding});
     }
 };
 

@@ -77,7 +77,6 @@ constexpr ParamDesc kClassify{"classify", "decide lit and shadowed by", ParamTyp
     X(int, classify, kClassify)                \
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, PCF_PARAMS);
-using Id = Params::Id;
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "pcf",
@@ -101,29 +100,31 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const kit::DepthMapConfig config = kit::depthMapConfig(Params::read(params));
+        const Params p = Params::read(params);
+        const kit::DepthMapConfig config = kit::depthMapConfig(p);
         if (frame.light.type == LightType::Point) return cube_.render(frame, config);
         map_.render(frame, config);
         // The n x n box pcf.glsl filters over, for the host's kernel view (--probe).
         FilterFootprint footprint = map_.filterFootprint();
         footprint.kernel = FilterKernel::Box;
-        footprint.taps = params.asInt(Id::kernel);
-        footprint.spacing = params.asFloat(Id::offset_scale);
-        footprint.bilinear = params.asBool(Id::hardware_filter) ? 1 : 0;
-        footprint.coneBias = params.asBool(Id::cone_bias) ? 1.0f : 0.0f;
+        footprint.taps = p.kernel;
+        footprint.spacing = p.offset_scale;
+        footprint.bilinear = p.hardware_filter ? 1 : 0;
+        footprint.coneBias = p.cone_bias ? 1.0f : 0.0f;
         kit::reportFilterFootprint(host(), footprint);
         // classify = depth-range bounds the kernel with mips of the 2D map (allocated on first use
         // and when the resolution changes; freed when classify goes back to none).
-        if (params.asInt(Id::classify) == 1)
+        if (p.classify == 1)
             depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
         else
             depthRange_.reset();
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
-        const bool bilinear = params.asBool(Id::hardware_filter);
+        const Params p = Params::read(params);
+        const bool bilinear = p.hardware_filter;
         // Gather and folded read the texels of taps one texel apart; other spacings use the taps.
-        const int sampling = params.asFloat(Id::offset_scale) == 1.0f ? params.asInt(Id::sampling) : 0;
+        const int sampling = p.offset_scale == 1.0f ? p.sampling : 0;
         // Folded lookups are bilinear comparisons whatever the taps are (nearest taps: on texel corners).
         const bool linearSampler = bilinear || sampling == 2;
         const SamplerKind sampler = linearSampler ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
@@ -132,9 +133,9 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
         else
             map_.bindMainPass(sampler);
         depthRange_.bindMainPass();
-        const bool coneBias = params.asBool(Id::cone_bias);
-        const int classify = frame.light.type == LightType::Point ? 0 : params.asInt(Id::classify);
-        uniforms_.set({{}, params.asInt(Id::kernel), params.asFloat(Id::offset_scale), coneBias ? 1.0f : 0.0f, sampling,
+        const bool coneBias = p.cone_bias;
+        const int classify = frame.light.type == LightType::Point ? 0 : p.classify;
+        uniforms_.set({{}, p.kernel, p.offset_scale, coneBias ? 1.0f : 0.0f, sampling,
                        bilinear ? 1 : 0, classify, 0, 0});
     }
 

@@ -42,7 +42,6 @@ constexpr ParamDesc kStencil{"stencil", "stencil to receiver", ParamType::Bool, 
     X(bool, clip_anti_shadow, kClipAntiShadow) \
     X(bool, stencil, kStencil)
 SHADOWLAB_PARAMS(Params, PLANAR_PARAMS);
-using Id = Params::Id;
 
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -67,6 +66,7 @@ class PlanarShadows final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        const Params p = Params::read(params);
         const auto* prepass = static_cast<const CameraPrepass*>(host().extension(SHADOWLAB_EXT_CAMERA_PREPASS));
         if (!prepass) return;
         ensureTargets(*prepass);
@@ -85,7 +85,7 @@ class PlanarShadows final : public kit::TechniqueBase {
         // view's own depth (read-only) and, with the receiver test, only where the plane is seen.
         glDepthMask(GL_FALSE);
         glDepthFunc(GL_LEQUAL);
-        const float offset = params.asFloat(Id::depth_offset);
+        const float offset = p.depth_offset;
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(-offset, -offset);
         glEnable(GL_CLIP_DISTANCE0);
@@ -97,8 +97,8 @@ class PlanarShadows final : public kit::TechniqueBase {
             if (!objects[i].isPlane() || !objects[i].receivesShadow() || glm::dot(objects[i].plane, lightHomogeneous) <= 0.0f)
                 continue;
             uniforms_.set({{}, planar::projectionMatrix(objects[i].plane, lightHomogeneous), objects[i].plane,
-                           lightHomogeneous, params.asBool(Id::clip_anti_shadow) ? 1 : 0,
-                           params.asBool(Id::stencil) ? i + 1 : 0u, 0, 0});
+                           lightHomogeneous, p.clip_anti_shadow ? 1 : 0,
+                           p.stencil ? i + 1 : 0u, 0, 0});
             // All casters at once; the receiver itself (and anything lying in its plane) is removed
             // by gl_ClipDistance[0] in planar_project.vert.
             host().drawScene(DrawSet::Casters, program_.use());

@@ -31,7 +31,6 @@ constexpr ParamDesc kMoveBack{"move_back", "virtual move-back", ParamType::Bool,
     X(bool, hardware_filter, kit::hardwareFilterParam()) \
     X(bool, move_back, kMoveBack)
 SHADOWLAB_PARAMS(Params, PSM_PARAMS);
-using Id = Params::Id;
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "psm",
@@ -54,10 +53,11 @@ class PerspectiveShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override { return map_.create(host(), error); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        kit::DepthMapConfig config{.resolution = params.asInt(Id::resolution),
-                                   .constantBias = params.asFloat(Id::constant_bias),
-                                   .slopeBias = params.asFloat(Id::slope_bias),
-                                   .cull = kit::Cull(params.asInt(Id::cull))};
+        const Params p = Params::read(params);
+        kit::DepthMapConfig config{.resolution = p.resolution,
+                                   .constantBias = p.constant_bias,
+                                   .slopeBias = p.slope_bias,
+                                   .cull = kit::Cull(p.cull)};
         map_.ensureTexture(config.resolution, config.format);
         GpuPass pass(host(), "shadow map");
         // The view from the nearest visible receiver on (psm_space.h), and its B (eq. 4.2): what the
@@ -69,7 +69,7 @@ class PerspectiveShadowMaps final : public kit::TechniqueBase {
             kit::focusLightSpace(host(), shortened, {kit::Fit::FocusBody, false}, config.resolution);
         LightSpace lightSpace = focused.light;
         kit::ConvexBody body = focused.body;
-        if (!params.asBool(Id::move_back)) {
+        if (!p.move_back) {
             // Only B's part in front of the (receiver) near plane: the move-back is then 0, and
             // the depth pass clips at the camera plane, so casters behind the viewer are lost.
             const glm::vec3 forward = -glm::vec3(shortened.camera.view[0][2], shortened.camera.view[1][2], shortened.camera.view[2][2]);
@@ -97,7 +97,8 @@ class PerspectiveShadowMaps final : public kit::TechniqueBase {
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
-        map_.bindMainPass(params.asBool(Id::hardware_filter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+        const Params p = Params::read(params);
+        map_.bindMainPass(p.hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
     }
 
     kit::DepthMap map_;

@@ -128,8 +128,9 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const int resolution = params.asInt(Id::resolution);
-        const int samples = mapSamples(params.asInt(Id::msaa));
+        const Params p = Params::read(params);
+        const int resolution = p.resolution;
+        const int samples = mapSamples(p.msaa);
         // The host's image viewer reads single-sample textures only: no debug image of a
         // multisampled map (registered anyway, so the entry never names a deleted texture).
         if (target_.ensure({.resolution = resolution, .samples = samples}))
@@ -140,11 +141,11 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
         const LightSpace& lightSpace = focused.light;
         mapUniforms_.set(kit::lightSpaceUniforms(lightSpace, resolution));
         kit::reportShadowMap(host(), lightSpace.viewProjection, {resolution, resolution});
-        passUniforms_.set({{}, frame.randomSeed, params.asInt(Id::noise), 0.0f, 0.0f});
+        passUniforms_.set({{}, frame.randomSeed, p.noise, 0.0f, 0.0f});
         target_.bind();
         glClear(GL_DEPTH_BUFFER_BIT);
         glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(params.asFloat(Id::slope_bias), params.asFloat(Id::constant_bias));
+        glPolygonOffset(p.slope_bias, p.constant_bias);
         host().drawScene(kit::culledDraw(DrawSet::OpaqueCasters, focused.cullPlanes), opaqueProgram_.use());
         // The same depth test and writes: a kept translucent fragment (or sample) is an opaque one.
         const kit::Program& translucent = samples ? translucentMsProgram_ : translucentProgram_;
@@ -153,14 +154,15 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
-        const bool bilinear = params.asBool(Id::hardware_filter);
+        const Params p = Params::read(params);
+        const bool bilinear = p.hardware_filter;
         // One map is bound, on its own unit by type (sampler2DShadow or sampler2DMS); the other unit
         // gets no texture, so it never holds one of the wrong type.
         glBindTextureUnit(kit::kDepthMapUnit, samples_ ? 0u : target_.depth());
         glBindSampler(kit::kDepthMapUnit, host().sampler(bilinear ? SamplerKind::CompareLinear : SamplerKind::CompareNearest));
         glBindTextureUnit(shared::stochastic_sm::kMultisampleMapUnit, samples_ ? target_.depth() : 0u);
         mapUniforms_.bind();
-        uniforms_.set({{}, params.asInt(Id::kernel), bilinear ? 1 : 0, params.asBool(Id::cone_bias) ? 1.0f : 0.0f, samples_});
+        uniforms_.set({{}, p.kernel, bilinear ? 1 : 0, p.cone_bias ? 1.0f : 0.0f, samples_});
     }
 
     kit::Program opaqueProgram_;

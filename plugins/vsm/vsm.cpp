@@ -39,7 +39,6 @@ constexpr ParamDesc kDerivativeMoment{"derivative_moment", "derivative-based M2"
     X(float, light_bleeding, kLightBleeding)      \
     X(bool, derivative_moment, kDerivativeMoment)
 SHADOWLAB_PARAMS(Params, VSM_PARAMS);
-using Id = Params::Id;
 
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -62,12 +61,13 @@ public:
 
 private:
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        const Params p = Params::read(params);
         kit::MomentMapConfig config = kit::readCommonParams(params);
         config.format = GL_RG32F;   // 32 bits per moment: M2 - M1^2 cancels badly in 16 bits
         config.clearValue = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);   // d = 1: M1 = 1, M2 = 1
-        config.momentsNeedDerivatives = params.asBool(Id::derivative_moment);   // eq. 3.16 takes dFdx, dFdy
-        render(frame, config, {{}, params.asBool(Id::derivative_moment) ? 1 : 0, params.asFloat(Id::min_variance),
-                       params.asFloat(Id::light_bleeding), 0.0f});
+        config.momentsNeedDerivatives = p.derivative_moment;   // eq. 3.16 takes dFdx, dFdy
+        render(frame, config, {{}, p.derivative_moment ? 1 : 0, p.min_variance,
+                       p.light_bleeding, 0.0f});
     }
 };
 
