@@ -19,8 +19,8 @@ namespace {
 
 using namespace shadowlab;
 
-#define SHADOWMAP_PARAMS(X)                    \
-    SHADOWLAB_DEPTH_MAP_PARAMS(X, 2048, 200000, 1) \
+#define SHADOWMAP_PARAMS(X)                              \
+    SHADOWLAB_DEPTH_MAP_PARAMS(X, 2048, 200000, 1)       \
     X(bool, hardware_filter, kit::hardwareFilterParam()) \
     SHADOWLAB_FIT_PARAMS(X)
 SHADOWLAB_PARAMS(Params, SHADOWMAP_PARAMS);
