@@ -3,6 +3,8 @@
 // kernel's footprint around a probed pixel (`kernel`, render/kernel_probe.h): its numbers must be
 // the technique's own (the probe's filtered value equals the shader's shadow term at that pixel),
 // its sizes the technique's parameters, and what is drawn must lie where the geometry projects.
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include <shadowlab/kit/focus.h>
@@ -138,8 +140,8 @@ TEST(FocusBodyView, TheWhiteOutlineIsWhereBsEdgesProject) {
     EXPECT_EQ(app->debugViewsOf("shadowmap").find("focus-body"), std::string::npos);
 }
 
-// The moment maps report B too (kit::MomentMap), and every single-map technique's explanation
-// names the views.
+// The moment maps report B too (kit::MomentMap), and every single-map technique's descriptor
+// names the views (TechniqueDesc::debugViews; the explanations no longer repeat them).
 TEST(FocusBodyView, MomentMapsReportBAndExplanationsNameTheViews) {
     auto app = test::makeHeadlessApp("pillars", {320, 180});
     ASSERT_TRUE(app);
@@ -151,11 +153,18 @@ TEST(FocusBodyView, MomentMapsReportBAndExplanationsNameTheViews) {
     for (const char* id : {"shadowmap", "pcf", "adaptive-pcf", "pcss", "vsm", "esm", "evsm", "msm", "csm"}) {
         const TechniqueInfo* info = app->techniques().find(id);
         ASSERT_TRUE(info) << id;
-        EXPECT_NE(info->explanation.find("Debug views:"), std::string::npos) << id;
-        EXPECT_NE(info->explanation.find(std::string(id) == "csm" ? "coverage" : "focus-body"), std::string::npos) << id;
+        EXPECT_TRUE(info->debugViewsDeclared) << id;
+        EXPECT_EQ(info->explanation.find("Debug views:"), std::string::npos) << id;
+        const auto& views = info->debugViews;
+        for (const char* view : {"footprint", "texel-grid", "coverage"})
+            EXPECT_NE(std::find(views.begin(), views.end(), view), views.end()) << id << " " << view;
+        const bool focusBody = std::find(views.begin(), views.end(), "focus-body") != views.end();
+        EXPECT_TRUE(std::string(id) == "csm" || focusBody) << id;
     }
-    for (const char* id : {"pcf", "adaptive-pcf", "pcss"})
-        EXPECT_NE(app->techniques().find(id)->explanation.find("kernel"), std::string::npos) << id;
+    for (const char* id : {"pcf", "adaptive-pcf", "pcss"}) {
+        const auto& views = app->techniques().find(id)->debugViews;
+        EXPECT_NE(std::find(views.begin(), views.end(), "kernel"), views.end()) << id;
+    }
 }
 
 namespace {

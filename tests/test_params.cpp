@@ -94,3 +94,45 @@ TEST(Params, RemapKeepsValuesByIdAndClampsToNewRanges) {
     store.remap(before, after);
     EXPECT_EQ(store.values(after), (std::vector<double>{4096, 3, 2, 3}));
 }
+
+// kit/params.h: one X-macro list gives the table, the indices and typed values, groups splice
+// in keeping their order, and kit::depthMapConfig reads whichever groups a list has.
+#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/params.h>
+
+namespace {
+using namespace shadowlab;
+enum class Mode : int { A = 0, B = 1 };
+constexpr ParamDesc kModeParam{"mode", "mode", ParamType::Enum, 0, 1, 1, "", "", "a|b"};
+#define KIT_PARAMS_TEST_LIST(X)                      \
+    SHADOWLAB_DEPTH_MAP_PARAMS(X, 1024, 100, 2)      \
+    X(Mode, mode, kModeParam)                        \
+    SHADOWLAB_FIT_PARAMS(X)
+SHADOWLAB_PARAMS(KitParams, KIT_PARAMS_TEST_LIST);
+static_assert(KitParams::Id::count == 8 && std::size(KitParams::table) == 8);
+static_assert(KitParams::Id::resolution == 0 && KitParams::Id::mode == 5 && KitParams::Id::snap == 7);
+static_assert(kit::paramIndex(KitParams::table, "cull") == KitParams::Id::cull);
+} // namespace
+
+TEST(ParamsKit, OneListGivesTableIndicesAndTypedValues) {
+    EXPECT_STREQ(KitParams::table[KitParams::Id::constant_bias].id, "constant_bias");
+    EXPECT_EQ(KitParams::table[KitParams::Id::resolution].defaultValue, 1024);
+    EXPECT_EQ(KitParams::table[KitParams::Id::constant_bias].maxValue, 100);
+    EXPECT_EQ(KitParams::table[KitParams::Id::cull].defaultValue, 2);
+    const double raw[] = {512, 1, 3.5, 1.25, 2, 0, 1, 1};
+    const KitParams p = KitParams::read(ParamValues(raw, 8));
+    EXPECT_EQ(p.resolution, 512);
+    EXPECT_EQ(p.depth_format, 1);
+    EXPECT_FLOAT_EQ(p.constant_bias, 3.5f);
+    EXPECT_FLOAT_EQ(p.slope_bias, 1.25f);
+    EXPECT_EQ(p.mode, Mode::A);
+    EXPECT_EQ(p.fit, 1);
+    EXPECT_TRUE(p.snap);
+    const kit::DepthMapConfig config = kit::depthMapConfig(p);
+    EXPECT_EQ(config.resolution, 512);
+    EXPECT_EQ(config.format, kit::depthFormat(1));
+    EXPECT_FLOAT_EQ(config.constantBias, 3.5f);
+    EXPECT_EQ(config.cull, kit::Cull::Front);
+    EXPECT_EQ(config.fit.fit, kit::Fit::Frustum);
+    EXPECT_TRUE(config.fit.snap);
+}

@@ -29,29 +29,27 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    kit::resolutionParam(),
-    {"grid", "samples n", ParamType::Int, 2, 16, 8, "",
+constexpr ParamDesc kGrid{"grid", "samples n", ParamType::Int, 2, 16, 8, "",
      "Each set is an n x n jittered grid mapped to a disc (n^2 taps in the penumbra, n in the outer "
      "ring tested first). Small n gives coarse, noisy penumbrae and an unreliable early out; large n is "
-     "smooth but penumbra pixels cost n^2 lookups and the offset texture grows with n^2.", nullptr},
-    {"sets", "sets m", ParamType::Int, 1, 32, 16, "",
+     "smooth but penumbra pixels cost n^2 lookups and the offset texture grows with n^2.", nullptr};
+constexpr ParamDesc kSets{"sets", "sets m", ParamType::Int, 1, 32, 16, "",
      "m x m different sample sets tiled over the screen (pixel mod m). 1 brings PCF's banding back; "
      "below about 14 the noise repeats visibly in motion; memory grows with m^2 (m x m x n^2/2 texels).",
-     nullptr},
-    {"radius", "offset scale (radius)", ParamType::Float, 0.5, 32, 4, "texels",
+     nullptr};
+constexpr ParamDesc kRadius{"radius", "offset scale (radius)", ParamType::Float, 0.5, 32, 4, "texels",
      "Filter radius: the unit-disc offsets are scaled by it. Small radii leave hard, aliased edges; large "
-     "ones give wide penumbrae, more noise, more bias needed and fewer early outs (slower).", nullptr},
-    {"hardware_filter", "bilinear taps", ParamType::Bool, 0, 1, 0, "",
+     "ones give wide penumbrae, more noise, more bias needed and fewer early outs (slower).", nullptr};
+constexpr ParamDesc kHardwareFilter{"hardware_filter", "bilinear taps", ParamType::Bool, 0, 1, 0, "",
      "Each tap is the texture unit's 2x2 bilinear comparison: smoother penumbrae at small radii for "
      "almost no cost, but fractional taps rarely agree exactly, so the early out is taken less often.",
-     nullptr},
-    {"coherent", "early out per 2x2 quad", ParamType::Bool, 0, 1, 1, "",
+     nullptr};
+constexpr ParamDesc kCoherent{"coherent", "early out per 2x2 quad", ParamType::Bool, 0, 1, 1, "",
      "Take the early-out decision per 2x2 pixel quad: the quad stops only when all four rings agree. A GPU "
      "shades quads (and warps) together, so a pixel that stops alone next to one that continues should save "
      "nothing; measured on an H200 it made no difference in speed and lowered the penumbra error slightly. "
-     "Off gives seed 000's per-pixel decision.", nullptr},
-    {"classify", "decide lit and shadowed by", ParamType::Enum, 0, 1, 0, "",
+     "Off gives seed 000's per-pixel decision.", nullptr};
+constexpr ParamDesc kClassify{"classify", "decide lit and shadowed by", ParamType::Enum, 0, 1, 0, "",
      "How a pixel outside any penumbra is recognised. ring: seed 000's test, the outer ring of taps all "
      "agreeing. depth-range: first the nearest and farthest depth stored under the whole disc (depth-range "
      "mips, one extra pass, four fetches): nearest at or behind the receiver means every tap is lit, "
@@ -59,34 +57,23 @@ constexpr ParamDesc kParams[] = {
      "test. Exactly the same image as ring (a pixel the bounds decide has a unanimous ring), fewer lookups "
      "where most of the view is plainly lit or shadowed; on forest (an H200, with the depth pre-pass) it was "
      "9% slower than ring, whose default it is not.",
-     "ring|depth-range"},
-    {"count_early_outs", "count early outs", ParamType::Bool, 0, 1, 0, "",
+     "ring|depth-range"};
+constexpr ParamDesc kCountEarlyOuts{"count_early_outs", "count early outs", ParamType::Bool, 0, 1, 0, "",
      "Count the calls and early outs with two atomic counters and report the early-out rate (statistics). "
      "Every fragment increments the same counters, which costs GPU time: leave it off when timing.",
-     nullptr},
-    kit::coneBiasParam(),
-    kit::constantBiasParam(),
-    kit::slopeBiasParam(),
-    kit::cullParam(0),   // none: every face casts (open and single-sided casters too); back as shadowmap's default
-    kit::fitParam(),
-    kit::snapParam(),
-};
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kGrid = kit::paramIndex(kParams, "grid"),
-    kSets = kit::paramIndex(kParams, "sets"),
-    kRadius = kit::paramIndex(kParams, "radius"),
-    kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
-    kCoherent = kit::paramIndex(kParams, "coherent"),
-    kClassify = kit::paramIndex(kParams, "classify"),
-    kCountEarlyOuts = kit::paramIndex(kParams, "count_early_outs"),
-    kConeBias = kit::paramIndex(kParams, "cone_bias"),
-    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
-    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
-    kCull = kit::paramIndex(kParams, "cull"),
-    kFit = kit::paramIndex(kParams, "fit"),
-    kSnap = kit::paramIndex(kParams, "snap"),
-};
+     nullptr};
+
+#define ADAPTIVE_PCF_PARAMS(X)                 \
+    X(int, resolution, kit::resolutionParam()) \
+    X(int, grid, kGrid)                        \
+    X(int, sets, kSets)                        \
+    X(float, radius, kRadius)                  \
+    X(bool, hardware_filter, kHardwareFilter)  \
+    X(bool, coherent, kCoherent)               \
+    X(int, classify, kClassify)                \
+    X(bool, count_early_outs, kCountEarlyOuts) \
+    SHADOWLAB_PCF_COMMON_PARAMS(X)
+SHADOWLAB_PARAMS(Params, ADAPTIVE_PCF_PARAMS);
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "adaptive-pcf",
@@ -96,10 +83,11 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "so the penumbra becomes fine noise instead of bands. The outermost samples come first: when they "
                    "all agree the pixel is fully lit or fully shadowed and the rest is skipped, so only penumbra pixels "
                    "pay for the whole kernel (count early outs to see the rate). The radius sets the penumbra width, the same "
-                   "everywhere: filtering, not a physically soft shadow. Debug views: kernel (the disc around the pixel under the mouse: the outer ring, the samples skipped by the early out), footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'shadow map'.",
+                   "everywhere: filtering, not a physically soft shadow.",
      .shadowGlsl = "adaptive-pcf.glsl",
-     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
-    kParams);
+     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
+     .debugViews = "kernel|footprint|texel-grid|coverage|focus-body"},
+    Params::table);
 
 // Counts of the main pass (shadowTerm calls, early outs) in a ring of small atomic-counter buffers,
 // read back only once a fence says the frame that wrote them has finished: never a stall. Both
@@ -180,44 +168,42 @@ class AdaptivePcf final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        offsets_.ensure(host(), params.asInt(kGrid), params.asInt(kSets), "disc offsets (m x m x n^2/2)");
+        const Params p = Params::read(params);
+        offsets_.ensure(host(), p.grid, p.sets, "disc offsets (m x m x n^2/2)");
         counters_.beginFrame();
-        const kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
-                                         .constantBias = params.asFloat(kConstantBias),
-                                         .slopeBias = params.asFloat(kSlopeBias),
-                                         .cull = kit::Cull(params.asInt(kCull)),
-                                         .fit = kit::readFit(params, kFit, kSnap)};
+        const kit::DepthMapConfig config = kit::depthMapConfig(p);
         if (frame.light.type == LightType::Point) return cube_.render(frame, config);
         map_.render(frame, config);
         // The disc adaptive-pcf.glsl filters over (seed 000 eq. 3.11-3.12), for the host's kernel view.
         FilterFootprint footprint = map_.filterFootprint();
         footprint.kernel = FilterKernel::Disc;
         footprint.taps = offsets_.n();
-        footprint.spacing = params.asFloat(kRadius);
-        footprint.bilinear = params.asBool(kHardwareFilter) ? 1 : 0;
-        footprint.sets = params.asInt(kSets);
+        footprint.spacing = p.radius;
+        footprint.bilinear = p.hardware_filter ? 1 : 0;
+        footprint.sets = p.sets;
         footprint.discSeed = 1;   // offsets_.ensure's default
-        footprint.coneBias = params.asBool(kConeBias) ? 1.0f : 0.0f;
-        footprint.coherent = params.asBool(kCoherent) ? 1 : 0;
+        footprint.coneBias = p.cone_bias ? 1.0f : 0.0f;
+        footprint.coherent = p.coherent ? 1 : 0;
         kit::reportFilterFootprint(host(), footprint);
         // classify = depth-range reads mips of the 2D map (the cube path takes the ring test).
-        if (params.asInt(kClassify) == 1)
+        if (p.classify == 1)
             depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
         else
             depthRange_.reset();
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
-        const SamplerKind sampling = params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
+        const Params p = Params::read(params);
+        const SamplerKind sampling = p.hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
         if (frame.light.type == LightType::Point)
             cube_.bindMainPass(sampling);
         else
             map_.bindMainPass(sampling);
         glBindTextureUnit(shared::adaptive_pcf::kDiscOffsetsUnit, offsets_.texture());
         depthRange_.bindMainPass();
-        uniforms_.set({{}, offsets_.n(), params.asFloat(kRadius), params.asBool(kConeBias) ? 1.0f : 0.0f,
-                       params.asBool(kCoherent) ? 1 : 0, params.asBool(kCountEarlyOuts) ? 1 : 0,
-                       frame.light.type == LightType::Point ? 0 : params.asInt(kClassify), 0, 0});
+        uniforms_.set({{}, offsets_.n(), p.radius, p.cone_bias ? 1.0f : 0.0f,
+                       p.coherent ? 1 : 0, p.count_early_outs ? 1 : 0,
+                       frame.light.type == LightType::Point ? 0 : p.classify, 0, 0});
         counters_.bindMainPass();
     }
 

@@ -29,23 +29,20 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    {"samples", "light samples N", ParamType::Int, 1, 256, 32, "",
+constexpr ParamDesc kSamples{"samples", "light samples N", ParamType::Int, 1, 256, 32, "",
      "Shadow maps rendered from points spread over the light, averaged per pixel. 1 is plain shadow mapping "
      "from the light's centre; few samples show N + 1 distinct bands in the penumbra; cost grows linearly "
-     "(N shadow passes and N fullscreen passes per frame).", nullptr},
-    {"resolution", "resolution", ParamType::Int, 256, 8192, 2048, "texels",
+     "(N shadow passes and N fullscreen passes per frame).", nullptr};
+constexpr ParamDesc kResolution{"resolution", "resolution", ParamType::Int, 256, 8192, 2048, "texels",
      "Width and height of each sample's shadow map. Low values add each map's blocky edges to the penumbra; "
-     "high values multiply the cost of every one of the N passes.", nullptr},
-    kit::constantBiasParam(),
-    kit::slopeBiasParam(),
-};
-enum : uint32_t {
-    kSamples = kit::paramIndex(kParams, "samples"),
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
-    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
-};
+     "high values multiply the cost of every one of the N passes.", nullptr};
+
+#define AREA_REFERENCE_PARAMS(X)                      \
+    X(int, samples, kSamples)                         \
+    X(int, resolution, kResolution)                   \
+    X(float, constant_bias, kit::constantBiasParam()) \
+    X(float, slope_bias, kit::slopeBiasParam())
+SHADOWLAB_PARAMS(Params, AREA_REFERENCE_PARAMS);
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "area-reference",
@@ -55,11 +52,12 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "the sun, directions within its angular radius) and averages the N hard visibilities in every pixel. "
                    "Physically right up to sampling: penumbrae widen with the distance between caster and receiver and "
                    "overlapping casters combine correctly. Slow by design (N shadow passes per frame): it is the target "
-                   "that single-map techniques such as PCSS approximate. Few samples show banding. Debug views: 'average visibility' (no single map, so no map views).",
+                   "that single-map techniques such as PCSS approximate. Few samples show banding.",
      .shadowGlsl = "area-reference.glsl",
      .flags = kTechniqueNeedsCameraPrepass,
-     .translucencyModel = TranslucencyModel::Ignore},   // its maps hold opaque casters only
-    kParams);
+     .translucencyModel = TranslucencyModel::Ignore,   // its maps hold opaque casters only
+     .debugViews = ""},
+    Params::table);
 
 // Van der Corput radical inverse in base 2: the second Hammersley coordinate.
 float radicalInverse(uint32_t i) {
@@ -117,10 +115,11 @@ class AreaReference final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        const Params p = Params::read(params);
         const auto* prepass = static_cast<const CameraPrepass*>(host().extension(SHADOWLAB_EXT_CAMERA_PREPASS));
         if (!prepass) return;
         ensureAccumulation(prepass->size);
-        sampleMap_.ensureTexture(params.asInt(kResolution));
+        sampleMap_.ensureTexture(p.resolution);
         accumulateSamples(frame, *prepass, params);
     }
 
@@ -144,12 +143,13 @@ class AreaReference final : public kit::TechniqueBase {
 
     // For each light sample: its shadow map, then its visibility of every pixel added (times 1/N).
     void accumulateSamples(const FrameContext& frame, const CameraPrepass& prepass, const ParamValues& params) {
+        const Params p = Params::read(params);
         GpuPass pass(host(), "light samples");
-        const int samples = params.asInt(kSamples);
+        const int samples = p.samples;
         const Bounds bounds = host().bounds(DrawSet::All);
         const kit::DepthMapConfig config{.resolution = sampleMap_.resolution(),
-                                         .constantBias = params.asFloat(kConstantBias),
-                                         .slopeBias = params.asFloat(kSlopeBias)};
+                                         .constantBias = p.constant_bias,
+                                         .slopeBias = p.slope_bias};
         const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         glClearNamedFramebufferfv(accumulationFbo_, GL_COLOR, 0, zero);
         for (int i = 0; i < samples; ++i) {

@@ -44,11 +44,10 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "glass pane is tinted by the panes in front of it and never by itself or those behind (seed "
                     "001's composited translucent shadows, sec. 4.2.3). Right where translucent shadows tint "
                     "every layer alike, noise-free unlike CSSM2, but two passes per mesh, each over the meshes "
-                    "in front: the cost grows with the square of the mesh count (real time only for a handful). "
-                    "Debug views: footprint, texel-grid and coverage, 'opaque depth D_o', and the frame's "
-                    "'translucent depth D_t' and 'shadow colour C'.",
+                    "in front: the cost grows with the square of the mesh count (real time only for a handful).",
      .shadowGlsl = "composited-translucent.glsl",
-     .translucencyModel = TranslucencyModel::ModifiedTranslucent},
+     .translucencyModel = TranslucencyModel::ModifiedTranslucent,
+     .debugViews = "footprint|texel-grid|coverage"},
     kit::kTranslucentMapParams);
 
 class CompositedTranslucent final : public kit::TechniqueBase {

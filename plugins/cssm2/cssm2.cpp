@@ -29,42 +29,37 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    // Capped below kit::resolutionParam's 8192: the map is 16 bytes a texel (8192^2: 1 GiB).
-    {"resolution", "resolution", ParamType::Int, 256, 4096, 2048, "texels",
+constexpr ParamDesc kResolution{"resolution", "resolution", ParamType::Int, 256, 4096, 2048, "texels",
      "Width and height of the depth buffer and the RGBA32F colour map (16 + 4 bytes a texel: 80 MiB at "
      "2048). Low values make edges blocky; a kernel in texels then covers more of the scene.",
-     nullptr},
-    {"kernel", "kernel size n", ParamType::Int, 1, 11, 5, "taps",
+     nullptr};
+constexpr ParamDesc kKernel{"kernel", "kernel size n", ParamType::Int, 1, 11, 5, "taps",
      "n x n texel fetches, each compared per channel in the shader and averaged. 1 shows the raw "
      "photons (every texel all or nothing per channel); seed 001 timed 9 x 9 and 3 x 3. Cost grows with "
      "n^2 and every edge blurs over n texels.",
-     nullptr},
-    kit::noiseParam(),
-    kit::coneBiasParam(),
-    {"constant_bias", "constant bias", ParamType::Float, 0, 64, 2, "units",
+     nullptr};
+constexpr ParamDesc kConstantBias{"constant_bias", "constant bias", ParamType::Float, 0, 64, 2, "units",
      "Added to every depth the colour map stores, in units of 2^-24 (what glPolygonOffset's units are "
      "for 32F depth near 1; a colour attachment gets no polygon offset, so the shader adds it). Zero "
      "shows acne; large values detach shadows from their casters.",
-     nullptr},
-    {"slope_bias", "slope-scaled bias", ParamType::Float, 0, 16, 2, "",
+     nullptr};
+constexpr ParamDesc kSlopeBias{"slope_bias", "slope-scaled bias", ParamType::Float, 0, 16, 2, "",
      "Added to every stored depth times its slope as seen from the light (glPolygonOffset's factor, "
      "applied in the shader). Zero leaves acne on tilted surfaces; large values push shadows off grazing "
      "contacts.",
-     nullptr},
-    kit::fitParam(),
-    kit::snapParam(),
-};
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kKernel = kit::paramIndex(kParams, "kernel"),
-    kNoise = kit::paramIndex(kParams, "noise"),
-    kConeBias = kit::paramIndex(kParams, "cone_bias"),
-    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
-    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
-    kFit = kit::paramIndex(kParams, "fit"),
-    kSnap = kit::paramIndex(kParams, "snap"),
-};
+     nullptr};
+
+// Capped below kit::resolutionParam's 8192: the map is 16 bytes a texel (8192^2: 1 GiB).
+#define CSSM2_PARAMS(X)                      \
+    X(int, resolution, kResolution)          \
+    X(int, kernel, kKernel)                  \
+    X(int, noise, kit::noiseParam())         \
+    X(bool, cone_bias, kit::coneBiasParam()) \
+    X(float, constant_bias, kConstantBias)   \
+    X(float, slope_bias, kSlopeBias)         \
+    SHADOWLAB_FIT_PARAMS(X)
+SHADOWLAB_PARAMS(Params, CSSM2_PARAMS);
+using Id = Params::Id;
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "cssm2",
@@ -78,10 +73,11 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "transmission, coloured and right on every layer of glass, as the kernel grows, but it is "
                     "noisy (worst in bright, unsaturated light), the kernel blurs edges and, without hardware "
                     "comparison on a colour map, costs n^2 fetches. Try kernel 1, and noise = per-texel under "
-                    "overlapping glass. Debug views: footprint, texel-grid and coverage (the map and its volume), 'cssm2 opaque depth' and 'cssm2 colour map'.",
+                    "overlapping glass.",
      .shadowGlsl = "cssm2.glsl",
-     .translucencyModel = TranslucencyModel::Physical},
-    kParams);
+     .translucencyModel = TranslucencyModel::Physical,
+     .debugViews = "footprint|texel-grid|coverage"},
+    Params::table);
 
 class ColouredStochasticShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
@@ -101,17 +97,17 @@ class ColouredStochasticShadowMaps final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const int resolution = params.asInt(kResolution);
+        const int resolution = params.asInt(Id::resolution);
         if (target_.ensure({.resolution = resolution, .colourFormat = GL_RGBA32F})) {
             host().registerDebugImage("cssm2 opaque depth", target_.depth(), DebugImageKind::Depth);
             host().registerDebugImage("cssm2 colour map", target_.colour(), DebugImageKind::Color);
         }
         GpuPass pass(host(), "shadow map");
-        const kit::FocusedLightSpace focused = kit::focusLightSpace(host(), frame, kit::readFit(params, kFit, kSnap), resolution);
+        const kit::FocusedLightSpace focused = kit::focusLightSpace(host(), frame, kit::readFit(params, Id::fit, Id::snap), resolution);
         const LightSpace& lightSpace = focused.light;
         mapUniforms_.set(kit::lightSpaceUniforms(lightSpace, resolution));
         kit::reportShadowMap(host(), lightSpace.viewProjection, {resolution, resolution});
-        passUniforms_.set({{}, frame.randomSeed, params.asInt(kNoise), params.asFloat(kSlopeBias), params.asFloat(kConstantBias)});
+        passUniforms_.set({{}, frame.randomSeed, params.asInt(Id::noise), params.asFloat(Id::slope_bias), params.asFloat(Id::constant_bias)});
         target_.bind();
         const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};
         glClearBufferfv(GL_COLOR, 0, far);
@@ -128,7 +124,7 @@ class ColouredStochasticShadowMaps final : public kit::TechniqueBase {
         glBindTextureUnit(shared::cssm2::kColourMapUnit, target_.colour());
         glBindSampler(shared::cssm2::kColourMapUnit, host().sampler(SamplerKind::Nearest));
         mapUniforms_.bind();
-        uniforms_.set({{}, params.asInt(kKernel), params.asBool(kConeBias) ? 1.0f : 0.0f, 0.0f, 0.0f});
+        uniforms_.set({{}, params.asInt(Id::kernel), params.asBool(Id::cone_bias) ? 1.0f : 0.0f, 0.0f, 0.0f});
     }
 
     kit::Program opaqueProgram_;

@@ -19,21 +19,16 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    SHADOWLAB_MOMENT_MAP_PARAMS(1024),
-    {"exponent", "exponent c", ParamType::Float, 1, 85, 80, "",
+constexpr ParamDesc kExponent{"exponent", "exponent c", ParamType::Float, 1, 85, 80, "",
      "Sharpness c of exp(c d), depth d normalised to [0, 1] over the casters (Annen et al use about 80 for "
      "32-bit floats). Small c leaks light wherever receiver and occluder are close (contact shadows fade, "
-     "penumbrae widen into the shadow); the maximum is where exp(c) nears the 32-bit float limit.", nullptr},
-};
+     "penumbrae widen into the shadow); the maximum is where exp(c) nears the 32-bit float limit.", nullptr};
 
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kKernel = kit::paramIndex(kParams, "kernel"),
-    kFilter = kit::paramIndex(kParams, "filter"),
-    kMipmaps = kit::paramIndex(kParams, "mipmaps"),
-    kExponent = kit::paramIndex(kParams, "exponent"),
-};
+#define ESM_PARAMS(X)                    \
+    SHADOWLAB_MOMENT_MAP_PARAMS(X, 1024) \
+    X(float, exponent, kExponent)
+SHADOWLAB_PARAMS(Params, ESM_PARAMS);
+
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "esm",
@@ -43,10 +38,11 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "exp(-c d_receiver) times the filtered map, so the map can be blurred and mipmapped like a texture "
                    "with one channel. Cheaper than VSM and free of its overlap light bleeding, but shadows leak light "
                    "where receiver and occluder nearly touch (contact shadows fade in; raise c) and the clamp makes "
-                   "penumbrae one-sided. Debug views: footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'moments'.",
+                   "penumbrae one-sided.",
      .shadowGlsl = "esm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
-    kParams);
+     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
+     .debugViews = "footprint|texel-grid|coverage|focus-body"},
+    Params::table);
 
 class ExponentialShadowMaps final : public kit::MomentTechnique<shared::esm::EsmUniforms> {
 public:
@@ -54,10 +50,11 @@ public:
 
 private:
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        const Params p = Params::read(params);
         kit::MomentMapConfig config = kit::readCommonParams(params);
         config.format = GL_R32F;
         config.clearValue = glm::vec4(1.0f);   // exp(c (1 - 1)): depth 1, nothing occludes
-        render(frame, config, {{}, params.asFloat(kExponent), 0.0f, 0.0f, 0.0f});
+        render(frame, config, {{}, p.exponent, 0.0f, 0.0f, 0.0f});
     }
 };
 

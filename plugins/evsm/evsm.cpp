@@ -19,35 +19,31 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    SHADOWLAB_MOMENT_MAP_PARAMS(1024),
-    {"positive_exponent", "positive exponent c+", ParamType::Float, 1, 42, 40, "",
+constexpr ParamDesc kPositiveExponent{"positive_exponent", "positive exponent c+", ParamType::Float, 1, 42, 40, "",
      "Steepness of the warp exp(c+ x) with x = 2d - 1 in [-1, 1] over the casters' depth range. Small values "
      "behave like plain VSM and leak light behind overlapping occluders; 42 is the 32-bit limit (the squares "
-     "reach exp(2 c+)).", nullptr},
-    {"negative_exponent", "negative exponent c-", ParamType::Float, 1, 42, 5, "",
+     "reach exp(2 c+)).", nullptr};
+constexpr ParamDesc kNegativeExponent{"negative_exponent", "negative exponent c-", ParamType::Float, 1, 42, 5, "",
      "Steepness of the second warp -exp(-c- x), the bound that stays tight where the receiver lies close "
      "in front of the filtered depths. Small values waste it; large ones amplify the rounding of depths "
-     "near the light (Lauritzen's usual choice is 5 with c+ = 40).", nullptr},
-    {"min_variance", "minimum variance", ParamType::Float, 0, 0.001, 0.00002, "depth^2",
+     "near the light (Lauritzen's usual choice is 5 with c+ = 40).", nullptr};
+constexpr ParamDesc kMinVariance{"min_variance", "minimum variance", ParamType::Float, 0, 0.001, 0.00002, "depth^2",
      "Lower clamp of the variance in squared depth (depth normalised to [0, 1] over the casters), scaled to "
      "each warped depth by the square of the warp's slope. Zero lets float rounding speckle lit surfaces "
-     "with shadow; large values lighten contact shadows.", nullptr},
-    {"light_bleeding", "light-bleeding reduction", ParamType::Float, 0, 0.95, 0.0, "",
+     "with shadow; large values lighten contact shadows.", nullptr};
+constexpr ParamDesc kLightBleeding{"light_bleeding", "light-bleeding reduction", ParamType::Float, 0, 0.95, 0.0, "",
      "Remaps the visibility from [a, 1] to [0, 1], so bounds below a become full shadow; 0 is off. As in "
-     "VSM (seed 000 section 3.2.5), but EVSM needs far less; large values shrink and darken penumbrae.", nullptr},
-};
+     "VSM (seed 000 section 3.2.5), but EVSM needs far less; large values shrink and darken penumbrae.", nullptr};
 
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kKernel = kit::paramIndex(kParams, "kernel"),
-    kFilter = kit::paramIndex(kParams, "filter"),
-    kMipmaps = kit::paramIndex(kParams, "mipmaps"),
-    kPositiveExponent = kit::paramIndex(kParams, "positive_exponent"),
-    kNegativeExponent = kit::paramIndex(kParams, "negative_exponent"),
-    kMinVariance = kit::paramIndex(kParams, "min_variance"),
-    kLightBleedingReduction = kit::paramIndex(kParams, "light_bleeding"),
-};
+#define EVSM_PARAMS(X)                             \
+    SHADOWLAB_MOMENT_MAP_PARAMS(X, 1024)           \
+    X(float, positive_exponent, kPositiveExponent) \
+    X(float, negative_exponent, kNegativeExponent) \
+    X(float, min_variance, kMinVariance)           \
+    X(float, light_bleeding, kLightBleeding)
+SHADOWLAB_PARAMS(Params, EVSM_PARAMS);
+using Id = Params::Id;
+
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "evsm",
@@ -57,10 +53,11 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "mean square of each, then takes the tighter of the two Chebyshev bounds. The exponential stretches "
                    "the depth differences behind an occluder, so the light that bleeds through overlapping occluders "
                    "in VSM mostly disappears while the map still blurs and mipmaps like a texture. Costs four 32-bit "
-                   "channels per texel; exponents are capped by float range. Debug views: footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'moments'.",
+                   "channels per texel; exponents are capped by float range.",
      .shadowGlsl = "evsm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
-    kParams);
+     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
+     .debugViews = "footprint|texel-grid|coverage|focus-body"},
+    Params::table);
 
 class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<shared::evsm::EvsmUniforms> {
 public:
@@ -71,11 +68,11 @@ private:
         kit::MomentMapConfig config = kit::readCommonParams(params);
         config.format = GL_RGBA32F;
         // Depth 1 (x = 1): p = exp(c+), n = -exp(-c-), and their squares.
-        const float p = std::exp(params.asFloat(kPositiveExponent));
-        const float n = -std::exp(-params.asFloat(kNegativeExponent));
+        const float p = std::exp(params.asFloat(Id::positive_exponent));
+        const float n = -std::exp(-params.asFloat(Id::negative_exponent));
         config.clearValue = glm::vec4(p, p * p, n, n * n);
-        render(frame, config, {{}, {params.asFloat(kPositiveExponent), params.asFloat(kNegativeExponent), 0.0f, 0.0f},
-                       params.asFloat(kMinVariance), params.asFloat(kLightBleedingReduction), 0.0f, 0.0f});
+        render(frame, config, {{}, {params.asFloat(Id::positive_exponent), params.asFloat(Id::negative_exponent), 0.0f, 0.0f},
+                       params.asFloat(Id::min_variance), params.asFloat(Id::light_bleeding), 0.0f, 0.0f});
     }
 };
 

@@ -22,63 +22,56 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    kit::resolutionParam(),
-    {"n_factor", "warp distance n / n_opt", ParamType::Float, 0.05, 20, 1, "",
+constexpr ParamDesc kNFactor{"n_factor", "warp distance n / n_opt", ParamType::Float, 0.05, 20, 1, "",
      "n, the distance of the warp's centre from its near plane, as a multiple of n_opt (seed 002 eq. "
      "8.13): 1 equalises the error at the focus body's near and far ends. Smaller warps harder (near "
      "shadows sharper, far ones blocky: Fig. 8.4 left); larger tends to a uniform focused map (Fig. 8.4 "
-     "right).", nullptr},
-    {"virtual_far", "virtual far plane z_f", ParamType::Float, 0, 1000, 0, "m",
+     "right).", nullptr};
+constexpr ParamDesc kVirtualFar{"virtual_far", "virtual far plane z_f", ParamType::Float, 0, 1000, 0, "m",
      "Seed 002 sec. 9.2.5: the far distance of a virtual view frustum from which n alone is computed "
      "(eq. 8.13's d, z0, z1 from the focus body of the frustum cut there); the map still covers the "
      "whole body B, so casters beyond it still cast. Nearer warps harder: shadows up to z_f sharper, "
      "beyond it blockier (Fig. 9.3). 0 (or beyond the camera's far plane): the camera's far plane, the "
-     "recipe without the option.", nullptr},
-    {"body_vector", "body vector", ParamType::Bool, 0, 1, 0, "",
+     "recipe without the option.", nullptr};
+constexpr ParamDesc kBodyVector{"body_vector", "body vector", ParamType::Bool, 0, 1, 0, "",
      "Seed 002 sec. 9.2.6, directional lights: the warp's axis from the body vector (the sum of the "
      "vectors from the eye to the focus body's corners, pointing into the middle of B) instead of the "
      "view direction. Off: the view direction, which misses B's middle where the scene's bounds cut the "
      "frustum off-centre (looking out of the scene, down onto the ground). Off by default: on forest-002 "
      "it lowers the near third's error at 2048 texels but raises the far third's at 1024 and 2048 "
-     "(docs/plugin-api.md).", nullptr},
-    kit::constantBiasParam(65536),   // room for a constant bias alone to remove acne (Fig. 5.6)
-    kit::slopeBiasParam(),
-    kit::cullParam(2),
-    kit::hardwareFilterParam(),
-    kit::snapParam(),
-    {"depth", "stored depth", ParamType::Enum, 0, 1, 0, "",
+     "(docs/plugin-api.md).", nullptr};
+constexpr ParamDesc kDepth{"depth", "stored depth", ParamType::Enum, 0, 1, 0, "",
      "What the map stores (seed 002 sec. 5.3): the warp's own hyperbolic z, whose steps grow along the "
      "warp so that one bias is too small at one end and too large at the other, or linear depth along "
      "the light over the focus body (TSM's linear z), written per fragment with the slope-scaled bias "
-     "done in the shader.", "hyperbolic|linear"},
-    {"bias_method", "bias method", ParamType::Enum, 0, 3, 0, "",
+     "done in the shader.", "hyperbolic|linear"};
+constexpr ParamDesc kBiasMethod{"bias_method", "bias method", ParamType::Enum, 0, 3, 0, "",
      "offset: constant and slope-scaled offset (eq. 5.2, applied per fragment like glPolygonOffset with "
      "a fixed unit of 2^-24). midpoint: a second layer by depth "
      "peeling and the test against min((z2 - z1) / 2, z_offset) past the first (eq. 5.1, dual shadow "
      "maps). second-depth: the test against the second layer (Wang and Molnar). inverted-back-faces: "
      "back faces stored (cull front) with the offset reversed, towards the light. The two-layer "
      "methods draw every face and ignore the bias and cull parameters.",
-     "offset|midpoint|second-depth|inverted-back-faces"},
-    {"z_offset", "midpoint z_offset", ParamType::Float, 0, 1, 0.05, "depth range",
+     "offset|midpoint|second-depth|inverted-back-faces"};
+constexpr ParamDesc kZOffset{"z_offset", "midpoint z_offset", ParamType::Float, 0, 1, 0.05, "depth range",
      "Eq. 5.1's largest bias, in units of the map's depth range: about an object's size. Too small "
      "brings back acne where the second surface is far (a ground plane); too large lets light leak "
-     "under casters close to their receivers.", nullptr},
-};
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kNFactor = kit::paramIndex(kParams, "n_factor"),
-    kVirtualFar = kit::paramIndex(kParams, "virtual_far"),
-    kBodyVector = kit::paramIndex(kParams, "body_vector"),
-    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
-    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
-    kCull = kit::paramIndex(kParams, "cull"),
-    kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
-    kSnap = kit::paramIndex(kParams, "snap"),
-    kDepth = kit::paramIndex(kParams, "depth"),
-    kBiasMethod = kit::paramIndex(kParams, "bias_method"),
-    kZOffset = kit::paramIndex(kParams, "z_offset"),
-};
+     "under casters close to their receivers.", nullptr};
+
+// room for a constant bias alone to remove acne (Fig. 5.6)
+#define LISPSM_PARAMS(X)                                 \
+    X(int, resolution, kit::resolutionParam())           \
+    X(float, n_factor, kNFactor)                         \
+    X(float, virtual_far, kVirtualFar)                   \
+    X(bool, body_vector, kBodyVector)                    \
+    SHADOWLAB_BIAS_PARAMS(X, 65536, 2)                   \
+    X(bool, hardware_filter, kit::hardwareFilterParam()) \
+    X(bool, snap, kit::snapParam())                      \
+    X(int, depth, kDepth)                                \
+    X(int, bias_method, kBiasMethod)                     \
+    X(float, z_offset, kZOffset)
+SHADOWLAB_PARAMS(Params, LISPSM_PARAMS);
+using Id = Params::Id;
 
 enum class BiasMethod : int { Offset = 0, Midpoint = 1, SecondDepth = 2, InvertedBackFaces = 3 };
 
@@ -97,7 +90,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "(the warped map and its volume), focus-body (B, seed 002 eq. 4.2), and the depth image.",
      .shadowGlsl = "lispsm.glsl",
      .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
-    kParams);
+    Params::table);
 
 class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
@@ -107,12 +100,12 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
-                                   .constantBias = params.asFloat(kConstantBias),
-                                   .slopeBias = params.asFloat(kSlopeBias),
-                                   .cull = kit::Cull(params.asInt(kCull))};
-        const auto method = BiasMethod(params.asInt(kBiasMethod));
-        const bool linear = params.asInt(kDepth) == 1;
+        kit::DepthMapConfig config{.resolution = params.asInt(Id::resolution),
+                                   .constantBias = params.asFloat(Id::constant_bias),
+                                   .slopeBias = params.asFloat(Id::slope_bias),
+                                   .cull = kit::Cull(params.asInt(Id::cull))};
+        const auto method = BiasMethod(params.asInt(Id::bias_method));
+        const bool linear = params.asInt(Id::depth) == 1;
         twoLayers_ = method == BiasMethod::Midpoint || method == BiasMethod::SecondDepth;
         if (method == BiasMethod::InvertedBackFaces) {
             config.cull = kit::Cull::Front;
@@ -128,22 +121,22 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
         GpuPass pass(host(), "shadow map");
         // Step 1 of sec. 9.2.1: focus on B (the uniform fallback when there is no warp).
         const kit::FocusedLightSpace focused =
-            kit::focusLightSpace(host(), frame, {kit::Fit::FocusBody, params.asBool(kSnap)}, config.resolution);
+            kit::focusLightSpace(host(), frame, {kit::Fit::FocusBody, params.asBool(Id::snap)}, config.resolution);
         LightSpace lightSpace = focused.light;
         if (frame.light.type == LightType::Directional && !focused.body.empty()) {
             const Bounds scene = host().bounds(DrawSet::All);
             kit::ConvexBody visible = kit::frustumBody(frame.camera.inverseViewProjection);
             kit::clip(visible, scene);
             lispsm::WarpOptions options;
-            options.nFactor = params[kNFactor];
+            options.nFactor = params[Id::n_factor];
             // Sec. 9.2.5: n from the body of the virtual frustum (only where it is nearer than the real one).
-            const float virtualFar = params.asFloat(kVirtualFar);
+            const float virtualFar = params.asFloat(Id::virtual_far);
             if (virtualFar > 0.0f && virtualFar < frame.camera.farPlane) {
                 options.bodyForN = kit::focusBody(lispsm::virtualViewBody(frame.camera, virtualFar), frame.light,
                                                   scene, focused.light).vertices();
             }
             // Sec. 9.2.6: the axis from the body vector of B's corners.
-            if (params.asBool(kBodyVector))
+            if (params.asBool(Id::body_vector))
                 options.axisSource = lispsm::bodyVector(focused.body.corners(kit::focus_detail::toleranceFor(focused.body)),
                                                          frame.camera.position);
             const auto warp = lispsm::directionalWarp(focused.body.vertices(), frame.light.direction, frame.camera,
@@ -174,7 +167,7 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
         block.uLinearDepthPlane = glm::vec4(axis / range, -lo / range);
         block.uLinearDepth = linear ? 1 : 0;
         block.uBiasMethod = twoLayers_ ? int(method) : 0;
-        block.uZOffset = params.asFloat(kZOffset);
+        block.uZOffset = params.asFloat(Id::z_offset);
         // The bias is applied in the fragment stage for both depths, never by glPolygonOffset: with
         // depth clamp on, a warped caster's unclamped window z can be far outside [0, 1], and a 32F
         // depth buffer's offset unit is 2^(e - 23) for the primitive's largest exponent e, so on an
@@ -205,7 +198,7 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
-        map_.bindMainPass(params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+        map_.bindMainPass(params.asBool(Id::hardware_filter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
         uniforms_.bind();
         // Raw depths of both layers (the first again where there is no second: never read then).
         const GLuint nearest = host().sampler(SamplerKind::Nearest);

@@ -20,36 +20,31 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    SHADOWLAB_MOMENT_MAP_PARAMS(1024),
-    {"storage", "moment storage", ParamType::Enum, 0, 1, 0, "",
+constexpr ParamDesc kStorage{"storage", "moment storage", ParamType::Enum, 0, 1, 0, "",
      "How the four moments are stored: rgba32f, 32-bit floats (128 bits per texel), or rgba16, 16-bit unorm "
      "after the paper's optimised quantisation (half the memory and bandwidth; its rounding needs a moment "
-     "bias of about 3e-5 or more).", "rgba32f|rgba16"},
-    {"moment_bias", "moment bias alpha", ParamType::Float, 1e-7, 0.01, 3e-5, "",
+     "bias of about 3e-5 or more).", "rgba32f|rgba16"};
+constexpr ParamDesc kMomentBias{"moment_bias", "moment bias alpha", ParamType::Float, 1e-7, 0.01, 3e-5, "",
      "alpha in b' = (1 - alpha) b + alpha b*, the pull towards a fixed wide depth distribution that keeps "
      "the reconstruction stable against rounding (3e-5 suits both storages; with 32-bit floats 1e-6 still "
      "works). Too small gives noise, acne and, worst with 16-bit storage, NaN; too large leaks light into "
-     "shadows and softens contact shadows.", nullptr},
-    {"depth_bias", "depth bias", ParamType::Float, 0, 0.05, 0.001, "depth",
+     "shadows and softens contact shadows.", nullptr};
+constexpr ParamDesc kDepthBias{"depth_bias", "depth bias", ParamType::Float, 0, 0.05, 0.001, "depth",
      "Receiver depth moved towards the light before the reconstruction (depth normalised to [0, 1] over the "
      "casters). Zero lets sloped or blurred surfaces shadow themselves (acne, surface darkening); too much "
-     "detaches shadows from their casters (peter panning).", nullptr},
-    {"light_bleeding", "light-bleeding reduction", ParamType::Float, 0, 0.95, 0.0, "",
+     "detaches shadows from their casters (peter panning).", nullptr};
+constexpr ParamDesc kLightBleeding{"light_bleeding", "light-bleeding reduction", ParamType::Float, 0, 0.95, 0.0, "",
      "Remaps the visibility from [a, 1] to [0, 1], so values below a become full shadow; 0 is off. As in VSM "
-     "(seed 000 section 3.2.5), but MSM needs much less; large values shrink and darken penumbrae.", nullptr},
-};
+     "(seed 000 section 3.2.5), but MSM needs much less; large values shrink and darken penumbrae.", nullptr};
 
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kKernel = kit::paramIndex(kParams, "kernel"),
-    kFilter = kit::paramIndex(kParams, "filter"),
-    kMipmaps = kit::paramIndex(kParams, "mipmaps"),
-    kStorage = kit::paramIndex(kParams, "storage"),
-    kMomentBias = kit::paramIndex(kParams, "moment_bias"),
-    kDepthBias = kit::paramIndex(kParams, "depth_bias"),
-    kLightBleedingReduction = kit::paramIndex(kParams, "light_bleeding"),
-};
+#define MSM_PARAMS(X)                        \
+    SHADOWLAB_MOMENT_MAP_PARAMS(X, 1024)     \
+    X(int, storage, kStorage)                \
+    X(float, moment_bias, kMomentBias)       \
+    X(float, depth_bias, kDepthBias)         \
+    X(float, light_bleeding, kLightBleeding)
+SHADOWLAB_PARAMS(Params, MSM_PARAMS);
+
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "msm",
@@ -59,10 +54,11 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "filtered moments the depth distribution that is most plausible for the shaded point (Hamburger "
                    "4MSM): its share in front of the point is the shadow. Four moments describe overlapping occluders "
                    "far better than VSM's two, so light bleeding mostly disappears, and an optimised quantisation "
-                   "lets all four fit in 64 bits per texel. Compare with vsm on the 'overlap' scene. Debug views: footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'moments'.",
+                   "lets all four fit in 64 bits per texel. Compare with vsm on the 'overlap' scene.",
      .shadowGlsl = "msm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
-    kParams);
+     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
+     .debugViews = "footprint|texel-grid|coverage|focus-body"},
+    Params::table);
 
 class MomentShadowMapping final : public kit::MomentTechnique<shared::msm::MsmUniforms> {
 public:
@@ -70,14 +66,15 @@ public:
 
 private:
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        const Params p = Params::read(params);
         kit::MomentMapConfig config = kit::readCommonParams(params);
-        const bool quantized = params.asInt(kStorage) == 1;
+        const bool quantized = p.storage == 1;
         config.format = quantized ? GL_RGBA16 : GL_RGBA32F;
         // Depth 1: nothing occludes there.
         const glm::vec4 farMoments = msm::momentsOfDepth(1.0f);
         config.clearValue = quantized ? glm::clamp(msm::quantizeMoments(farMoments), 0.0f, 1.0f) : farMoments;
-        render(frame, config, {{}, quantized ? 1 : 0, params.asFloat(kMomentBias), params.asFloat(kDepthBias),
-                       params.asFloat(kLightBleedingReduction)});
+        render(frame, config, {{}, quantized ? 1 : 0, p.moment_bias, p.depth_bias,
+                       p.light_bleeding});
     }
 };
 

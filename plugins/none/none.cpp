@@ -8,7 +8,7 @@ const shadowlab::TechniqueDesc kDescriptor{
     .id = "none", .displayName = "No shadows", .category = "baseline",
     .explanation = "Direct light without any occlusion test: every surface facing the light is lit. It is the baseline "
                    "for overhead measurements and shows how much shadows add to the reading of a scene (contact, "
-                   "height above the ground, shape). Debug views: none (no shadows to look at).",
-    .shadowGlsl = "none.glsl"};
+                   "height above the ground, shape).",
+    .shadowGlsl = "none.glsl", .debugViews = ""};   // no shadows to look at
 } // namespace
 SHADOWLAB_PLUGIN(NoShadows, kDescriptor)

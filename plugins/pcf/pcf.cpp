@@ -31,22 +31,20 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    kit::resolutionParam(),
-    {"kernel", "kernel size n", ParamType::Int, 1, 15, 5, "taps",
+constexpr ParamDesc kKernel{"kernel", "kernel size n", ParamType::Int, 1, 15, 5, "taps",
      "n x n box of shadow tests averaged per pixel. 1 is plain shadow mapping; larger kernels widen and "
      "smooth the ramp but cost n^2 lookups (15 x 15 = 225 per pixel; 64 with sampling = gather) and need "
      "more bias (see cone bias).",
-     nullptr},
-    {"offset_scale", "offset scale", ParamType::Float, 0.25, 8, 1, "texels",
+     nullptr};
+constexpr ParamDesc kOffsetScale{"offset_scale", "offset scale", ParamType::Float, 0.25, 8, 1, "texels",
      "Spacing between neighbouring taps. Below 1 the taps overlap and the ramp is narrow but smooth; "
      "above 1 the penumbra widens without extra cost but breaks into visible bands and copies of the edge.",
-     nullptr},
-    {"hardware_filter", "bilinear taps", ParamType::Bool, 0, 1, 0, "",
+     nullptr};
+constexpr ParamDesc kHardwareFilter{"hardware_filter", "bilinear taps", ParamType::Bool, 0, 1, 0, "",
      "Each tap is the texture unit's 2x2 bilinear comparison, which removes the banding of the plain box "
      "at almost no cost (seed 000 figure 3.11c against 3.11b). Off shows the n^2 + 1 discrete shades and "
-     "the texel steps.", nullptr},
-    {"sampling", "sampling", ParamType::Enum, 0, 2, 0, "",
+     "the texel steps.", nullptr};
+constexpr ParamDesc kSampling{"sampling", "sampling", ParamType::Enum, 0, 2, 0, "",
      "How the n x n taps are evaluated. taps: n^2 texture lookups. gather: the texels the taps read, "
      "fetched and compared four at a time with textureGather and weighted in the shader as the taps weight "
      "them, (n + 1)^2 / 4 lookups rounded up (36 instead of 121 at 11 x 11). folded: the same blocks of four "
@@ -55,8 +53,8 @@ constexpr ParamDesc kParams[] = {
      "bias; with it each 2 x 2 block compares against its farthest tap's reference, so contacts may be a "
      "little lighter (never darker) than with the taps. Both need offset scale 1 (neighbouring taps sharing "
      "texels); at other spacings, and for point lights, the taps are used.",
-     "taps|gather|folded"},
-    {"classify", "decide lit and shadowed by", ParamType::Enum, 0, 1, 0, "",
+     "taps|gather|folded"};
+constexpr ParamDesc kClassify{"classify", "decide lit and shadowed by", ParamType::Enum, 0, 1, 0, "",
      "none: every pixel in the map runs the kernel. depth-range: first the nearest and farthest depth "
      "stored anywhere the kernel reads (depth-range mips: one extra pass after the shadow map, then at most "
      "four fetches per pixel): nearest at or behind the receiver means every tap is lit, farthest in front "
@@ -68,28 +66,17 @@ constexpr ParamDesc kParams[] = {
      "that is nearly all of the lit ground in cube and contact, and penumbra-heavy views (forest's foliage) "
      "decide little at any size. Those pixels pay the mips and the test and still run the kernel. Point "
      "lights ignore it.",
-     "none|depth-range"},
-    kit::coneBiasParam(),
-    kit::constantBiasParam(),
-    kit::slopeBiasParam(),
-    kit::cullParam(0),   // none: every face casts (open and single-sided casters too); back as shadowmap's default
-    kit::fitParam(),
-    kit::snapParam(),
-};
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kKernel = kit::paramIndex(kParams, "kernel"),
-    kOffsetScale = kit::paramIndex(kParams, "offset_scale"),
-    kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
-    kSampling = kit::paramIndex(kParams, "sampling"),
-    kClassify = kit::paramIndex(kParams, "classify"),
-    kConeBias = kit::paramIndex(kParams, "cone_bias"),
-    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
-    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
-    kCull = kit::paramIndex(kParams, "cull"),
-    kFit = kit::paramIndex(kParams, "fit"),
-    kSnap = kit::paramIndex(kParams, "snap"),
-};
+     "none|depth-range"};
+
+#define PCF_PARAMS(X)                          \
+    X(int, resolution, kit::resolutionParam()) \
+    X(int, kernel, kKernel)                    \
+    X(float, offset_scale, kOffsetScale)       \
+    X(bool, hardware_filter, kHardwareFilter)  \
+    X(int, sampling, kSampling)                \
+    X(int, classify, kClassify)                \
+    SHADOWLAB_PCF_COMMON_PARAMS(X)
+SHADOWLAB_PARAMS(Params, PCF_PARAMS);
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "pcf",
@@ -100,10 +87,11 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "tests (cost grows with n^2), the offset scale their spacing; bilinear taps remove the "
                     "banding. Sampling by gather or folded reads the same texels four at a time (Castano 2013) for the "
                     "same result (with the cone bias, a little lighter at contacts) at about a quarter of the lookups. The ramp has the same width everywhere: this is anti-aliasing, not a physically soft "
-                    "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause. Classify = depth-range skips the kernel where min/max depth mips prove every tap lit or every tap shadowed, with the same image. Debug views: kernel (the n x n box around the pixel under the mouse, its taps lit or shadowed), footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), 'shadow map', and 'depth-range mips' (with classify = depth-range).",
+                    "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause. Classify = depth-range skips the kernel where min/max depth mips prove every tap lit or every tap shadowed, with the same image.",
      .shadowGlsl = "pcf.glsl",
-     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
-    kParams);
+     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
+     .debugViews = "kernel|footprint|texel-grid|coverage|focus-body"},
+    Params::table);
 
 class PercentageCloserFiltering final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
@@ -112,33 +100,31 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
-                                         .constantBias = params.asFloat(kConstantBias),
-                                         .slopeBias = params.asFloat(kSlopeBias),
-                                         .cull = kit::Cull(params.asInt(kCull)),
-                                         .fit = kit::readFit(params, kFit, kSnap)};
+        const Params p = Params::read(params);
+        const kit::DepthMapConfig config = kit::depthMapConfig(p);
         if (frame.light.type == LightType::Point) return cube_.render(frame, config);
         map_.render(frame, config);
         // The n x n box pcf.glsl filters over, for the host's kernel view (--probe).
         FilterFootprint footprint = map_.filterFootprint();
         footprint.kernel = FilterKernel::Box;
-        footprint.taps = params.asInt(kKernel);
-        footprint.spacing = params.asFloat(kOffsetScale);
-        footprint.bilinear = params.asBool(kHardwareFilter) ? 1 : 0;
-        footprint.coneBias = params.asBool(kConeBias) ? 1.0f : 0.0f;
+        footprint.taps = p.kernel;
+        footprint.spacing = p.offset_scale;
+        footprint.bilinear = p.hardware_filter ? 1 : 0;
+        footprint.coneBias = p.cone_bias ? 1.0f : 0.0f;
         kit::reportFilterFootprint(host(), footprint);
         // classify = depth-range bounds the kernel with mips of the 2D map (allocated on first use
         // and when the resolution changes; freed when classify goes back to none).
-        if (params.asInt(kClassify) == 1)
+        if (p.classify == 1)
             depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
         else
             depthRange_.reset();
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
-        const bool bilinear = params.asBool(kHardwareFilter);
+        const Params p = Params::read(params);
+        const bool bilinear = p.hardware_filter;
         // Gather and folded read the texels of taps one texel apart; other spacings use the taps.
-        const int sampling = params.asFloat(kOffsetScale) == 1.0f ? params.asInt(kSampling) : 0;
+        const int sampling = p.offset_scale == 1.0f ? p.sampling : 0;
         // Folded lookups are bilinear comparisons whatever the taps are (nearest taps: on texel corners).
         const bool linearSampler = bilinear || sampling == 2;
         const SamplerKind sampler = linearSampler ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
@@ -147,9 +133,9 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
         else
             map_.bindMainPass(sampler);
         depthRange_.bindMainPass();
-        const bool coneBias = params.asBool(kConeBias);
-        const int classify = frame.light.type == LightType::Point ? 0 : params.asInt(kClassify);
-        uniforms_.set({{}, params.asInt(kKernel), params.asFloat(kOffsetScale), coneBias ? 1.0f : 0.0f, sampling,
+        const bool coneBias = p.cone_bias;
+        const int classify = frame.light.type == LightType::Point ? 0 : p.classify;
+        uniforms_.set({{}, p.kernel, p.offset_scale, coneBias ? 1.0f : 0.0f, sampling,
                        bilinear ? 1 : 0, classify, 0, 0});
     }
 

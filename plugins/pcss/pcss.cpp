@@ -45,22 +45,21 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    kit::resolutionParam(),
-    {"search_grid", "search samples n_s", ParamType::Int, 2, 16, 6, "",
+// The parameters of its own (the list below splices them with the kit's groups).
+constexpr ParamDesc kSearchGrid{"search_grid", "search samples n_s", ParamType::Int, 2, 16, 6, "",
      "Blocker search: n_s x n_s jittered disc samples. Few samples miss small or thin blockers (light "
-     "leaks, flickering penumbra widths); many cost n_s^2 depth reads in every pixel, lit or not.", nullptr},
-    {"filter_grid", "filter samples n_f", ParamType::Int, 2, 16, 8, "",
+     "leaks, flickering penumbra widths); many cost n_s^2 depth reads in every pixel, lit or not.", nullptr};
+constexpr ParamDesc kFilterGrid{"filter_grid", "filter samples n_f", ParamType::Int, 2, 16, 8, "",
      "Filtering: n_f x n_f jittered disc samples scaled to the estimated penumbra. Few samples give "
      "coarse, noisy penumbrae; many cost n_f^2 lookups in penumbra pixels (the outer ring decides elsewhere).",
-     nullptr},
-    {"sets", "sets m", ParamType::Int, 1, 32, 16, "",
+     nullptr};
+constexpr ParamDesc kSets{"sets", "sets m", ParamType::Int, 1, 32, 16, "",
      "m x m different sample sets tiled over the screen (pixel mod m). 1 shows banding; small values a "
-     "repeating noise pattern; memory grows with m^2.", nullptr},
-    {"bilinear", "bilinear taps", ParamType::Bool, 0, 1, 1, "",
+     "repeating noise pattern; memory grows with m^2.", nullptr};
+constexpr ParamDesc kBilinear{"bilinear", "bilinear taps", ParamType::Bool, 0, 1, 1, "",
      "Each filter tap compares the 2x2 nearest texels and blends them (what the texture unit's GL_LINEAR "
-     "comparison does). Off: narrow penumbrae near contacts alias and the noise is coarser.", nullptr},
-    {"search_bound", "blocker search bound", ParamType::Enum, 0, 2, 2, "",
+     "comparison does). Off: narrow penumbrae near contacts alias and the noise is coarser.", nullptr};
+constexpr ParamDesc kSearchBound{"search_bound", "blocker search bound", ParamType::Enum, 0, 2, 2, "",
      "Where the blocker search assumes the nearest blocker can be. 'near plane' is eq. 3.18 as printed: "
      "fine for a tight orthographic map, but a spot or point light whose map reaches close to the light "
      "searches half the map and misses small casters (missing or blotchy shadows). 'min-depth' narrows the "
@@ -68,29 +67,17 @@ constexpr ParamDesc kParams[] = {
      "'depth-range' also stops, without searching, where the farthest depth stored in the region is in front "
      "of the receiver: every search and filter tap would be a blocker, so the pixel is fully shadowed (the "
      "same image as 'min-depth', fewer lookups).",
-     "near plane|min-depth|depth-range"},
-    kit::coneBiasParam(),
-    kit::constantBiasParam(),
-    kit::slopeBiasParam(),
-    kit::cullParam(0),   // none: every face casts (open and single-sided casters too); back as shadowmap's default
-    kit::fitParam(),
-    kit::snapParam(),
-};
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kSearchGrid = kit::paramIndex(kParams, "search_grid"),
-    kFilterGrid = kit::paramIndex(kParams, "filter_grid"),
-    kSets = kit::paramIndex(kParams, "sets"),
-    kBilinear = kit::paramIndex(kParams, "bilinear"),
-    kSearchBound = kit::paramIndex(kParams, "search_bound"),
-    kConeBias = kit::paramIndex(kParams, "cone_bias"),
-    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
-    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
-    kCull = kit::paramIndex(kParams, "cull"),
-    kFit = kit::paramIndex(kParams, "fit"),
-    kSnap = kit::paramIndex(kParams, "snap"),
-};
+     "near plane|min-depth|depth-range"};
 
+#define PCSS_PARAMS(X)                          \
+    X(int, resolution, kit::resolutionParam())  \
+    X(int, search_grid, kSearchGrid)            \
+    X(int, filter_grid, kFilterGrid)            \
+    X(int, sets, kSets)                         \
+    X(bool, bilinear, kBilinear)                \
+    X(int, search_bound, kSearchBound)          \
+    SHADOWLAB_PCF_COMMON_PARAMS(X)
+SHADOWLAB_PARAMS(Params, PCSS_PARAMS);
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "pcss",
      .displayName = "Percentage-closer soft shadows",
@@ -99,14 +86,16 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "light, averages their depth, estimates the penumbra width from the light's size by similar triangles, "
                    "and then filters with a kernel of that width (PCF). Shadows are hard where a caster touches the "
                    "receiver and soften with distance (contact hardening). The light size comes from the scene "
-                   "(--light-size). Plausible rather than correct: overlapping blockers at different depths are averaged. Debug views: kernel (the blocker search region with its blockers, the average blocker depth and the penumbra disc around the pixel under the mouse), footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and 'shadow map'.",
+                   "(--light-size). Plausible rather than correct: overlapping blockers at different depths are averaged.",
      .shadowGlsl = "pcss.glsl",
-     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
-    kParams);
+     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
+     .debugViews = "kernel|footprint|texel-grid|coverage|focus-body"},
+    Params::table);
 
 class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         uniforms_.create(host(), "pcss uniforms");
+        cubeMinDepthUniforms_.create(host(), "pcss cube min-depth uniforms");
         minDepthFbo_ = kit::makeFramebuffer(host(), "cube min-depth mips");
         return map_.create(host(), error) && cube_.create(host(), error) && depthRange_.create(host(), error) &&
                cubeMinDepthProgram_.build(host(), {.vertexFile = "fullscreen.vert", .fragmentFile = "pcss_cube_min_depth.frag"},
@@ -114,19 +103,16 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const int sets = params.asInt(kSets);
-        searchOffsets_.ensure(host(), params.asInt(kSearchGrid), sets, "search disc offsets (m x m x n_s^2/2)", 2);
-        filterOffsets_.ensure(host(), params.asInt(kFilterGrid), sets, "filter disc offsets (m x m x n_f^2/2)");
+        const Params p = Params::read(params);
+        const int sets = p.sets;
+        searchOffsets_.ensure(host(), p.search_grid, sets, "search disc offsets (m x m x n_s^2/2)", 2);
+        filterOffsets_.ensure(host(), p.filter_grid, sets, "filter disc offsets (m x m x n_f^2/2)");
         // Raw depths: the blocker search reads them (sampled without comparison).
-        const kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
-                                         .constantBias = params.asFloat(kConstantBias),
-                                         .slopeBias = params.asFloat(kSlopeBias),
-                                         .cull = kit::Cull(params.asInt(kCull)),
-                                         .fit = kit::readFit(params, kFit, kSnap)};
+        const kit::DepthMapConfig config = kit::depthMapConfig(p);
         if (frame.light.type == LightType::Point) {
             cube_.render(frame, config);
             // The cube path bounds its search with min-depth mips per face (search_bound >= 1).
-            if (params.asInt(kSearchBound) >= 1) {
+            if (p.search_bound >= 1) {
                 ensureCubeMinDepth(cube_.resolution());
                 buildCubeMinDepthMips();
             } else {
@@ -140,16 +126,16 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
         FilterFootprint footprint = map_.filterFootprint();
         footprint.kernel = FilterKernel::Pcss;
         footprint.taps = filterOffsets_.n();
-        footprint.bilinear = params.asBool(kBilinear) ? 1 : 0;
+        footprint.bilinear = p.bilinear ? 1 : 0;
         footprint.sets = sets;
         footprint.discSeed = 1;     // filterOffsets_.ensure's default
         footprint.searchTaps = searchOffsets_.n();
         footprint.searchSeed = 2;   // as searchOffsets_.ensure above
-        footprint.searchBound = uint32_t(params.asInt(kSearchBound));
+        footprint.searchBound = uint32_t(p.search_bound);
         footprint.lightSize = lightSizeInLightSpace(frame.light);
-        footprint.coneBias = params.asBool(kConeBias) ? 1.0f : 0.0f;
+        footprint.coneBias = p.cone_bias ? 1.0f : 0.0f;
         kit::reportFilterFootprint(host(), footprint);
-        if (params.asInt(kSearchBound) >= 1)
+        if (p.search_bound >= 1)
             depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
         else
             depthRange_.reset();   // eq. 3.18 as printed needs no mips
@@ -157,6 +143,7 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
         using namespace shared::pcss;
+        const Params p = Params::read(params);
         if (frame.light.type == LightType::Point) {
             cube_.bindMainPass(SamplerKind::CompareLinear);   // the bilinear taps
             glBindTextureUnit(kCubeRawUnit, cube_.texture());
@@ -170,9 +157,8 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
         depthRange_.bindMainPass();
         glBindTextureUnit(kCompareUnit, map_.texture());
         glBindSampler(kCompareUnit, host().sampler(SamplerKind::CompareLinear));
-        uniforms_.set({{}, searchOffsets_.n(), filterOffsets_.n(), params.asBool(kConeBias) ? 1.0f : 0.0f,
-                       lightSizeInLightSpace(frame.light), params.asBool(kBilinear) ? 1 : 0, params.asInt(kSearchBound),
-                       0, 0});
+        uniforms_.set({{}, searchOffsets_.n(), filterOffsets_.n(), p.cone_bias ? 1.0f : 0.0f,
+                       lightSizeInLightSpace(frame.light), p.bilinear ? 1 : 0, p.search_bound, 0, 0});
     }
 
     // What pcss.glsl's uLightSize holds: the world radius for a perspective map (spot, point); for
@@ -199,13 +185,13 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     }
 
     // Level by level, face by face (one draw into one layer of one level each: 6 per level); the
-    // source level and face are plain uniforms of this program (locations 16-18).
+    // source level and face are the pass's block (PcssCubeMinDepthUniforms), written before each draw.
     void buildCubeMinDepthMips() {
         GpuPass pass(host(), "min-depth mips");
         glBindFramebuffer(GL_FRAMEBUFFER, minDepthFbo_);
         glDisable(GL_DEPTH_TEST);
-        const GLuint program = cubeMinDepthProgram_.use();
-        glProgramUniform1i(program, 18, cube_.resolution());
+        cubeMinDepthProgram_.use();
+        cubeMinDepthUniforms_.bind();
         glBindTextureUnit(shared::pcss::kCubeMinDepthSourceUnit, cube_.texture());
         glBindSampler(shared::pcss::kCubeMinDepthSourceUnit, host().sampler(SamplerKind::Nearest));
         glBindTextureUnit(shared::pcss::kMinDepthSourceUnit, cubeMinDepth_);
@@ -214,13 +200,12 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
             // Level k reads level k - 1 by explicit lod, written by the previous draws (see
             // buildMinDepthMips), disjoint from the level being written.
             if (level > 0) glTextureBarrier();
-            glProgramUniform1i(program, 16, level - 1);
             const int size = std::max(cubeMinDepthSize_ >> level, 1);
             glViewport(0, 0, size, size);
             for (int face = 0; face < 6; ++face) {
                 glNamedFramebufferTextureLayer(minDepthFbo_, GL_COLOR_ATTACHMENT0, cubeMinDepth_, level, face);
                 glNamedFramebufferDrawBuffer(minDepthFbo_, GL_COLOR_ATTACHMENT0);
-                glProgramUniform1i(program, 17, face);
+                cubeMinDepthUniforms_.update({{}, level - 1, face, cube_.resolution(), 0});
                 host().drawFullscreenTriangle();
             }
         }
@@ -240,6 +225,7 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     jittered_disk::DiscOffsetTexture searchOffsets_;
     jittered_disk::DiscOffsetTexture filterOffsets_;
     kit::UniformBlock<shared::pcss::PcssUniforms> uniforms_;
+    kit::UniformBlock<shared::pcss::PcssCubeMinDepthUniforms> cubeMinDepthUniforms_;
 };
 
 } // namespace

@@ -14,9 +14,7 @@ layout(location = 0) out float outMinDepth;
 
 layout(binding = kCubeMinDepthSourceUnit) uniform samplerCube uCubeSource;
 layout(binding = kMinDepthSourceUnit) uniform sampler2DArray uArraySource;
-layout(location = 16) uniform int uCubeSourceLevel;   // -1: the cube; else this level of uArraySource
-layout(location = 17) uniform int uCubeLayer;         // the face written and read
-layout(location = 18) uniform int uCubeFaceSize;      // the cube's face width in texels
+// uCubeSourceLevel, uCubeLayer, uCubeFaceSize: PcssCubeMinDepthUniforms (pcss_shared.h).
 
 float sourceTexel(ivec2 texel) {
     if (uCubeSourceLevel < 0) {

@@ -23,5 +23,13 @@ SHADOWLAB_UNIFORM_BLOCK(PcssUniforms, 2) {
     int uPcssPad0;
     int uPcssPad1;
 };
+// The cube's min-depth pass (pcss_cube_min_depth.frag), one draw per level and face: a pass-local
+// block at binding 3, as the kit's depth-range level pass (kit/depth_range_mips_shared.h).
+SHADOWLAB_UNIFORM_BLOCK(PcssCubeMinDepthUniforms, 3) {
+    int uCubeSourceLevel;  // -1: the cube; else this level of uArraySource
+    int uCubeLayer;        // the face written and read
+    int uCubeFaceSize;     // the cube's face width in texels
+    int uCubeMinDepthPad;
+};
 SHADOWLAB_SHARED_END
 #endif

@@ -26,24 +26,23 @@ namespace {
 using namespace shadowlab;
 using shared::planar::PlanarUniforms;
 
-constexpr ParamDesc kParams[] = {
-    {"depth_offset", "depth offset", ParamType::Float, 0, 8, 1, "",
+constexpr ParamDesc kDepthOffset{"depth_offset", "depth offset", ParamType::Float, 0, 8, 1, "",
      "Negative polygon offset (factor and units) that lifts the flattened shadow above the receiver. "
-     "At zero the shadow and the plane fight for the same depth (z-fighting, seed 000 Fig. 3.2a).", nullptr},
-    {"clip_anti_shadow", "clip anti-shadows", ParamType::Bool, 0, 1, 1, "",
+     "At zero the shadow and the plane fight for the same depth (z-fighting, seed 000 Fig. 3.2a).", nullptr};
+constexpr ParamDesc kClipAntiShadow{"clip_anti_shadow", "clip anti-shadows", ParamType::Bool, 0, 1, 1, "",
      "Clip the parts of casters above a point light (and below the plane) before projecting, so no caster "
      "throws an impossible anti-shadow (seed 000 Fig. 3.3). Off, only the rasteriser's clipping of points with "
-     "negative w remains: it removes anti-shadows in front of the viewer but not those projected behind it.", nullptr},
-    {"stencil", "stencil to receiver", ParamType::Bool, 0, 1, 1, "",
+     "negative w remains: it removes anti-shadows in front of the viewer but not those projected behind it.", nullptr};
+constexpr ParamDesc kStencil{"stencil", "stencil to receiver", ParamType::Bool, 0, 1, 1, "",
      "Keep each shadow on the visible pixels of its receiver plane. Off, shadows can fall beyond the edge "
-     "of the receiver (seed 000 Fig. 3.2b).", nullptr},
-};
+     "of the receiver (seed 000 Fig. 3.2b).", nullptr};
 
-enum : uint32_t {
-    kDepthOffset = kit::paramIndex(kParams, "depth_offset"),
-    kClipAntiShadow = kit::paramIndex(kParams, "clip_anti_shadow"),
-    kStencil = kit::paramIndex(kParams, "stencil"),
-};
+#define PLANAR_PARAMS(X)                       \
+    X(float, depth_offset, kDepthOffset)       \
+    X(bool, clip_anti_shadow, kClipAntiShadow) \
+    X(bool, stencil, kStencil)
+SHADOWLAB_PARAMS(Params, PLANAR_PARAMS);
+
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "planar",
@@ -53,10 +52,11 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "matrix, seed 000 eq. 3.3) and draws the flattened geometry as the shadow. Exact and cheap for a "
                     "ground plane, but only planes receive shadows, nothing shadows itself, and the special cases "
                     "need care: stencil keeps shadows on the receiver, clipping removes anti-shadows, a depth offset "
-                    "avoids z-fighting. Debug views: 'planar mask' (no shadow map, so no map views).",
+                    "avoids z-fighting.",
      .shadowGlsl = "planar.glsl",
-     .flags = kTechniqueNeedsCameraPrepass},
-    kParams);
+     .flags = kTechniqueNeedsCameraPrepass,
+     .debugViews = ""},
+    Params::table);
 
 class PlanarShadows final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
@@ -66,6 +66,7 @@ class PlanarShadows final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        const Params p = Params::read(params);
         const auto* prepass = static_cast<const CameraPrepass*>(host().extension(SHADOWLAB_EXT_CAMERA_PREPASS));
         if (!prepass) return;
         ensureTargets(*prepass);
@@ -84,7 +85,7 @@ class PlanarShadows final : public kit::TechniqueBase {
         // view's own depth (read-only) and, with the receiver test, only where the plane is seen.
         glDepthMask(GL_FALSE);
         glDepthFunc(GL_LEQUAL);
-        const float offset = params.asFloat(kDepthOffset);
+        const float offset = p.depth_offset;
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(-offset, -offset);
         glEnable(GL_CLIP_DISTANCE0);
@@ -96,8 +97,8 @@ class PlanarShadows final : public kit::TechniqueBase {
             if (!objects[i].isPlane() || !objects[i].receivesShadow() || glm::dot(objects[i].plane, lightHomogeneous) <= 0.0f)
                 continue;
             uniforms_.set({{}, planar::projectionMatrix(objects[i].plane, lightHomogeneous), objects[i].plane,
-                           lightHomogeneous, params.asBool(kClipAntiShadow) ? 1 : 0,
-                           params.asBool(kStencil) ? i + 1 : 0u, 0, 0});
+                           lightHomogeneous, p.clip_anti_shadow ? 1 : 0,
+                           p.stencil ? i + 1 : 0u, 0, 0});
             // All casters at once; the receiver itself (and anything lying in its plane) is removed
             // by gl_ClipDistance[0] in planar_project.vert.
             host().drawScene(DrawSet::Casters, program_.use());

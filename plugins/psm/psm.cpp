@@ -16,29 +16,21 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    kit::resolutionParam(),
-    kit::constantBiasParam(),
-    kit::slopeBiasParam(),
-    kit::cullParam(2),
-    kit::hardwareFilterParam(),
-    {"move_back", "virtual move-back", ParamType::Bool, 0, 1, 1, "",
+constexpr ParamDesc kMoveBack{"move_back", "virtual move-back", ParamType::Bool, 0, 1, 1, "",
      "Seed 002 sec. 7.2.2: casters behind the viewer that shadow the view cross the camera's "
      "singularity in post-perspective space, so the camera is moved back virtually until the whole "
      "focus body is in front of it. Off: the body is cut at the camera's near plane and the depth pass "
      "clips there, so those casters are lost (light leaks in front of the viewer: the stress case "
      "light-behind); the warp is at its strongest. On: they are kept, the warp weakens with the "
      "distance moved back.",
-     nullptr},
-};
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
-    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
-    kCull = kit::paramIndex(kParams, "cull"),
-    kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
-    kMoveBack = kit::paramIndex(kParams, "move_back"),
-};
+     nullptr};
+
+#define PSM_PARAMS(X)                                    \
+    X(int, resolution, kit::resolutionParam())           \
+    SHADOWLAB_BIAS_PARAMS(X, 64, 2)                      \
+    X(bool, hardware_filter, kit::hardwareFilterParam()) \
+    X(bool, move_back, kMoveBack)
+SHADOWLAB_PARAMS(Params, PSM_PARAMS);
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "psm",
@@ -51,21 +43,21 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "that weakens the warp and jumps as the view turns, and a light from in front of the viewer "
                     "cannot be held in one map (it falls back to a plain focused map). Compare with lispsm, "
                     "which keeps light rays parallel and tunes the warp with n_opt; turn move_back off with the light "
-                    "behind the camera to see casters lost. Debug views: footprint, texel-grid and coverage (the "
-                    "post-perspective map and its volume), focus-body (B, cut at the near plane without the "
-                    "move-back), and the depth image.",
+                    "behind the camera to see casters lost.",
      .shadowGlsl = "psm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
-    kParams);
+     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
+     .debugViews = "footprint|texel-grid|coverage|focus-body"},
+    Params::table);
 
 class PerspectiveShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override { return map_.create(host(), error); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
-                                   .constantBias = params.asFloat(kConstantBias),
-                                   .slopeBias = params.asFloat(kSlopeBias),
-                                   .cull = kit::Cull(params.asInt(kCull))};
+        const Params p = Params::read(params);
+        kit::DepthMapConfig config{.resolution = p.resolution,
+                                   .constantBias = p.constant_bias,
+                                   .slopeBias = p.slope_bias,
+                                   .cull = kit::Cull(p.cull)};
         map_.ensureTexture(config.resolution, config.format);
         GpuPass pass(host(), "shadow map");
         // The view from the nearest visible receiver on (psm_space.h), and its B (eq. 4.2): what the
@@ -77,7 +69,7 @@ class PerspectiveShadowMaps final : public kit::TechniqueBase {
             kit::focusLightSpace(host(), shortened, {kit::Fit::FocusBody, false}, config.resolution);
         LightSpace lightSpace = focused.light;
         kit::ConvexBody body = focused.body;
-        if (!params.asBool(kMoveBack)) {
+        if (!p.move_back) {
             // Only B's part in front of the (receiver) near plane: the move-back is then 0, and
             // the depth pass clips at the camera plane, so casters behind the viewer are lost.
             const glm::vec3 forward = -glm::vec3(shortened.camera.view[0][2], shortened.camera.view[1][2], shortened.camera.view[2][2]);
@@ -105,7 +97,8 @@ class PerspectiveShadowMaps final : public kit::TechniqueBase {
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
-        map_.bindMainPass(params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+        const Params p = Params::read(params);
+        map_.bindMainPass(p.hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
     }
 
     kit::DepthMap map_;

@@ -19,26 +19,11 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    kit::resolutionParam(),
-    kit::depthFormatParam(),
-    kit::constantBiasParam(200000),
-    kit::slopeBiasParam(),
-    kit::cullParam(),
-    kit::hardwareFilterParam(),
-    kit::fitParam(),
-    kit::snapParam(),
-};
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kDepthFormat = kit::paramIndex(kParams, "depth_format"),
-    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
-    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
-    kCull = kit::paramIndex(kParams, "cull"),
-    kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
-    kFit = kit::paramIndex(kParams, "fit"),
-    kSnap = kit::paramIndex(kParams, "snap"),
-};
+#define SHADOWMAP_PARAMS(X)                              \
+    SHADOWLAB_DEPTH_MAP_PARAMS(X, 2048, 200000, 1)       \
+    X(bool, hardware_filter, kit::hardwareFilterParam()) \
+    SHADOWLAB_FIT_PARAMS(X)
+SHADOWLAB_PARAMS(Params, SHADOWMAP_PARAMS);
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "shadowmap",
@@ -48,27 +33,23 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "space with the stored one: farther means shadowed. Works for any geometry and receiver, costs "
                     "one extra pass, and shows the classic artefacts: acne (self-shadowing from depth quantisation; "
                     "cured by bias), peter panning (too much bias) and blocky edges (limited resolution). Try a low "
-                    "light and zero bias. Debug views: footprint, texel-grid and coverage (the map and its volume), focus-body (with fit = focus-body: B, seed 002 eq. 4.2), and the 'shadow map' depth image.",
+                    "light and zero bias.",
      .shadowGlsl = "shadowmap.glsl",
-     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
-    kParams);
+     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
+     .debugViews = "footprint|texel-grid|coverage|focus-body"},
+    Params::table);
 
 class ShadowMapping final : public kit::TechniqueBase {
     bool setup(std::string& error) override { return map_.create(host(), error) && cube_.create(host(), error); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const kit::DepthMapConfig config{.resolution = params.asInt(kResolution),
-                                         .format = kit::depthFormat(params.asInt(kDepthFormat)),
-                                         .constantBias = params.asFloat(kConstantBias),
-                                         .slopeBias = params.asFloat(kSlopeBias),
-                                         .cull = kit::Cull(params.asInt(kCull)),
-                                         .fit = kit::readFit(params, kFit, kSnap)};
+        const kit::DepthMapConfig config = kit::depthMapConfig(Params::read(params));
         if (frame.light.type == LightType::Point) return cube_.render(frame, config);
         map_.render(frame, config);
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
-        const SamplerKind sampling = params.asBool(kHardwareFilter) ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
+        const SamplerKind sampling = Params::read(params).hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
         if (frame.light.type == LightType::Point) return cube_.bindMainPass(sampling);
         map_.bindMainPass(sampling);
     }

@@ -33,20 +33,17 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    kit::resolutionParam(),
-    {"kernel", "kernel size n", ParamType::Int, 1, 9, 5, "taps",
+constexpr ParamDesc kKernel{"kernel", "kernel size n", ParamType::Int, 1, 9, 5, "taps",
      "n x n taps one texel apart, averaged per pixel. The map is a coin flip per translucent texel, so "
      "small kernels show the noise (1: every texel lit or not); 9 x 9 is what seed 001 timed. Larger "
      "kernels cost n^2 lookups and blur every edge.",
-     nullptr},
-    {"hardware_filter", "hardware 2x2 per tap", ParamType::Bool, 0, 1, 1, "",
+     nullptr};
+constexpr ParamDesc kHardwareFilter{"hardware_filter", "hardware 2x2 per tap", ParamType::Bool, 0, 1, 1, "",
      "Every tap is the texture unit's bilinear 2x2 comparison (seed 001 timed 2x2 hardware PCF under its "
      "9 x 9 kernel): about (n + 1)^2 texels of noise averaged for n^2 lookups. Off: n^2 plain tests, "
      "noisier and with n^2 + 1 shades.",
-     nullptr},
-    kit::noiseParam(),
-    {"msaa", "MSAA samples", ParamType::Enum, 0, 3, 0, "",
+     nullptr};
+constexpr ParamDesc kMsaa{"msaa", "MSAA samples", ParamType::Enum, 0, 3, 0, "",
      "Samples per texel of the map. 1: one coin flip per translucent texel (the single-sample map). "
      "2-8: a multisample map in which each covered sample is kept with probability alpha on its own "
      "(stochastic transparency's per-sample masks, Enderton et al. 2010), and every sample of the n x n "
@@ -55,25 +52,20 @@ constexpr ParamDesc kParams[] = {
      "with the count: samples x the map's memory and fill, samples x n^2 fetches per pixel, and no "
      "hardware 2x2 filter (hardware_filter is ignored). A count the GPU lacks for 32F depth becomes the "
      "next larger it has, else its largest (llvmpipe has only 4).",
-     "1|2|4|8"},
-    kit::coneBiasParam(),
-    kit::constantBiasParam(),
-    kit::slopeBiasParam(),
-    kit::fitParam(),
-    kit::snapParam(),
-};
-enum : uint32_t {
-    kResolution = kit::paramIndex(kParams, "resolution"),
-    kKernel = kit::paramIndex(kParams, "kernel"),
-    kHardwareFilter = kit::paramIndex(kParams, "hardware_filter"),
-    kNoise = kit::paramIndex(kParams, "noise"),
-    kMsaa = kit::paramIndex(kParams, "msaa"),
-    kConeBias = kit::paramIndex(kParams, "cone_bias"),
-    kConstantBias = kit::paramIndex(kParams, "constant_bias"),
-    kSlopeBias = kit::paramIndex(kParams, "slope_bias"),
-    kFit = kit::paramIndex(kParams, "fit"),
-    kSnap = kit::paramIndex(kParams, "snap"),
-};
+     "1|2|4|8"};
+
+#define STOCHASTIC_SM_PARAMS(X)                       \
+    X(int, resolution, kit::resolutionParam())        \
+    X(int, kernel, kKernel)                           \
+    X(bool, hardware_filter, kHardwareFilter)         \
+    X(int, noise, kit::noiseParam())                  \
+    X(int, msaa, kMsaa)                               \
+    X(bool, cone_bias, kit::coneBiasParam())          \
+    X(float, constant_bias, kit::constantBiasParam()) \
+    X(float, slope_bias, kit::slopeBiasParam())       \
+    SHADOWLAB_FIT_PARAMS(X)
+SHADOWLAB_PARAMS(Params, STOCHASTIC_SM_PARAMS);
+using Id = Params::Id;
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "stochastic-sm",
@@ -88,12 +80,11 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "multisampled map instead (as stochastic transparency does), so the same kernel averages "
                     "several flips per texel: less noise at the same blur, for more memory and fetches. Try "
                     "kernel 1 to see the coin flips, then msaa 4 at the same kernel, and noise = per-texel under "
-                    "overlapping glass to see what shared random numbers do. Debug views: footprint, texel-grid "
-                    "and coverage (the map and its volume), and 'stochastic shadow map' (single-sample maps only: "
-                    "blank at msaa > 1).",
+                    "overlapping glass to see what shared random numbers do.",
      .shadowGlsl = "stochastic-sm.glsl",
-     .translucencyModel = TranslucencyModel::Coverage},
-    kParams);
+     .translucencyModel = TranslucencyModel::Coverage,
+     .debugViews = "footprint|texel-grid|coverage"},
+    Params::table);
 
 class StochasticShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
@@ -137,23 +128,24 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const int resolution = params.asInt(kResolution);
-        const int samples = mapSamples(params.asInt(kMsaa));
+        const Params p = Params::read(params);
+        const int resolution = p.resolution;
+        const int samples = mapSamples(p.msaa);
         // The host's image viewer reads single-sample textures only: no debug image of a
         // multisampled map (registered anyway, so the entry never names a deleted texture).
         if (target_.ensure({.resolution = resolution, .samples = samples}))
             host().registerDebugImage("stochastic shadow map", samples ? 0u : target_.depth(), DebugImageKind::Depth);
         host().reportStatistic("map samples per texel", samples ? samples : 1);
         GpuPass pass(host(), "shadow map");
-        const kit::FocusedLightSpace focused = kit::focusLightSpace(host(), frame, kit::readFit(params, kFit, kSnap), resolution);
+        const kit::FocusedLightSpace focused = kit::focusLightSpace(host(), frame, kit::readFit(params, Id::fit, Id::snap), resolution);
         const LightSpace& lightSpace = focused.light;
         mapUniforms_.set(kit::lightSpaceUniforms(lightSpace, resolution));
         kit::reportShadowMap(host(), lightSpace.viewProjection, {resolution, resolution});
-        passUniforms_.set({{}, frame.randomSeed, params.asInt(kNoise), 0.0f, 0.0f});
+        passUniforms_.set({{}, frame.randomSeed, p.noise, 0.0f, 0.0f});
         target_.bind();
         glClear(GL_DEPTH_BUFFER_BIT);
         glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(params.asFloat(kSlopeBias), params.asFloat(kConstantBias));
+        glPolygonOffset(p.slope_bias, p.constant_bias);
         host().drawScene(kit::culledDraw(DrawSet::OpaqueCasters, focused.cullPlanes), opaqueProgram_.use());
         // The same depth test and writes: a kept translucent fragment (or sample) is an opaque one.
         const kit::Program& translucent = samples ? translucentMsProgram_ : translucentProgram_;
@@ -162,14 +154,15 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
-        const bool bilinear = params.asBool(kHardwareFilter);
+        const Params p = Params::read(params);
+        const bool bilinear = p.hardware_filter;
         // One map is bound, on its own unit by type (sampler2DShadow or sampler2DMS); the other unit
         // gets no texture, so it never holds one of the wrong type.
         glBindTextureUnit(kit::kDepthMapUnit, samples_ ? 0u : target_.depth());
         glBindSampler(kit::kDepthMapUnit, host().sampler(bilinear ? SamplerKind::CompareLinear : SamplerKind::CompareNearest));
         glBindTextureUnit(shared::stochastic_sm::kMultisampleMapUnit, samples_ ? target_.depth() : 0u);
         mapUniforms_.bind();
-        uniforms_.set({{}, params.asInt(kKernel), bilinear ? 1 : 0, params.asBool(kConeBias) ? 1.0f : 0.0f, samples_});
+        uniforms_.set({{}, p.kernel, bilinear ? 1 : 0, p.cone_bias ? 1.0f : 0.0f, samples_});
     }
 
     kit::Program opaqueProgram_;

@@ -39,9 +39,10 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "layer, themselves and those farther from the light included. The modified variant writes "
                     "(1 - alpha) t and is judged by that model; the original writes the surface colour, which "
                     "has no reference model of its own (it is judged by the modified one). Compare the two on "
-                    "teapot-glass's green pot. Debug views: footprint, texel-grid and coverage (the map and its volume), 'opaque depth D_o', 'translucent depth D_t' and 'shadow colour C'.",
+                    "teapot-glass's green pot.",
      .shadowGlsl = "translucent-shadows.glsl",
-     .translucencyModel = TranslucencyModel::ModifiedTranslucent},
+     .translucencyModel = TranslucencyModel::ModifiedTranslucent,
+     .debugViews = "footprint|texel-grid|coverage"},
     kit::kTranslucentMapParams);
 
 class TranslucentShadows final : public kit::TechniqueBase {

@@ -49,7 +49,7 @@
 // (minor << 16) | major; ABI 3.0 plugins wrote a bare 3, which reads as 3.0.
 //   3.0  the interface below without PluginEntry::structSize;
 //   3.1  PluginEntry::structSize; every extension struct initialises its structSize;
-//        DrawRequest::primitive (triangles with adjacency).
+//        DrawRequest::primitive (triangles with adjacency); TechniqueDesc::debugViews.
 //
 // Growing without breaking plugins: structs that cross the boundary and may grow start with
 // structSize (the host reads only what the plugin's size covers, and fills only what the plugin's
@@ -161,6 +161,12 @@ struct TechniqueDesc {
     // plugins: none, their flags hold always). `flags` stays what the technique may ask for.
     const FlagCondition* flagConditions = nullptr;
     uint32_t flagConditionCount = 0;
+    // Added in ABI 3.1 after flagConditionCount, read only when structSize covers it (older
+    // plugins: unknown, the host lists what the technique reports). The host debug views that
+    // apply to this technique, '|'-separated, from "footprint|texel-grid|coverage|focus-body|kernel"
+    // (the ones its reports feed); its own debug images are listed by name as it reports them.
+    // Empty: none of them. The panel and `shadowlab list` show it; explanations need not repeat it.
+    const char* debugViews = nullptr;
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -47,8 +47,10 @@ int commandList(bool json) {
                 if (p.type == ParamType::Enum) item["values"] = p.enumLabels;
                 params.push_back(item);
             }
-            out.push_back({{"id", t.id}, {"name", t.displayName}, {"category", t.category},
-                           {"explanation", t.explanation}, {"library", t.library.string()}, {"parameters", params}});
+            nlohmann::json item = {{"id", t.id}, {"name", t.displayName}, {"category", t.category},
+                                   {"explanation", t.explanation}, {"library", t.library.string()}, {"parameters", params}};
+            if (t.debugViewsDeclared) item["debugViews"] = t.debugViews;
+            out.push_back(item);
         }
         std::cout << out.dump(2) << "\n";
         return 0;

@@ -96,6 +96,10 @@ TechniqueInfo copyDescriptor(const TechniqueDesc& desc, const std::filesystem::p
         info.params.push_back({text(p.id), text(p.label), p.type, p.minValue, p.maxValue, p.defaultValue,
                                text(p.unit), text(p.help), splitLabels(p.type == ParamType::Enum ? p.enumLabels : nullptr)});
     }
+    if (has(offsetof(TechniqueDesc, debugViews), sizeof(desc.debugViews)) && desc.debugViews) {
+        if (*desc.debugViews) info.debugViews = splitLabels(desc.debugViews);   // "": none
+        info.debugViewsDeclared = true;
+    }
     // Conditions were checked by validateDescriptor; one that still does not resolve is dropped.
     if (has(offsetof(TechniqueDesc, flagConditionCount), sizeof(desc.flagConditionCount)) && desc.flagConditions)
         for (uint32_t i = 0; i < desc.flagConditionCount; ++i) {

@@ -35,6 +35,9 @@ struct TechniqueInfo {
     uint32_t flags = 0;               // TechniqueFlag bits
     TranslucencyModel translucencyModel = TranslucencyModel::Opaque; // Opaque unless the descriptor covers it
     uint32_t descriptorSize = sizeof(TechniqueDesc);
+    // TechniqueDesc::debugViews split at '|' (declared: the descriptor has the field and set it).
+    std::vector<std::string> debugViews;
+    bool debugViewsDeclared = false;
     std::filesystem::path library;    // the .so it came from (empty for host-provided entries)
     // The descriptor's flagConditions, resolved: `flags` hold only while parameter `param` has
     // one of `values`.

@@ -57,6 +57,9 @@ std::string validateDescriptor(const TechniqueDesc& desc) {
                                                          {"explanation", desc.explanation}};
     for (const auto& [name, text] : texts)
         if (std::string problem = checkText(text, kMaxTextLength, false, false); !problem.empty()) return std::string(name) + " " + problem;
+    if (desc.structSize >= offsetof(TechniqueDesc, debugViews) + sizeof(desc.debugViews))
+        if (std::string problem = checkText(desc.debugViews, kMaxTextLength, false, false); !problem.empty())
+            return "debugViews " + problem;
     if (std::string problem = checkText(desc.shadowGlsl, kMaxTextLength, false, true); !problem.empty() || !*desc.shadowGlsl)
         return "shadowGlsl " + (problem.empty() ? std::string("is empty") : problem) + " (it names the GLSL file with shadowTerm)";
     if (desc.structSize >= offsetof(TechniqueDesc, translucencyModel) + sizeof(desc.translucencyModel) &&

@@ -475,6 +475,11 @@ void Ui::drawPanel(App& app, UiState& state) {
         // What it reported on its last frame decides which of the host's views show something.
         const std::string views = app.debugViewsOf(state.technique);
         ImGui::TextDisabled("Debug views here: %s", views.empty() ? "none (lit, visibility and error only)" : views.c_str());
+        if (info->debugViewsDeclared) {   // what the descriptor says applies (some only with a parameter set)
+            std::string declared;
+            for (const std::string& view : info->debugViews) declared += (declared.empty() ? "" : ", ") + view;
+            ImGui::TextDisabled("Declared: %s", declared.empty() ? "none" : declared.c_str());
+        }
         ImGui::PopTextWrapPos();
         if (!info->params.empty() && ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
             auto& values = app.params().values(*info);

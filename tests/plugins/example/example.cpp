@@ -7,16 +7,17 @@
 namespace {
 using namespace shadowlab;
 
-constexpr ParamDesc kParams[] = {
-    kit::resolutionParam(1024),
-    {"darkness", "darkness", ParamType::Float, 0, 1, 1, "", "How much of the light a shadow removes.", nullptr},
-};
-enum : uint32_t { kResolution = kit::paramIndex(kParams, "resolution"), kDarkness = kit::paramIndex(kParams, "darkness") };
+// Each parameter once: its C++ type, its id, its descriptor (kit/params.h).
+#define EXAMPLE_PARAMS(X)                             \
+    X(int, resolution, kit::resolutionParam(1024))    \
+    X(float, darkness, {"darkness", "darkness", ParamType::Float, 0, 1, 1, "", "How much of the light a shadow removes.", nullptr})
+SHADOWLAB_PARAMS(Params, EXAMPLE_PARAMS);   // Params::table, Params::Id::darkness, Params::read(values).darkness
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "example", .displayName = "Example", .category = "filtered",
-     .explanation = "A shadow map filtered over 3 x 3 taps.", .shadowGlsl = "example.glsl"},
-    kParams);
+     .explanation = "A shadow map filtered over 3 x 3 taps.", .shadowGlsl = "example.glsl",
+     .debugViews = "footprint|texel-grid|coverage"},
+    Params::table);
 
 class Example final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
@@ -24,11 +25,11 @@ class Example final : public kit::TechniqueBase {
         return map_.create(host(), error);
     }
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        map_.render(frame, {.resolution = params.asInt(kResolution)});
+        map_.render(frame, {.resolution = Params::read(params).resolution});
     }
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
         map_.bindMainPass(SamplerKind::CompareLinear);
-        uniforms_.set({{}, params.asFloat(kDarkness), 0, 0, 0});
+        uniforms_.set({{}, Params::read(params).darkness, 0, 0, 0});
     }
     kit::DepthMap map_;
     kit::UniformBlock<shared::example::ExampleUniforms> uniforms_;

@@ -67,6 +67,21 @@ inline GLenum depthFormat(int index) {
     return kFormats[index < 0 ? 0 : index > 2 ? 2 : index];
 }
 
+// The config from a technique's values (kit/params.h): whichever of the depth-map group
+// (SHADOWLAB_DEPTH_MAP_PARAMS or SHADOWLAB_BIAS_PARAMS and resolution) and the fit
+// (SHADOWLAB_FIT_PARAMS) they hold; the rest keep DepthMapConfig's defaults.
+template <class Values>
+DepthMapConfig depthMapConfig(const Values& values) {
+    DepthMapConfig config;
+    if constexpr (requires { values.resolution; }) config.resolution = int(values.resolution);
+    if constexpr (requires { values.depth_format; }) config.format = depthFormat(int(values.depth_format));
+    if constexpr (requires { values.constant_bias; }) config.constantBias = float(values.constant_bias);
+    if constexpr (requires { values.slope_bias; }) config.slopeBias = float(values.slope_bias);
+    if constexpr (requires { values.cull; }) config.cull = Cull(int(values.cull));
+    if constexpr (requires { values.fit; }) config.fit = fitConfig(values);
+    return config;
+}
+
 class DepthMap {
 public:
     bool create(IHost& host, std::string& error) {

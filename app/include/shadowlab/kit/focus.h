@@ -53,6 +53,11 @@ struct FitConfig {
 inline FitConfig readFit(const ParamValues& params, uint32_t fitIndex, uint32_t snapIndex) {
     return {Fit(std::clamp(params.asInt(fitIndex), 0, 2)), params.asBool(snapIndex)};
 }
+// The same from a technique's values (kit/params.h) holding SHADOWLAB_FIT_PARAMS.
+template <class Values>
+FitConfig fitConfig(const Values& values) {
+    return {Fit(std::clamp(int(values.fit), 0, 2)), bool(values.snap)};
+}
 
 // The 8 corners of a box in CameraInfo::frustumCorners' order: bit 0 = +x, bit 1 = +y, bit 2 = +z.
 inline void boundsCorners(const Bounds& box, glm::vec3 corners[8]) {

@@ -51,29 +51,38 @@ using shared::moment_map::MomentMapUniforms;
 // ranges and help in vsm, esm, evsm and msm), then lists its own from index kCommonParamCount.
 enum CommonParam : uint32_t { kResolution, kKernel, kFilter, kMipmaps, kBlur, kFit, kSnap, kCommonParamCount };
 
-#define SHADOWLAB_MOMENT_MAP_PARAMS(defaultResolution)                                                          \
-    {"resolution", "resolution", ParamType::Int, 128, 4096, defaultResolution, "texels",                         \
-     "Width and height of the moment map. Low values blur the shadow and lose small occluders; memory, shadow "   \
-     "pass and blur time grow with the square.", nullptr},                                                       \
-    {"kernel", "blur kernel", ParamType::Int, 1, 31, 5, "texels",                                                \
-     "Taps of the separable blur per direction (1 = no blur, only bilinear filtering). Wider kernels give "       \
-     "softer, better antialiased edges at a constant width (not physically based) and leak more light where "    \
-     "occluders overlap; the blur costs two passes of N taps per texel.", nullptr},                              \
-    {"filter", "blur filter", ParamType::Enum, 0, 1, 0, "",                                                      \
-     "Weights of the blur: box (seed 000's choice, flat and cheapest) or Gaussian (sigma = kernel / 6: a "       \
-     "smoother penumbra, narrower for the same kernel).", "box|gaussian"},                                       \
-    {"mipmaps", "mipmaps", ParamType::Bool, 0, 1, 0, "",                                                         \
-     "Build mipmaps after the blur and sample trilinearly, so distant or grazing receivers average the map "      \
-     "instead of aliasing. Off, minified shadows shimmer; on, they widen and leak more where the footprint is "  \
-     "large, and memory grows by a third.", nullptr},                                                         \
-    {"blur", "blur pass", ParamType::Enum, 0, 1, 1, "",                                                          \
-     "How the moments are made and blurred; both give the same map. fragment: the light renders the moments "    \
-     "into a colour target (16 bytes a texel for evsm and msm) and two full-screen passes blur it, a texture "   \
-     "lookup per tap. compute: the light renders depth only, one compute pass turns it into moments and blurs "  \
-     "them along x in shared memory, a second blurs along y (vsm's derivative-based M2 still renders its "       \
-     "moments, then blurs in compute). Compare the passes' times in the timing panel or with --sweep.",         \
-     "fragment|compute"},                                                                                        \
-    ::shadowlab::kit::fitParam(), ::shadowlab::kit::snapParam()
+// Their descriptors (the X-macro group SHADOWLAB_MOMENT_MAP_PARAMS below lists them, kit/params.h).
+constexpr ParamDesc momentResolutionParam(double defaultValue) {
+    return {"resolution", "resolution", ParamType::Int, 128, 4096, defaultValue, "texels",
+     "Width and height of the moment map. Low values blur the shadow and lose small occluders; memory, shadow "
+     "pass and blur time grow with the square.", nullptr};
+}
+constexpr ParamDesc kMomentKernelParam{"kernel", "blur kernel", ParamType::Int, 1, 31, 5, "texels",
+     "Taps of the separable blur per direction (1 = no blur, only bilinear filtering). Wider kernels give "
+     "softer, better antialiased edges at a constant width (not physically based) and leak more light where "
+     "occluders overlap; the blur costs two passes of N taps per texel.", nullptr};
+constexpr ParamDesc kMomentFilterParam{"filter", "blur filter", ParamType::Enum, 0, 1, 0, "",
+     "Weights of the blur: box (seed 000's choice, flat and cheapest) or Gaussian (sigma = kernel / 6: a "
+     "smoother penumbra, narrower for the same kernel).", "box|gaussian"};
+constexpr ParamDesc kMomentMipmapsParam{"mipmaps", "mipmaps", ParamType::Bool, 0, 1, 0, "",
+     "Build mipmaps after the blur and sample trilinearly, so distant or grazing receivers average the map "
+     "instead of aliasing. Off, minified shadows shimmer; on, they widen and leak more where the footprint is "
+     "large, and memory grows by a third.", nullptr};
+constexpr ParamDesc kMomentBlurParam{"blur", "blur pass", ParamType::Enum, 0, 1, 1, "",
+     "How the moments are made and blurred; both give the same map. fragment: the light renders the moments "
+     "into a colour target (16 bytes a texel for evsm and msm) and two full-screen passes blur it, a texture "
+     "lookup per tap. compute: the light renders depth only, one compute pass turns it into moments and blurs "
+     "them along x in shared memory, a second blurs along y (vsm's derivative-based M2 still renders its "
+     "moments, then blurs in compute). Compare the passes' times in the timing panel or with --sweep.",
+     "fragment|compute"};
+
+#define SHADOWLAB_MOMENT_MAP_PARAMS(X, defaultResolution)                                  \
+    X(int, resolution, ::shadowlab::kit::momentResolutionParam(defaultResolution))         \
+    X(int, kernel, ::shadowlab::kit::kMomentKernelParam)                                   \
+    X(int, filter, ::shadowlab::kit::kMomentFilterParam)                                   \
+    X(bool, mipmaps, ::shadowlab::kit::kMomentMipmapsParam)                                \
+    X(int, blur, ::shadowlab::kit::kMomentBlurParam)                                       \
+    SHADOWLAB_FIT_PARAMS(X)
 
 inline MomentMapConfig readCommonParams(const ParamValues& params) {
     MomentMapConfig config;

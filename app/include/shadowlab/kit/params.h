@@ -1,20 +1,33 @@
-// Declaring parameters once. A technique lists its ParamDesc table and derives its index enum
-// from it, so the two cannot disagree (a misspelt id does not compile):
+// Declaring parameters once. A technique lists its parameters in ONE X-macro list; the kit
+// expands it into the ParamDesc table, an index per parameter and a struct of typed values read
+// from ParamValues, so the three cannot disagree:
 //
-//   constexpr ParamDesc kParams[] = {kit::resolutionParam(2048), {"kernel", ...}};
-//   enum : uint32_t { kResolution = kit::paramIndex(kParams, "resolution"), kKernel = kit::paramIndex(kParams, "kernel") };
-//   const TechniqueDesc kDescriptor = kit::describe({.id = "pcf", ...}, kParams);
+//   #define PCF_PARAMS(X) X(int, resolution, kit::resolutionParam()) \  (one line a parameter)
+//                         X(int, kernel, {"kernel", "kernel size n", ...}) ... SHADOWLAB_PCF_COMMON_PARAMS(X)
+//   SHADOWLAB_PARAMS(Params, PCF_PARAMS);
+//   constexpr TechniqueDesc kDescriptor = kit::describe({.id = "pcf", ...}, Params::table);
+//   ...
+//   const Params p = Params::read(params);   // p.kernel, p.constant_bias, ...; Params::Id::kernel
 //
-// Also the parameters several techniques declare alike (same id, range and help everywhere).
+// X(type, id, descriptor...): `type` is the C++ type of the value (int for Int and Enum, float,
+// bool, or an enum class read from the int), `id` the parameter's id spelt as an identifier (it
+// must equal the descriptor's id: a static_assert checks it; a duplicated id redeclares an
+// enumerator and a member, which does not compile either), `descriptor` a ParamDesc expression.
+// Groups that several techniques declare alike (same id, range and help everywhere) are lists
+// too (SHADOWLAB_DEPTH_MAP_PARAMS, SHADOWLAB_FIT_PARAMS, ...), spliced into a technique's list;
+// kit::depthMapConfig(values) (depth_map.h) turns whichever of them a technique has into the
+// kit's config.
 #pragma once
 
 #include <cstdint>
 #include <string_view>
+#include <type_traits>
 
 #include <shadowlab/technique.h>
 
 namespace shadowlab::kit {
 
+// The index of parameter `id` in a table (a compile error when there is none).
 template <size_t N>
 consteval uint32_t paramIndex(const ParamDesc (&params)[N], std::string_view id) {
     for (size_t i = 0; i < N; ++i)
@@ -29,6 +42,66 @@ constexpr TechniqueDesc describe(TechniqueDesc desc, const ParamDesc (&params)[N
     desc.paramCount = uint32_t(N);
     return desc;
 }
+
+// A parameter's value as the type its list declares.
+template <class T>
+T readParam(const ParamValues& params, uint32_t index) {
+    if constexpr (std::is_same_v<T, bool>) return params.asBool(index);
+    else if constexpr (std::is_floating_point_v<T>) return T(params.asFloat(index));
+    else if constexpr (std::is_enum_v<T>) return T(params.asInt(index));
+    else return T(params.asInt(index));
+}
+
+consteval bool sameId(const ParamDesc& desc, std::string_view id) { return std::string_view(desc.id) == id; }
+
+} // namespace shadowlab::kit
+
+#define SHADOWLAB_PARAM_ID_(type, id, ...) id,
+#define SHADOWLAB_PARAM_DESC_(type, id, ...) __VA_ARGS__,
+#define SHADOWLAB_PARAM_FIELD_(type, id, ...) type id{};
+#define SHADOWLAB_PARAM_READ_(type, id, ...) values.id = ::shadowlab::kit::readParam<type>(params, Id::id);
+#define SHADOWLAB_PARAM_CHECK_(type, id, ...) \
+    static_assert(::shadowlab::kit::sameId(table[Id::id], #id), "parameter " #id ": the descriptor's id differs");
+
+// struct Name { struct Id { enum : uint32_t {...}; }; static constexpr ParamDesc table[]; fields...;
+//               static Name read(const ParamValues&); } from an X-macro list (see the top).
+#define SHADOWLAB_PARAMS(Name, LIST)                                                            \
+    struct Name {                                                                               \
+        struct Id {                                                                             \
+            enum : uint32_t { LIST(SHADOWLAB_PARAM_ID_) count };                                \
+        };                                                                                      \
+        static constexpr ::shadowlab::ParamDesc table[] = {LIST(SHADOWLAB_PARAM_DESC_)};         \
+        LIST(SHADOWLAB_PARAM_CHECK_)                                                            \
+        LIST(SHADOWLAB_PARAM_FIELD_)                                                            \
+        static Name read(const ::shadowlab::ParamValues& params) {                              \
+            Name values;                                                                        \
+            LIST(SHADOWLAB_PARAM_READ_)                                                         \
+            return values;                                                                      \
+        }                                                                                       \
+    }
+
+// Groups spliced into a technique's list. The shadow map of the depth-map techniques
+// (kit/depth_map.h): resolution, depth format, bias and culling.
+#define SHADOWLAB_BIAS_PARAMS(X, constantBiasMax, cullDefault)                     \
+    X(float, constant_bias, ::shadowlab::kit::constantBiasParam(constantBiasMax))  \
+    X(float, slope_bias, ::shadowlab::kit::slopeBiasParam())                       \
+    X(int, cull, ::shadowlab::kit::cullParam(cullDefault))
+#define SHADOWLAB_DEPTH_MAP_PARAMS(X, resolutionDefault, constantBiasMax, cullDefault) \
+    X(int, resolution, ::shadowlab::kit::resolutionParam(resolutionDefault))           \
+    X(int, depth_format, ::shadowlab::kit::depthFormatParam())                         \
+    SHADOWLAB_BIAS_PARAMS(X, constantBiasMax, cullDefault)
+// Fitting of a single map (kit/focus.h): fit and snap.
+#define SHADOWLAB_FIT_PARAMS(X)                     \
+    X(int, fit, ::shadowlab::kit::fitParam())       \
+    X(bool, snap, ::shadowlab::kit::snapParam())
+// The tail of the PCF family (pcf, adaptive-pcf, pcss): cone bias, the map's bias (culling off:
+// every face casts, open and single-sided casters too) and the fit.
+#define SHADOWLAB_PCF_COMMON_PARAMS(X)                  \
+    X(bool, cone_bias, ::shadowlab::kit::coneBiasParam()) \
+    SHADOWLAB_BIAS_PARAMS(X, 64, 0)                     \
+    SHADOWLAB_FIT_PARAMS(X)
+
+namespace shadowlab::kit {
 
 // Shadow-map parameters shared by the depth-map techniques (kit/depth_map.h).
 constexpr ParamDesc resolutionParam(double defaultValue = 2048) {

@@ -45,23 +45,22 @@ constexpr ParamDesc translucentHardwareFilterParam() {
             nullptr};
 }
 
+} // namespace shadowlab::kit
+
 // The parameters of the techniques built on these maps (translucent-shadows,
-// composited-translucent), declared once; TranslucentMaps reads them by these indices.
-inline constexpr ParamDesc kTranslucentMapParams[] = {
-    resolutionParam(), translucentVariantParam(), translucentHardwareFilterParam(), constantBiasParam(),
-    slopeBiasParam(),  fitParam(),                snapParam(),
-};
-namespace translucent_map_param {
-enum : uint32_t {
-    kResolution = paramIndex(kTranslucentMapParams, "resolution"),
-    kVariant = paramIndex(kTranslucentMapParams, "variant"),
-    kHardwareFilter = paramIndex(kTranslucentMapParams, "hardware_filter"),
-    kConstantBias = paramIndex(kTranslucentMapParams, "constant_bias"),
-    kSlopeBias = paramIndex(kTranslucentMapParams, "slope_bias"),
-    kFit = paramIndex(kTranslucentMapParams, "fit"),
-    kSnap = paramIndex(kTranslucentMapParams, "snap"),
-};
-} // namespace translucent_map_param
+// composited-translucent), declared once (kit/params.h); TranslucentMaps reads them.
+#define SHADOWLAB_TRANSLUCENT_MAP_PARAMS(X)                                      \
+    X(int, resolution, ::shadowlab::kit::resolutionParam())                      \
+    X(int, variant, ::shadowlab::kit::translucentVariantParam())                 \
+    X(bool, hardware_filter, ::shadowlab::kit::translucentHardwareFilterParam()) \
+    X(float, constant_bias, ::shadowlab::kit::constantBiasParam())               \
+    X(float, slope_bias, ::shadowlab::kit::slopeBiasParam())                     \
+    SHADOWLAB_FIT_PARAMS(X)
+
+namespace shadowlab::kit {
+
+SHADOWLAB_PARAMS(TranslucentMapParams, SHADOWLAB_TRANSLUCENT_MAP_PARAMS);
+inline constexpr const auto& kTranslucentMapParams = TranslucentMapParams::table;
 
 struct TranslucentMapSettings {
     int resolution = 2048;
@@ -106,8 +105,8 @@ public:
 
     // The settings kTranslucentMapParams' values give.
     static TranslucentMapSettings settings(const ParamValues& params) {
-        using namespace translucent_map_param;
-        return {params.asInt(kResolution), params.asInt(kVariant), params.asFloat(kConstantBias), params.asFloat(kSlopeBias)};
+        const TranslucentMapParams p = TranslucentMapParams::read(params);
+        return {p.resolution, p.variant, p.constant_bias, p.slope_bias};
     }
 
     // A frame of translucent shadows from kTranslucentMapParams' values: the map fitted (`fit`,
@@ -116,7 +115,7 @@ public:
     FocusedLightSpace renderAllCasters(const FrameContext& frame, const ParamValues& params) {
         const TranslucentMapSettings s = settings(params);
         if (ensure(s.resolution)) registerDebugImages("opaque depth D_o", "translucent depth D_t", "shadow colour C");
-        const FitConfig fit = readFit(params, translucent_map_param::kFit, translucent_map_param::kSnap);
+        const FitConfig fit = fitConfig(TranslucentMapParams::read(params));
         FocusedLightSpace focused = focusLightSpace(*host_, frame, fit, s.resolution);
         setLightSpace(focused.light, s.resolution);
         reportShadowMap(*host_, focused.light.viewProjection, {s.resolution, s.resolution});
@@ -178,7 +177,7 @@ public:
 
     // For shaders/translucent_maps.glsl: D_o and D_t through the comparison sampler (2x2 bilinear
     // with the hardware filter), C bilinear, and the light-space block.
-    void bind(const ParamValues& params) const { bind(params.asBool(translucent_map_param::kHardwareFilter)); }
+    void bind(const ParamValues& params) const { bind(TranslucentMapParams::read(params).hardware_filter); }
     void bind(bool hardwareFilter) const {
         const GLuint comparison = host_->sampler(hardwareFilter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
         glBindTextureUnit(kDepthMapUnit, opaqueTarget().depth());

@@ -1,0 +1,160 @@
+// The GL and host side of cascaded shadow maps (the maths is kit/cascades.h): fitting every
+// cascade of a frame with the casters' cull planes, telling the host which cascade serves which
+// view depths, and the GPU's reduction of the camera pre-pass to the depth range the view really
+// sees (sample distribution shadow maps), read back without waiting (`csm`).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <vector>
+
+#include <glad/gl.h>
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <shadowlab/technique.h>
+
+#include "shadowlab/kit/cascades.h"
+#include "shadowlab/kit/csm_shared.h"
+#include "shadowlab/kit/focus.h"
+#include "shadowlab/kit/handles.h"
+#include "shadowlab/kit/shadow_map_report.h"
+
+namespace shadowlab::kit {
+
+// Every cascade of the frame, fitted to its slice of `ranges`, with its served view depths; and
+// the planes outside which a caster reaches no cascade (directional lights; none for spot lights).
+inline void fitCascades(IHost& host, const FrameContext& frame, const CascadeRanges& ranges, const CascadeFitConfig& config,
+                        std::vector<Cascade>& cascades, std::vector<glm::vec4>& cullPlanes) {
+    const Bounds scene = host.bounds(DrawSet::All);
+    const size_t count = ranges.fitBegin.size();
+    cascades.assign(count, {});
+    cullPlanes.clear();
+    if (frame.light.type == LightType::Directional) {
+        const glm::mat4 lightView = stableLightView(frame.light);
+        const Bounds casters = host.bounds(DrawSet::Casters);
+        glm::vec2 lo(1e30f), hi(-1e30f);
+        for (size_t i = 0; i < count; ++i) {
+            cascades[i] = fitDirectionalCascade(frame.camera, lightView, ranges.fitBegin[i], ranges.splits[i + 1], config,
+                                                scene, casters);
+            // The rectangle in the shared light view, from the orthographic matrix.
+            const glm::mat4& p = cascades[i].light.projection;
+            lo = glm::min(lo, glm::vec2((-1.0f - p[3][0]) / p[0][0], (-1.0f - p[3][1]) / p[1][1]));
+            hi = glm::max(hi, glm::vec2((1.0f - p[3][0]) / p[0][0], (1.0f - p[3][1]) / p[1][1]));
+        }
+        // Casters outside every cascade's rectangle reach no map (one set of planes for the
+        // single pass; the geometry stage culls per cascade).
+        LightSpace all = cascades[0].light;
+        all.projection = glm::ortho(lo.x, hi.x, lo.y, hi.y, all.nearPlane, all.farPlane);
+        all.viewProjection = all.projection * all.view;
+        const float margin = 1e-4f * std::max(glm::length(scene.max - scene.min), 1.0f);
+        cullPlanes = mapSidePlanes(all, margin);
+    } else {
+        const LightSpace sceneFit = host.fitLightSpace(frame.light, DrawSet::All);
+        for (size_t i = 0; i < count; ++i)
+            cascades[i] = fitPerspectiveCascade(frame.camera, sceneFit, ranges.fitBegin[i], ranges.splits[i + 1], config, scene);
+    }
+    for (size_t i = 0; i < count; ++i) {
+        cascades[i].viewDistanceBegin = ranges.splits[i];
+        cascades[i].viewDistanceEnd = ranges.splits[i + 1];
+    }
+}
+
+// Tells the host which maps a pixel reads: in order, each serving its split range; the first
+// from view depth 0 and the last to any depth, as the shader picks them.
+inline void reportCascades(IHost& host, const std::vector<Cascade>& cascades, int count, int resolution) {
+    static const char* kLabels[kMaxCascades] = {"cascade 0", "cascade 1", "cascade 2", "cascade 3",
+                                                "cascade 4", "cascade 5", "cascade 6", "cascade 7"};
+    std::array<ShadowMapInfo, kMaxCascades> maps;
+    for (int i = 0; i < count; ++i) {
+        ShadowMapInfo& m = maps[size_t(i)];
+        m.worldToClip = cascades[size_t(i)].light.viewProjection;
+        m.size = glm::ivec2(resolution);
+        m.viewDistanceBegin = i == 0 ? 0.0f : cascades[size_t(i)].viewDistanceBegin;
+        m.viewDistanceEnd = i == count - 1 ? 1e30f : cascades[size_t(i)].viewDistanceEnd;
+        m.layer = uint32_t(i);
+        m.label = kLabels[i];
+    }
+    reportShadowMaps(host, maps.data(), uint32_t(count));
+}
+
+// The view depths the camera pre-pass holds, reduced on the GPU by a compute program (the
+// technique's csm_depth_bounds.comp: min and max as ordered bits in an SSBO at
+// CSM_DEPTH_BOUNDS_BINDING). The results come back through a ring of buffers, each with a
+// timestamp query issued after its dispatch: a slot is read only once its query is available (the
+// GPU is past it), so glGetNamedBufferSubData never waits. With three slots a result is one to
+// three frames old.
+class ViewDepthBounds {
+public:
+    static constexpr int kRingSize = 3;
+
+    void create(IHost& host) {
+        host_ = &host;
+        for (auto& slot : ring_)
+            slot.buffer = Buffer(host, host.createBuffer(2 * sizeof(uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT, "csm depth bounds"));
+        glCreateQueries(GL_TIMESTAMP, kRingSize, queries_.data());
+    }
+    void destroy() { glDeleteQueries(kRingSize, queries_.data()); }
+
+    // The newest bounds the GPU has finished, if any.
+    const std::optional<DepthRange>& latest() const { return latest_; }
+
+    // First collects the newest result the GPU has finished (never waiting), then reduces this
+    // frame's pre-pass into the next slot of the ring.
+    void reduce(const Program& program) {
+        for (int age = 1; age <= kRingSize; ++age) {   // newest pending first
+            Slot& slot = ring_[size_t((next_ + kRingSize - age) % kRingSize)];
+            if (!slot.pending) continue;
+            const GLuint query = queries_[size_t(&slot - ring_.data())];
+            GLuint available = 0;
+            glGetQueryObjectuiv(query, GL_QUERY_RESULT_AVAILABLE, &available);
+            if (!available) continue;
+            uint32_t bits[2] = {0, 0};
+            glGetNamedBufferSubData(slot.buffer, 0, sizeof(bits), bits);
+            for (Slot& older : ring_)
+                if (older.pending && older.serial <= slot.serial) older.pending = false;
+            const uint32_t maxBits = ~bits[1];
+            float nearest = 0.0f, farthest = 0.0f;
+            std::memcpy(&nearest, &bits[0], sizeof(float));
+            std::memcpy(&farthest, &maxBits, sizeof(float));
+            // Nothing drawn (cleared values) or nonsense: keep the previous bounds.
+            if (bits[0] != 0xFFFFFFFFu && std::isfinite(nearest) && std::isfinite(farthest) && farthest >= nearest &&
+                nearest > 0.0f)
+                latest_ = DepthRange{nearest, farthest};
+            break;
+        }
+        const auto* prepass = static_cast<const CameraPrepass*>(host_->extension(SHADOWLAB_EXT_CAMERA_PREPASS));
+        if (!prepass || !prepass->position) return;
+        Slot& slot = ring_[size_t(next_)];
+        GpuPass pass(*host_, "depth bounds");
+        const uint32_t ones = 0xFFFFFFFFu;
+        glClearNamedBufferData(slot.buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CSM_DEPTH_BOUNDS_BINDING, slot.buffer);
+        glBindTextureUnit(shared::csm::kPrepassPositionUnit, prepass->position);
+        glBindSampler(shared::csm::kPrepassPositionUnit, host_->sampler(SamplerKind::Nearest));
+        glUseProgram(program.get());
+        glDispatchCompute(GLuint((prepass->size.x + 15) / 16), GLuint((prepass->size.y + 15) / 16), 1);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glQueryCounter(queries_[size_t(next_)], GL_TIMESTAMP);
+        slot.pending = true;
+        slot.serial = ++serial_;
+        next_ = (next_ + 1) % kRingSize;
+    }
+
+private:
+    struct Slot {
+        Buffer buffer;
+        bool pending = false;
+        uint64_t serial = 0;
+    };
+    IHost* host_ = nullptr;
+    std::array<Slot, kRingSize> ring_;
+    std::array<GLuint, kRingSize> queries_{};
+    int next_ = 0;
+    uint64_t serial_ = 0;
+    std::optional<DepthRange> latest_;
+};
+
+} // namespace shadowlab::kit
