@@ -39,18 +39,21 @@ namespace {
 using namespace shadowlab;
 using namespace shadowlab::shared::shadow_volumes;
 
-constexpr ParamDesc kParams[] = {
-    {"counting", "counting", ParamType::Enum, 0, 2, 0, "",
-     "How the stencil counts volume faces. depth-pass: the faces in front of the scene (fast, wrong with the "
-     "camera inside a shadow: regions invert). depth-fail: the faces behind it (right everywhere, needs the caps). "
-     "auto: depth-fail only when the near plane, swept towards the light, touches a caster.",
-     "auto|depth-pass|depth-fail"},
-    {"debug_images", "debug images", ParamType::Bool, 0, 1, 0, "",
-     "Draw the 'volume overdraw' and 'silhouette edges' images every frame (two more passes over the volumes: "
-     "leave off when timing).",
-     nullptr},
-};
-enum : uint32_t { kCounting = kit::paramIndex(kParams, "counting"), kDebugImages = kit::paramIndex(kParams, "debug_images") };
+constexpr ParamDesc kCountingParam = {
+    "counting", "counting", ParamType::Enum, 0, 2, 0, "",
+    "How the stencil counts volume faces. depth-pass: the faces in front of the scene (fast, wrong with the camera "
+    "inside a shadow: regions invert). depth-fail: the faces behind it (right everywhere, needs the caps). auto: "
+    "depth-fail only when the near plane, swept towards the light, touches a caster.",
+    "auto|depth-pass|depth-fail"};
+constexpr ParamDesc kDebugImagesParam = {
+    "debug_images", "debug images", ParamType::Bool, 0, 1, 0, "",
+    "Draw the 'volume overdraw' and 'silhouette edges' images every frame (two more passes over the volumes: leave "
+    "off when timing).",
+    nullptr};
+#define SHADOW_VOLUMES_PARAMS(X)         \
+    X(int, counting, kCountingParam)     \
+    X(bool, debug_images, kDebugImagesParam)
+SHADOWLAB_PARAMS(Params, SHADOW_VOLUMES_PARAMS);
 enum Counting : int { kAuto = 0, kDepthPass = 1, kDepthFail = 2 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -62,12 +65,13 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "is exact to the pixel, with no shadow map, resolution, bias or acne, at the price of fill rate: "
                     "the volumes cover the screen many times where casters are many or the light is low. Try the "
                     "camera inside a shadow with counting = depth-pass (regions invert) against depth-fail. "
-                    "Translucent casters block like opaque ones. Debug views (debug images on): volume overdraw, "
+                    "Translucent casters block like opaque ones. Its images (debug images on): volume overdraw, "
                     "silhouette edges, and the volume mask.",
      .shadowGlsl = "shadow-volumes.glsl",
      .flags = kTechniqueNeedsCameraPrepass,
-     .translucencyModel = TranslucencyModel::Opaque},
-    kParams);
+     .translucencyModel = TranslucencyModel::Opaque,
+     .debugViews = ""},   // the host's views need a map; its own images are listed with them
+    Params::table);
 
 // Conservative: does the near-plane rectangle, swept towards the light, touch any caster's box?
 // A sphere around the rectangle swept along the ray to the light against each box grown by its
@@ -120,7 +124,8 @@ class ShadowVolumes final : public kit::TechniqueBase {
         const auto* prepass = static_cast<const CameraPrepass*>(host().extension(SHADOWLAB_EXT_CAMERA_PREPASS));
         if (!prepass || !prepass->depth || !allocate(prepass->size)) return;
         readStatistics();
-        const int counting = params.asInt(kCounting);
+        const Params values = Params::read(params);
+        const int counting = values.counting;
         const bool depthFail =
             counting == kDepthFail || (counting == kAuto && nearPlaneMayBeInShadow(frame, host().objects(), host().objectCount()));
         host().reportStatistic("depth-fail", depthFail ? 1.0 : 0.0);
@@ -168,7 +173,7 @@ class ShadowVolumes final : public kit::TechniqueBase {
             host().drawFullscreenTriangle();
         }
         ++frameCount_;
-        if (params.asBool(kDebugImages)) drawDebugImages(push);
+        if (values.debug_images) drawDebugImages(push);
     }
 
     void bindMainPass(const FrameContext&, const ParamValues&) override {
