@@ -53,8 +53,7 @@ def blank(text):
             delim = text[i + 2:k]
             j = text.find(")" + delim + '"', k)
             j = n if j < 0 else j + len(delim) + 2
-            out.append('""' + keep_newlines(text[i + 2:j - 1]) if j - i >= 3 else keep_newlines(text[i:j]))
-            out[-1] = keep_newlines(text[i:j])
+            out.append(keep_newlines(text[i:j]))
             i = j
         elif c == '"' or (c == "'" and not (i > 0 and text[i - 1].isalnum())):  # 1'000 digit separators
             j = i + 1
@@ -92,8 +91,6 @@ def function_name(header):
     # The parameter list: the first '(' at depth 0 that follows a name (operator() included).
     depth = 0
     for k, ch in enumerate(h):
-        if ch in "<" and depth == 0:
-            pass
         if ch == "(":
             if depth == 0:
                 before = h[:k].rstrip()
@@ -178,10 +175,6 @@ def scan(path):
                 header_start = i
                 continue
         i += 1
-
-
-def qualify(path, name):
-    return name
 
 
 def main(argv=None):
