@@ -41,16 +41,15 @@ Difference differingPixels(const std::vector<glm::vec3>& technique, const std::v
     return d;
 }
 
-// Brute force: every caster triangle, the same watertight test, the physical model (untextured).
+// Brute force: every caster triangle, the same watertight test and crossing factor.
 glm::vec3 bruteForce(const bvh::Bvh& tree, glm::vec3 origin, glm::vec3 direction, float tMax) {
     glm::vec3 throughput(1.0f);
     for (size_t i = 0; i < tree.triangleCount; ++i) {
         const bvh::Triangle& tri = tree.triangles[i];
-        if (bvh::intersectTriangle(origin, direction, tri, tMax) < 0.0f) continue;
-        const bvh::MaterialRecord& m = tree.materials[bitsOf(tri.v0.w)];
-        if (m.info.x & bvh::kMaterialOpaque) return glm::vec3(0.0f);
-        const float a = glm::clamp(m.transmission.a, 0.0f, 1.0f);
-        throughput *= (1.0f - a) + a * glm::clamp(glm::vec3(m.transmission), 0.0f, 1.0f);
+        const float t = bvh::intersectTriangle(origin, direction, tri, tMax);
+        if (t < 0.0f) continue;
+        throughput *= bvh::crossing(tree, tri, origin + t * direction);
+        if (throughput == glm::vec3(0.0f)) return throughput;
     }
     return throughput;
 }

@@ -311,6 +311,26 @@ bool hitsBox(const Node& node, glm::vec3 origin, glm::vec3 inverse, float tMax) 
 
 } // namespace
 
+glm::vec3 crossing(const Bvh& bvh, const Triangle& tri, glm::vec3 p) {
+    const MaterialRecord& material = bvh.materials[floatBits(tri.v0.w)];
+    if (material.info.x & kMaterialOpaque) return glm::vec3(0.0f);
+    glm::vec4 ta = material.transmission;
+    if (material.info.z > 0) {
+        // Barycentrics of the hit point.
+        const glm::vec3 e1 = glm::vec3(tri.v1 - tri.v0), e2 = glm::vec3(tri.v2 - tri.v0), q = p - glm::vec3(tri.v0);
+        const float d00 = glm::dot(e1, e1), d01 = glm::dot(e1, e2), d11 = glm::dot(e2, e2);
+        const float d20 = glm::dot(q, e1), d21 = glm::dot(q, e2), den = d00 * d11 - d01 * d01;
+        const float v = den != 0.0f ? (d11 * d20 - d01 * d21) / den : 0.0f;
+        const float w = den != 0.0f ? (d00 * d21 - d01 * d20) / den : 0.0f;
+        const UvRecord& uv = bvh.uvs[floatBits(tri.v1.w)];
+        const glm::vec2 st = (1.0f - v - w) * glm::vec2(uv.uv01.x, uv.uv01.y) + v * glm::vec2(uv.uv01.z, uv.uv01.w) +
+                             w * glm::vec2(uv.uv2.x, uv.uv2.y);
+        ta = sampleTexels(bvh, material.info, st);
+    }
+    const float a = glm::clamp(ta.a, 0.0f, 1.0f);
+    return (1.0f - a) + a * glm::clamp(glm::vec3(ta), 0.0f, 1.0f);
+}
+
 glm::vec3 transmittance(const Bvh& bvh, glm::vec3 origin, glm::vec3 direction, float tMax, TraceCounters* counters) {
     glm::vec3 inverse;
     for (int k = 0; k < 3; ++k) {
@@ -331,24 +351,7 @@ glm::vec3 transmittance(const Bvh& bvh, glm::vec3 origin, glm::vec3 direction, f
                 const Triangle& tri = bvh.triangles[i];
                 const float t = intersectTriangle(origin, direction, tri, tMax);
                 if (t < 0.0f) continue;
-                const MaterialRecord& material = bvh.materials[floatBits(tri.v0.w)];
-                if (material.info.x & kMaterialOpaque) return glm::vec3(0.0f);
-                glm::vec4 ta = material.transmission;
-                if (material.info.z > 0) {
-                    // Barycentrics of the hit, from the hit point (the CPU mirror is not watertight-critical here).
-                    const glm::vec3 p = origin + t * direction;
-                    const glm::vec3 e1 = glm::vec3(tri.v1 - tri.v0), e2 = glm::vec3(tri.v2 - tri.v0), q = p - glm::vec3(tri.v0);
-                    const float d00 = glm::dot(e1, e1), d01 = glm::dot(e1, e2), d11 = glm::dot(e2, e2);
-                    const float d20 = glm::dot(q, e1), d21 = glm::dot(q, e2), den = d00 * d11 - d01 * d01;
-                    const float v = den != 0.0f ? (d11 * d20 - d01 * d21) / den : 0.0f;
-                    const float w = den != 0.0f ? (d00 * d21 - d01 * d20) / den : 0.0f;
-                    const UvRecord& uv = bvh.uvs[floatBits(tri.v1.w)];
-                    const glm::vec2 st = (1.0f - v - w) * glm::vec2(uv.uv01.x, uv.uv01.y) + v * glm::vec2(uv.uv01.z, uv.uv01.w) +
-                                         w * glm::vec2(uv.uv2.x, uv.uv2.y);
-                    ta = sampleTexels(bvh, material.info, st);
-                }
-                const float a = glm::clamp(ta.a, 0.0f, 1.0f);
-                throughput *= (1.0f - a) + a * glm::clamp(glm::vec3(ta), 0.0f, 1.0f);
+                throughput *= crossing(bvh, tri, origin + t * direction);
                 if (throughput == glm::vec3(0.0f)) return throughput;
             }
         } else {

@@ -90,6 +90,10 @@ float referenceRayOffset(const Scene& scene);
 // negative number. Both sides count (shadow rays have no back-face culling).
 float intersectTriangle(glm::vec3 origin, glm::vec3 direction, const Triangle& triangle, float tMax);
 
+// What one crossing of `triangle` at world point `p` lets through under the physical model:
+// 0 for an opaque material, else (1 - a) + a t (a, t from its texture at p's uv where it has one).
+glm::vec3 crossing(const Bvh& bvh, const Triangle& triangle, glm::vec3 p);
+
 struct TraceCounters {
     uint64_t nodes = 0;       // nodes whose children's boxes were tested
     uint64_t triangles = 0;   // triangle tests
