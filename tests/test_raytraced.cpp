@@ -130,7 +130,9 @@ TEST(RayTracedBvh, TraversalAgreesWithBruteForceOnRandomRays) {
         std::printf("bvh %s: %d of %d rays blocked, %d coloured, %.1f visits and tests per ray (brute force %zu)\n", name,
                     blocked, kRays, coloured, double(visits) / kRays, tree.triangleCount);
         EXPECT_GT(blocked + coloured, kRays / 10) << name << ": the rays meet geometry";
-        EXPECT_LT(double(visits) / kRays, 0.25 * double(tree.triangleCount)) << name << ": the tree prunes";
+        if (tree.triangleCount > 1000) {
+            EXPECT_LT(double(visits) / kRays, 0.01 * double(tree.triangleCount)) << name << ": the tree prunes";
+        }
     }
 }
 
