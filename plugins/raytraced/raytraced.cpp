@@ -103,10 +103,18 @@ class RayTraced final : public kit::TechniqueBase {
         if (!prepass || !prepass->position) return;
         resize(prepass->size);
         const bool counters = params.asBool(kCounters);
-        if (counters) readCounters();
-
         const float temporal = params.asFloat(kTemporal);
         const int rays = params.asInt(kRays);
+        // Results in flight were counted with other settings: dropped. Without counters the
+        // counted statistics read NaN, so a table never shows an earlier setting's figures.
+        if (!counters || rays != lastRays_)
+            for (Slot& slot : ring_) slot.pending = false;
+        if (counters) {
+            readCounters();
+        } else {
+            for (const char* name : {"rays per pixel", "node visits per pixel", "triangle tests per pixel", "Mrays per s"})
+                host().reportStatistic(name, std::nan(""));
+        }
         if (rays != lastRays_ || temporal <= 0.0f) historyValid_ = false;
         lastRays_ = rays;
         RaytracedUniforms u{};
