@@ -101,7 +101,7 @@ bool rtHitsBox(RtRay r, uint node) {
 
 // Watertight test of triangle `tri`: true with the unnormalised barycentrics (u, v, w: weights of
 // v0, v1, v2; divide by their sum) when the ray hits it at t in (0, tMax).
-bool rtHitTriangle(RtRay r, uint tri, out vec3 uvw) {
+bool rtHitTriangle(RtRay r, uint tri, out vec3 uvw, out float t) {
     vec3 a = rtTriangles[3u * tri].xyz - r.origin;
     vec3 b = rtTriangles[3u * tri + 1u].xyz - r.origin;
     vec3 c = rtTriangles[3u * tri + 2u].xyz - r.origin;
@@ -120,7 +120,7 @@ bool rtHitTriangle(RtRay r, uint tri, out vec3 uvw) {
     if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
     float det = u + v + w;
     if (det == 0.0) return false;
-    float t = (u * r.shear.z * a[r.k.z] + v * r.shear.z * b[r.k.z] + w * r.shear.z * c[r.k.z]) / det;
+    t = (u * r.shear.z * a[r.k.z] + v * r.shear.z * b[r.k.z] + w * r.shear.z * c[r.k.z]) / det;
     uvw = vec3(u, v, w) / det;
     return t > 0.0 && t < r.tMax;
 }
@@ -143,9 +143,15 @@ vec3 rtCrossing(uint tri, vec3 uvw) {
 
 // Light reaching origin + tMax * direction (direction need not be unit; tMax in its units;
 // RT_INFINITY for a directional light): rgb transmittance, 0 when an opaque caster blocks.
-vec3 rtTransmittance(vec3 origin, vec3 direction, float tMax) {
+// Translucent crossings of one object less than `merge` apart along the ray count once: a ray
+// through the shared edge of two of its triangles hits both, and the reference, which restarts
+// its search `merge` (its ray offset) past each hit, counts that surface once.
+vec3 rtTransmittance(vec3 origin, vec3 direction, float tMax, float merge) {
     RtRay r = rtMakeRay(origin, direction, tMax);
     vec3 throughput = vec3(1.0);
+    float crossedT[4];
+    uint crossedObject[4];
+    int crossed = 0;
     if (!rtHitsBox(r, 0u)) return throughput;
     uint stack[64];
     int top = 0;
@@ -159,8 +165,19 @@ vec3 rtTransmittance(vec3 origin, vec3 direction, float tMax) {
                 ++rtTriangleTests;
 #endif
                 vec3 uvw;
-                if (!rtHitTriangle(r, i, uvw)) continue;
-                throughput *= rtCrossing(i, uvw);
+                float t;
+                if (!rtHitTriangle(r, i, uvw, t)) continue;
+                vec3 factor = rtCrossing(i, uvw);
+                if (all(equal(factor, vec3(0.0)))) return factor;
+                uint object = floatBitsToUint(rtTriangles[3u * i + 2u].w);
+                bool again = false;
+                for (int j = 0; j < min(crossed, 4); ++j)
+                    again = again || (crossedObject[j] == object && abs(crossedT[j] - t) < merge);
+                if (again) continue;
+                crossedT[crossed % 4] = t;
+                crossedObject[crossed % 4] = object;
+                ++crossed;
+                throughput *= factor;
                 if (all(equal(throughput, vec3(0.0)))) return throughput;
             }
         } else {

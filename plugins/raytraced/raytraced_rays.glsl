@@ -25,7 +25,7 @@ vec3 traceRays(vec3 p, vec3 n, uint pixel, out uint rays) {
         float tMax;
         rtEmitterRay(type, lightPos, lightDir, uRtLightDirection.w, origin, offset, vec2(0.5), true, direction, tMax);
         rays = 1u;
-        return rtTransmittance(origin, direction, tMax);
+        return rtTransmittance(origin, direction, tMax, offset);
     }
     vec3 sum = vec3(0.0);
     for (int k = 0; k < count; ++k) {
@@ -35,7 +35,7 @@ vec3 traceRays(vec3 p, vec3 n, uint pixel, out uint rays) {
         rtEmitterRay(type, lightPos, lightDir, uRtLightDirection.w, origin, offset, u, false, direction, tMax);
         if (dot(direction, facing) <= 0.0) continue;   // the surface itself hides this part of the emitter
         ++rays;
-        sum += rtTransmittance(origin, direction, tMax);
+        sum += rtTransmittance(origin, direction, tMax, offset);
     }
     return sum / float(count);
 }

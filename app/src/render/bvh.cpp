@@ -331,7 +331,10 @@ glm::vec3 crossing(const Bvh& bvh, const Triangle& tri, glm::vec3 p) {
     return (1.0f - a) + a * glm::clamp(glm::vec3(ta), 0.0f, 1.0f);
 }
 
-glm::vec3 transmittance(const Bvh& bvh, glm::vec3 origin, glm::vec3 direction, float tMax, TraceCounters* counters) {
+glm::vec3 transmittance(const Bvh& bvh, glm::vec3 origin, glm::vec3 direction, float tMax, float merge, TraceCounters* counters) {
+    float crossedT[4] = {};
+    uint32_t crossedObject[4] = {};
+    int crossed = 0;
     glm::vec3 inverse;
     for (int k = 0; k < 3; ++k) {
         const float d = std::abs(direction[k]) < 1e-20f ? std::copysign(1e-20f, direction[k]) : direction[k];
@@ -351,7 +354,18 @@ glm::vec3 transmittance(const Bvh& bvh, glm::vec3 origin, glm::vec3 direction, f
                 const Triangle& tri = bvh.triangles[i];
                 const float t = intersectTriangle(origin, direction, tri, tMax);
                 if (t < 0.0f) continue;
-                throughput *= crossing(bvh, tri, origin + t * direction);
+                const glm::vec3 factor = crossing(bvh, tri, origin + t * direction);
+                if (factor == glm::vec3(0.0f)) return factor;
+                // ray_trace.glsl's merge: one object's crossings closer than `merge` count once.
+                const uint32_t object = floatBits(tri.v2.w);
+                bool again = false;
+                for (int j = 0; j < std::min(crossed, 4); ++j)
+                    again = again || (crossedObject[j] == object && std::abs(crossedT[j] - t) < merge);
+                if (again) continue;
+                crossedT[crossed % 4] = t;
+                crossedObject[crossed % 4] = object;
+                ++crossed;
+                throughput *= factor;
                 if (throughput == glm::vec3(0.0f)) return throughput;
             }
         } else {

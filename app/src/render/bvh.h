@@ -100,8 +100,9 @@ struct TraceCounters {
 };
 // What reaches the end of the ray (origin + tMax * direction) under the physical model: the
 // product of (1 - a) + a t over every translucent caster crossed, 0 at an opaque one (any hit).
-// Textured materials are sampled at the hit's uv as sampleTexture does.
-glm::vec3 transmittance(const Bvh& bvh, glm::vec3 origin, glm::vec3 direction, float tMax,
+// Textured materials are sampled at the hit's uv as sampleTexture does. Translucent crossings of
+// one object less than `merge` apart along the ray count once (a shared edge; ray_trace.glsl).
+glm::vec3 transmittance(const Bvh& bvh, glm::vec3 origin, glm::vec3 direction, float tMax, float merge,
                         TraceCounters* counters = nullptr);
 
 } // namespace shadowlab::bvh
