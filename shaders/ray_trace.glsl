@@ -125,12 +125,19 @@ bool rtHitTriangle(RtRay r, uint tri, out vec3 uvw, out float t) {
     return t > 0.0 && t < r.tMax;
 }
 
-// What a hit on triangle `tri` lets through: 0 for an opaque material, else (1 - a) + a t.
+// The translucency model of the crossings (TranslucencyModel, technique.h): 0 opaque (every
+// caster blocks), 1 coverage 1 - a, 2 physical (1 - a) + a t (the default), 3 modified (1 - a) t,
+// 4 ignore (translucent casters let everything through). Set it before tracing.
+uint rtTranslucencyModel = 2u;
+
+// What a hit on triangle `tri` lets through: 0 for an opaque material, else the model's factor
+// (physical: (1 - a) + a t).
 vec3 rtCrossing(uint tri, vec3 uvw) {
     uint material = floatBitsToUint(rtTriangles[3u * tri].w);
     vec4 ta = rtMaterials[2u * material];
     uvec4 info = floatBitsToUint(rtMaterials[2u * material + 1u]);
-    if ((info.x & RT_MATERIAL_OPAQUE) != 0u) return vec3(0.0);
+    if ((info.x & RT_MATERIAL_OPAQUE) != 0u || rtTranslucencyModel == 0u) return vec3(0.0);
+    if (rtTranslucencyModel == 4u) return vec3(1.0);
     if (info.z > 0u) {
         uint record = floatBitsToUint(rtTriangles[3u * tri + 1u].w);
         vec4 uv01 = rtUvs[2u * record];
@@ -138,7 +145,10 @@ vec3 rtCrossing(uint tri, vec3 uvw) {
         ta = rtSampleTexture(info, uvw.x * uv01.xy + uvw.y * uv01.zw + uvw.z * uv2);
     }
     float alpha = clamp(ta.a, 0.0, 1.0);
-    return (1.0 - alpha) + alpha * clamp(ta.rgb, 0.0, 1.0);
+    vec3 t = clamp(ta.rgb, 0.0, 1.0);
+    if (rtTranslucencyModel == 1u) return vec3(1.0 - alpha);
+    if (rtTranslucencyModel == 3u) return (1.0 - alpha) * t;
+    return (1.0 - alpha) + alpha * t;
 }
 
 // Light reaching origin + tMax * direction (direction need not be unit; tMax in its units;

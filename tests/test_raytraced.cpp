@@ -245,3 +245,57 @@ TEST(RayTraced, CountersReportRaysNodeVisitsAndTheBvh) {
     EXPECT_GT(stats.at("triangle tests per pixel"), 0.0);
     EXPECT_GT(stats.at("bvh MiB"), 0.0);
 }
+
+// --reference-device gpu: the same rays through the GPU tracer, checked against Embree on every
+// built-in scene (hard, the physical and the opaque model) before it is trusted.
+TEST(RayTracedReference, GpuHardReferenceMatchesEmbreeOnEveryBuiltInScene) {
+    for (const std::string& name : builtinSceneNames()) {
+        auto app = test::makeHeadlessApp(name, {160, 120});
+        ASSERT_TRUE(app) << name;
+        app->setTranslucentLayers(0);
+        std::string error;
+        ASSERT_TRUE(app->renderFrame("shadowmap", error)) << error;
+        Difference total;
+        for (TranslucencyModel model : {TranslucencyModel::Physical, TranslucencyModel::Opaque}) {
+            ReferenceOptions options;
+            options.mode = Mode::Hard;
+            options.model = model;
+            Evaluation cpu, gpu;
+            app->setReferenceDevice(ReferenceDevice::Cpu);
+            ASSERT_TRUE(app->evaluate(options, cpu, error)) << error;
+            app->setReferenceDevice(ReferenceDevice::Gpu);
+            ASSERT_TRUE(app->evaluate(options, gpu, error)) << error;
+            const Difference d = differingPixels(gpu.reference, cpu.reference, cpu.mask);
+            total.differing += d.differing;
+            total.compared += d.compared;
+            EXPECT_LE(d.differing, std::max<size_t>(1, d.compared / 10000)) << name << " model " << int(model);
+        }
+        std::printf("gpu hard reference on %-15s: %zu of %zu pixels differ from Embree\n", name.c_str(), total.differing,
+                    total.compared);
+    }
+}
+
+TEST(RayTracedReference, GpuSoftReferenceAgreesWithEmbreeWithinTheirFloors) {
+    auto app = test::makeHeadlessApp("contact", {240, 180});
+    ASSERT_TRUE(app);
+    app->setTranslucentLayers(0);
+    std::string error;
+    ASSERT_TRUE(app->renderFrame("pcss", error)) << error;
+    ReferenceOptions options;
+    options.mode = Mode::Soft;
+    options.samplesPerPixel = 64;
+    options.adaptive = false;
+    Evaluation cpu, gpu;
+    app->setReferenceDevice(ReferenceDevice::Cpu);
+    ASSERT_TRUE(app->evaluate(options, cpu, error)) << error;
+    app->setReferenceDevice(ReferenceDevice::Gpu);
+    ASSERT_TRUE(app->evaluate(options, gpu, error)) << error;
+    const AccuracyMetrics between = compareVisibility(gpu.reference, cpu.reference, cpu.mask, cpu.width, cpu.height);
+    std::printf("gpu soft reference (64 rays) on contact: penumbra MAE %.4f from Embree's; floors %.4f (gpu) %.4f (Embree)\n",
+                between.maePenumbra, gpu.referenceFloor, cpu.referenceFloor);
+    EXPECT_GT(gpu.referenceFloor, 0.5 * cpu.referenceFloor) << "the same error estimate";
+    EXPECT_LT(gpu.referenceFloor, 2.0 * cpu.referenceFloor);
+    EXPECT_LT(between.maePenumbra, gpu.referenceFloor + cpu.referenceFloor);
+    // The techniques' scores barely move with the device.
+    EXPECT_NEAR(gpu.metrics.maePenumbra, cpu.metrics.maePenumbra, 0.25 * cpu.metrics.maePenumbra + 0.002);
+}

@@ -53,6 +53,7 @@ struct CommonOptions {
     int msaa = 0;
     bool depthPrepass = false;
     int translucentLayers = 4;
+    std::string referenceDevice = "cpu";
     std::string budget;
     bool quiet = false;
 };
@@ -85,6 +86,12 @@ bool buildOptions(const CommonOptions& common, AppOptions& options, std::string&
     options.msaaSamples = common.msaa;
     options.depthPrepass = common.depthPrepass;
     options.translucentLayers = common.translucentLayers;
+    if (common.referenceDevice == "gpu") {
+        options.referenceDevice = ReferenceDevice::Gpu;
+    } else if (common.referenceDevice != "cpu") {
+        error = "--reference-device '" + common.referenceDevice + "': expected cpu or gpu";
+        return false;
+    }
     if (!parseSize(common.size, options.size, error)) return false;
     // The budget part of the render-target check needs no GL: before a context or buffer exists.
     if (error = renderTargetBudgetProblem(options.size, options.msaaSamples, 0); !error.empty()) return false;
@@ -139,6 +146,10 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
                    "evaluation: translucent receivers peeled from the camera and measured, 0-8 (default 4; seed 001 "
                    "sec. 5.3.3)")
         ->check(CLI::Range(0, SHADOWLAB_MAX_TRANSLUCENT_LAYERS))
+        ->group("Output");
+    cmd.add_option("--reference-device", o.referenceDevice,
+                   "the ground truth of eval, bench and Measure accuracy: cpu (Embree, default) | gpu (the GPU ray tracer "
+                   "of issue 27, checked against Embree by the tests; docs/raytraced.md)")
         ->group("Output");
     cmd.add_option("--budget", o.budget,
                    "raise or lower the scene budget: objects=N,triangles=N,gpu-mib=N,file-mib=N (docs/scene-format.md, Limits)")
@@ -511,6 +522,7 @@ int commandEval(const CommonOptions& common, const std::string& reference, int s
         out["gpu_ms"][pass] = {{"median", summary.median}, {"p5", summary.p5}, {"p95", summary.p95}};
     out["cpu_ms"] = {{"median", m.cpuMs.median}, {"p5", m.cpuMs.p5}, {"p95", m.cpuMs.p95}};
     out["translucency_model"] = translucencyModelName(info->translucencyModel);
+    out["reference_device"] = referenceDeviceName(app.referenceDevice());
     // Against the physical model ("hard", "soft") and, where it differs, the technique's own
     // ("hard_own", "soft_own"): docs/benchmarks.md, "Translucency models".
     const std::vector<TranslucencyModel> models = judgedModels(info->translucencyModel, app.scene());
