@@ -9,7 +9,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <atomic>
 #include <limits>
+#include <thread>
 
 namespace shadowlab::bvh {
 namespace {
@@ -55,6 +57,118 @@ struct Task {
     uint32_t begin, end;
     int depth;
 };
+
+// Binned SAH from `root` (whose node already exists in `nodes`), making nodes in pairs at the end
+// of `nodes`. With `deferred`, tasks of fewer than `cutoff` triangles are left there unbuilt (their
+// node made, its content not): the subtrees the threads build.
+void buildNodes(std::vector<PrimRef>& refs, const BuildOptions& options, std::vector<Node>& nodes, Task root,
+                std::vector<Task>* deferred, uint32_t cutoff, int& depth) {
+    const int binCount = std::clamp(options.bins, 2, 64);
+    std::vector<Task> stack{root};
+    struct Bin {
+        Box box;
+        uint32_t count = 0;
+    };
+    std::vector<Bin> bins(size_t(3 * binCount));
+    std::vector<float> rightArea(static_cast<size_t>(binCount));
+    std::vector<uint32_t> rightCount(static_cast<size_t>(binCount));
+    while (!stack.empty()) {
+        const Task task = stack.back();
+        stack.pop_back();
+        depth = std::max(depth, task.depth);
+        if (deferred && task.end - task.begin < cutoff) {
+            deferred->push_back(task);
+            continue;
+        }
+        Box box, centres;
+        for (uint32_t i = task.begin; i < task.end; ++i) {
+            box.grow(refs[i].box);
+            centres.grow(refs[i].centre);
+        }
+        const uint32_t n = task.end - task.begin;
+        auto makeLeaf = [&] {
+            Node& node = nodes[task.node];
+            node.lo = glm::vec4(n ? box.lo : glm::vec3(0.0f), bitsFloat(task.begin));
+            node.hi = glm::vec4(n ? box.hi : glm::vec3(-1.0f), bitsFloat(n));
+        };
+        if (n <= uint32_t(std::max(1, options.leafSize)) || task.depth >= options.maxDepth) {
+            makeLeaf();
+            continue;
+        }
+        // Bin the centroids on every axis and sweep for the cheapest plane.
+        for (Bin& bin : bins) bin = {};
+        const glm::vec3 extent = centres.hi - centres.lo;
+        for (uint32_t i = task.begin; i < task.end; ++i)
+            for (int axis = 0; axis < 3; ++axis) {
+                if (!(extent[axis] > 0.0f)) continue;
+                const float f = (refs[i].centre[axis] - centres.lo[axis]) / extent[axis];
+                const int b = std::min(binCount - 1, int(f * float(binCount)));
+                Bin& bin = bins[size_t(axis * binCount + b)];
+                bin.box.grow(refs[i].box);
+                ++bin.count;
+            }
+        float bestCost = kInf;
+        int bestAxis = -1, bestSplit = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (!(extent[axis] > 0.0f)) continue;
+            const Bin* axisBins = &bins[size_t(axis * binCount)];
+            Box right;
+            uint32_t rc = 0;
+            for (int b = binCount - 1; b > 0; --b) {
+                right.grow(axisBins[b].box);
+                rc += axisBins[b].count;
+                rightArea[size_t(b)] = right.area();
+                rightCount[size_t(b)] = rc;
+            }
+            Box left;
+            uint32_t lc = 0;
+            for (int b = 0; b < binCount - 1; ++b) {
+                left.grow(axisBins[b].box);
+                lc += axisBins[b].count;
+                if (lc == 0 || rightCount[size_t(b + 1)] == 0) continue;
+                const float cost = left.area() * float(lc) + rightArea[size_t(b + 1)] * float(rightCount[size_t(b + 1)]);
+                if (cost < bestCost) {
+                    bestCost = cost;
+                    bestAxis = axis;
+                    bestSplit = b + 1;
+                }
+            }
+        }
+        // SAH: traversal cost 1, intersection cost 1 per triangle, relative to the node's area.
+        const float leafCost = box.area() * float(n);
+        uint32_t middle = task.begin;
+        if (bestAxis >= 0) {
+            if (bestCost + box.area() >= leafCost && n <= uint32_t(options.maxLeafSize)) {
+                makeLeaf();
+                continue;
+            }
+            const float lo = centres.lo[bestAxis], ext = extent[bestAxis];
+            middle = uint32_t(std::partition(refs.begin() + task.begin, refs.begin() + task.end,
+                                             [&](const PrimRef& r) {
+                                                 const float f = (r.centre[bestAxis] - lo) / ext;
+                                                 return std::min(binCount - 1, int(f * float(binCount))) < bestSplit;
+                                             }) -
+                              refs.begin());
+        }
+        if (middle == task.begin || middle == task.end) {
+            // Every centroid in one place (or one bin): split the range in two halves.
+            if (n <= uint32_t(options.maxLeafSize)) {
+                makeLeaf();
+                continue;
+            }
+            middle = task.begin + n / 2;
+        }
+        const uint32_t left = uint32_t(nodes.size());
+        nodes.push_back({});
+        nodes.push_back({});
+        Node& node = nodes[task.node];
+        node.lo = glm::vec4(box.lo, bitsFloat(left));
+        node.hi = glm::vec4(box.hi, bitsFloat(0u));
+        stack.push_back({left + 1, middle, task.end, task.depth + 1});
+        stack.push_back({left, task.begin, middle, task.depth + 1});
+    }
+
+}
 
 } // namespace
 
@@ -146,109 +260,46 @@ Bvh build(const Scene& scene, const BuildOptions& options) {
         r.index = uint32_t(i);
     }
 
-    const int binCount = std::clamp(options.bins, 2, 64);
-    out.nodes.reserve(refs.empty() ? 1 : 2 * refs.size() / size_t(std::max(1, options.leafSize)) * 2 + 1);
+    // The top of the tree on this thread, down to subtrees of about 1 / (8 threads) of the
+    // triangles; those are built in parallel into their own arrays, then appended in order (the
+    // tree does not depend on the thread count or the schedule).
+    out.nodes.reserve(refs.empty() ? 1 : 2 * refs.size() / size_t(std::max(1, options.leafSize)) + 1);
     out.nodes.push_back({});
-    std::vector<Task> stack{{0, 0, uint32_t(refs.size()), 0}};
-    struct Bin {
-        Box box;
-        uint32_t count = 0;
-    };
-    std::vector<Bin> bins(size_t(3 * binCount));
-    std::vector<float> rightArea(static_cast<size_t>(binCount));
-    std::vector<uint32_t> rightCount(static_cast<size_t>(binCount));
-    while (!stack.empty()) {
-        const Task task = stack.back();
-        stack.pop_back();
-        out.depth = std::max(out.depth, task.depth);
-        Box box, centres;
-        for (uint32_t i = task.begin; i < task.end; ++i) {
-            box.grow(refs[i].box);
-            centres.grow(refs[i].centre);
-        }
-        const uint32_t n = task.end - task.begin;
-        auto makeLeaf = [&] {
-            Node& node = out.nodes[task.node];
-            node.lo = glm::vec4(n ? box.lo : glm::vec3(0.0f), bitsFloat(task.begin));
-            node.hi = glm::vec4(n ? box.hi : glm::vec3(-1.0f), bitsFloat(n));
+    const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, 64u);
+    const uint32_t cutoff = threads > 1 ? std::max<uint32_t>(65536u, uint32_t(refs.size() / (8u * threads))) : 0u;
+    std::vector<Task> subtrees;
+    buildNodes(refs, options, out.nodes, {0, 0, uint32_t(refs.size()), 0}, cutoff ? &subtrees : nullptr, cutoff, out.depth);
+    if (!subtrees.empty()) {
+        std::vector<std::vector<Node>> local(subtrees.size());
+        std::vector<int> depths(subtrees.size(), 0);
+        std::atomic<size_t> next{0};
+        auto work = [&] {
+            for (size_t i; (i = next++) < subtrees.size();) {
+                local[i].push_back({});
+                buildNodes(refs, options, local[i], {0, subtrees[i].begin, subtrees[i].end, subtrees[i].depth}, nullptr, 0,
+                           depths[i]);
+            }
         };
-        if (n <= uint32_t(std::max(1, options.leafSize)) || task.depth >= options.maxDepth) {
-            makeLeaf();
-            continue;
+        std::vector<std::thread> pool;
+        for (unsigned t = 1; t < std::min<unsigned>(threads, unsigned(subtrees.size())); ++t) pool.emplace_back(work);
+        work();
+        for (std::thread& thread : pool) thread.join();
+        // Local node 0 is the subtree's root (node subtrees[i].node); local c >= 1 goes to offset + c - 1.
+        for (size_t i = 0; i < subtrees.size(); ++i) {
+            const uint32_t offset = uint32_t(out.nodes.size());
+            auto place = [&](Node node) {
+                if (floatBits(node.hi.w) == 0u) node.lo.w = bitsFloat(offset + floatBits(node.lo.w) - 1u);
+                return node;
+            };
+            out.nodes[subtrees[i].node] = place(local[i][0]);
+            for (size_t c = 1; c < local[i].size(); ++c) out.nodes.push_back(place(local[i][c]));
+            out.depth = std::max(out.depth, depths[i]);
         }
-        // Bin the centroids on every axis and sweep for the cheapest plane.
-        for (Bin& bin : bins) bin = {};
-        const glm::vec3 extent = centres.hi - centres.lo;
-        for (uint32_t i = task.begin; i < task.end; ++i)
-            for (int axis = 0; axis < 3; ++axis) {
-                if (!(extent[axis] > 0.0f)) continue;
-                const float f = (refs[i].centre[axis] - centres.lo[axis]) / extent[axis];
-                const int b = std::min(binCount - 1, int(f * float(binCount)));
-                Bin& bin = bins[size_t(axis * binCount + b)];
-                bin.box.grow(refs[i].box);
-                ++bin.count;
-            }
-        float bestCost = kInf;
-        int bestAxis = -1, bestSplit = 0;
-        for (int axis = 0; axis < 3; ++axis) {
-            if (!(extent[axis] > 0.0f)) continue;
-            const Bin* axisBins = &bins[size_t(axis * binCount)];
-            Box right;
-            uint32_t rc = 0;
-            for (int b = binCount - 1; b > 0; --b) {
-                right.grow(axisBins[b].box);
-                rc += axisBins[b].count;
-                rightArea[size_t(b)] = right.area();
-                rightCount[size_t(b)] = rc;
-            }
-            Box left;
-            uint32_t lc = 0;
-            for (int b = 0; b < binCount - 1; ++b) {
-                left.grow(axisBins[b].box);
-                lc += axisBins[b].count;
-                if (lc == 0 || rightCount[size_t(b + 1)] == 0) continue;
-                const float cost = left.area() * float(lc) + rightArea[size_t(b + 1)] * float(rightCount[size_t(b + 1)]);
-                if (cost < bestCost) {
-                    bestCost = cost;
-                    bestAxis = axis;
-                    bestSplit = b + 1;
-                }
-            }
-        }
-        // SAH: traversal cost 1, intersection cost 1 per triangle, relative to the node's area.
-        const float leafCost = box.area() * float(n);
-        uint32_t middle = task.begin;
-        if (bestAxis >= 0) {
-            if (bestCost + box.area() >= leafCost && n <= uint32_t(options.maxLeafSize)) {
-                makeLeaf();
-                continue;
-            }
-            const float lo = centres.lo[bestAxis], ext = extent[bestAxis];
-            middle = uint32_t(std::partition(refs.begin() + task.begin, refs.begin() + task.end,
-                                             [&](const PrimRef& r) {
-                                                 const float f = (r.centre[bestAxis] - lo) / ext;
-                                                 return std::min(binCount - 1, int(f * float(binCount))) < bestSplit;
-                                             }) -
-                              refs.begin());
-        }
-        if (middle == task.begin || middle == task.end) {
-            // Every centroid in one place (or one bin): split the range in two halves.
-            if (n <= uint32_t(options.maxLeafSize)) {
-                makeLeaf();
-                continue;
-            }
-            middle = task.begin + n / 2;
-        }
-        const uint32_t left = uint32_t(out.nodes.size());
-        out.nodes.push_back({});
-        out.nodes.push_back({});
-        Node& node = out.nodes[task.node];
-        node.lo = glm::vec4(box.lo, bitsFloat(left));
-        node.hi = glm::vec4(box.hi, bitsFloat(0u));
-        stack.push_back({left + 1, middle, task.end, task.depth + 1});
-        stack.push_back({left, task.begin, middle, task.depth + 1});
     }
 
+    // No caster: one leaf holding the zero triangle, which no ray hits (its determinant is 0), so
+    // the traversal needs no special case (an empty leaf reads as an interior node).
+    if (refs.empty()) out.nodes[0] = {glm::vec4(0.0f, 0.0f, 0.0f, bitsFloat(0u)), glm::vec4(0.0f, 0.0f, 0.0f, bitsFloat(1u))};
     out.triangleCount = triangles.size();
     out.triangles.resize(std::max<size_t>(1, triangles.size()));
     for (size_t i = 0; i < refs.size(); ++i) out.triangles[i] = triangles[refs[i].index];
