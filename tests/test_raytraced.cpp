@@ -299,3 +299,18 @@ TEST(RayTracedReference, GpuSoftReferenceAgreesWithEmbreeWithinTheirFloors) {
     // The techniques' scores barely move with the device.
     EXPECT_NEAR(gpu.metrics.maePenumbra, cpu.metrics.maePenumbra, 0.25 * cpu.metrics.maePenumbra + 0.002);
 }
+
+// pass = fragment: shadowTerm() traces itself, no camera pre-pass (the flag condition), the same image.
+TEST(RayTraced, FragmentPassTracesTheSameImageWithoutThePrepass) {
+    auto app = test::makeHeadlessApp("glass-field", {160, 120});
+    ASSERT_TRUE(app);
+    const Evaluation e =
+        test::evaluateTechnique(*app, "raytraced", {"pass=fragment"}, Mode::Hard, 1, TranslucencyModel::Physical);
+    std::string error;
+    EXPECT_EQ(app->techniques().get("raytraced", error)->host().frameFlags() & kTechniqueNeedsCameraPrepass, 0u)
+        << "no pre-pass asked for";
+    const Difference d = differingPixels(e.technique, e.reference, e.mask);
+    std::printf("raytraced pass = fragment on glass-field: %zu of %zu pixels differ\n", d.differing, d.compared);
+    EXPECT_GT(d.compared, 1000u);
+    EXPECT_LE(d.differing, std::max<size_t>(1, d.compared / 10000));
+}

@@ -46,6 +46,10 @@ constexpr ParamDesc kParams[] = {
      "Weight of the previous frame's result, reprojected to this frame's pixel (0: off). High weights average many "
      "frames of jitter into a smooth penumbra but lag behind moving shadows (ghosting); rejected where the "
      "reprojected pixel held another surface.", nullptr},
+    {"pass", "where rays start", ParamType::Enum, 0, 1, 0, "",
+     "compute: a compute pass over the host's camera pre-pass, once per pixel, into a screen image. fragment: the main "
+     "pass's shadowTerm() traces itself (a ray query in the fragment stage): no pre-pass, but every shaded fragment "
+     "traces, overdraw included (use the host's depth pre-pass). Counters and temporal need compute.", "compute|fragment"},
     {"counters", "count rays and visits", ParamType::Bool, 0, 1, 0, "",
      "Counts rays, BVH node visits and triangle tests per pixel (statistics and the 'ray cost' heat map). Costs "
      "atomics and a second program variant; off for timing.", nullptr},
@@ -53,8 +57,12 @@ constexpr ParamDesc kParams[] = {
 enum : uint32_t {
     kRays = kit::paramIndex(kParams, "rays"),
     kTemporal = kit::paramIndex(kParams, "temporal"),
+    kPass = kit::paramIndex(kParams, "pass"),
     kCounters = kit::paramIndex(kParams, "counters"),
 };
+
+// The camera pre-pass only feeds the compute pass.
+constexpr FlagCondition kFlagConditions[] = {{kTechniqueNeedsCameraPrepass, "pass", "compute"}};
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "raytraced",
@@ -67,7 +75,9 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "not with a map's resolution. Debug view: 'ray cost' (counters on) shows BVH work per pixel.",
      .shadowGlsl = "raytraced.glsl",
      .flags = kTechniqueNeedsCameraPrepass,
-     .translucencyModel = TranslucencyModel::Physical},
+     .translucencyModel = TranslucencyModel::Physical,
+     .flagConditions = kFlagConditions,
+     .flagConditionCount = 1},
     kParams);
 
 // Counter read-back ring: slot i is read only once its end timestamp is available (the GPU has
@@ -100,9 +110,8 @@ class RayTraced final : public kit::TechniqueBase {
         host().reportStatistic("bvh MiB", double(scene->bytes) / (1024.0 * 1024.0));
         host().reportStatistic("bvh depth", scene->depth);
         const auto* prepass = static_cast<const CameraPrepass*>(host().extension(SHADOWLAB_EXT_CAMERA_PREPASS));
-        if (!prepass || !prepass->position) return;
-        resize(prepass->size);
-        const bool counters = params.asBool(kCounters);
+        const bool fragment = params.asInt(kPass) == 1 || !prepass || !prepass->position;
+        const bool counters = params.asBool(kCounters) && !fragment;
         const float temporal = params.asFloat(kTemporal);
         const int rays = params.asInt(kRays);
         // Results in flight were counted with other settings: dropped. Without counters the
@@ -122,8 +131,10 @@ class RayTraced final : public kit::TechniqueBase {
         u.uRtLightPosition = glm::vec4(frame.light.position, float(frame.light.type));
         u.uRtLightDirection = glm::vec4(frame.light.direction, frame.light.size);
         u.uRtParams = glm::vec4(scene->rayOffset, std::cos(frame.light.spotOuterAngle), temporal, 10.0f * scene->rayOffset);
-        u.uRtOptions = glm::uvec4(uint32_t(rays), frame.randomSeed, historyValid_ ? 1u : 0u, 0u);
+        u.uRtOptions = glm::uvec4(uint32_t(rays), frame.randomSeed, historyValid_ ? 1u : 0u, fragment ? 1u : 0u);
         uniforms_.set(u);
+        if (fragment) return;   // shadowTerm() traces
+        resize(prepass->size);
 
         current_ = 1 - current_;
         GpuPass pass(host(), "trace");

@@ -15,7 +15,7 @@ SHADOWLAB_UNIFORM_BLOCK(RaytracedUniforms, 2) {
     vec4 uRtLightPosition;            // xyz, w = type (0 directional, 1 spot, 2 point)
     vec4 uRtLightDirection;           // xyz travel direction, w = size (radius, or angular radius)
     vec4 uRtParams;                   // x ray offset, y cos(spot outer angle), z history weight, w match tolerance
-    uvec4 uRtOptions;                 // x rays per pixel (1: hard), y frame seed, z 1 history valid, w 0
+    uvec4 uRtOptions;                 // x rays per pixel (1: hard), y frame seed, z 1 history valid, w 1 pass = fragment
 };
 SHADOWLAB_SHARED_END
 // Storage binding of the counter totals (counters on): uint lo/hi pairs of rays, node visits,
