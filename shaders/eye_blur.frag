@@ -1,8 +1,8 @@
 // One direction of the host's eye-space depth-dependent blur of the shadow term (seed 002 sec. 6.3,
-// 9.4.2; the kernel and its width law in shadowlab/eye_blur_shared.h). Run along x, then along y.
+// 9.4.2; the kernel and its width law in host_shared/eye_blur_shared.h). Run along x, then along y.
 // The source holds rgb = the technique's shadow term of the opaque surface in each pixel and
 // a = its view depth (0: no surface); the output keeps the centre's depth.
-#include "shadowlab/eye_blur_shared.h"
+#include "host_shared/eye_blur_shared.h"
 
 in vec2 vUv;
 layout(location = 0) out vec4 outTerm;

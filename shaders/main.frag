@@ -4,7 +4,7 @@
 // SHADOWLAB_ACCURACY_TARGETS for the frames measured for accuracy (never timed): those also write
 // the shadow term with a mask of where it is comparable, and the world position and normal.
 //
-// The eye-space blur (seed 002 sec. 6.3, 9.4.2; shadowlab/eye_blur_shared.h) adds two variants,
+// The eye-space blur (seed 002 sec. 6.3, 9.4.2; host_shared/eye_blur_shared.h) adds two variants,
 // built on first use: SHADOWLAB_EYE_BLUR_TERM writes only the shadow term of the unlit,
 // unicoloured geometry (Fig. 6.5) and the view depth, for the blur; SHADOWLAB_EYE_BLUR_READ (with
 // or without the accuracy targets) reads the blurred term at the pixel instead of calling
@@ -12,7 +12,7 @@
 // calls it for translucent surfaces, which the term texture does not hold.
 //
 // SHADOWLAB_TRANSLUCENT_PEEL (with the accuracy targets; evaluation frames only,
-// shadowlab/translucent_layers_shared.h) draws one translucent layer: fragments at or in front of
+// host_shared/translucent_layers_shared.h) draws one translucent layer: fragments at or in front of
 // the previous layer's depth, or at or behind the opaque depth, are discarded at the end (so
 // shadowTerm() still runs in uniform control flow).
 //
@@ -22,9 +22,9 @@
 // none = the term on unlit surfaces, colour = albedo (ambient + light s), no N.L and no
 // specular: the projection aliasing the lighting would hide stays visible (Fig. 6.7, left).
 #include "common.glsl"
-#include "shadowlab/eye_blur_shared.h"
+#include "host_shared/eye_blur_shared.h"
 #ifdef SHADOWLAB_TRANSLUCENT_PEEL
-#include "shadowlab/translucent_layers_shared.h"
+#include "host_shared/translucent_layers_shared.h"
 layout(binding = kPeelPreviousDepthUnit) uniform sampler2D uPeelPreviousDepth;
 layout(binding = kPeelOpaqueDepthUnit) uniform sampler2D uPeelOpaqueDepth;
 #endif

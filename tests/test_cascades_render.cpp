@@ -8,7 +8,7 @@
 #include <cmath>
 #include <set>
 
-#include "../plugins/csm/csm_shared.h"
+#include "shadowlab/kit/csm_shared.h"
 #include "shadowlab/kit/cascades.h"
 #include "shadowlab/kit/cube_depth_map.h"
 #include "shadowlab/kit/depth_map.h"

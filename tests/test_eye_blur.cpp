@@ -1,5 +1,5 @@
 // The host's eye-space depth-dependent blur of the shadow term and the lighting rules (seed 002
-// sec. 6.2, 6.3, 9.4.2, Figs. 6.6-6.7; shadowlab/eye_blur_shared.h, render/renderer.h eyeBlur*,
+// sec. 6.2, 6.3, 9.4.2, Figs. 6.6-6.7; host_shared/eye_blur_shared.h, render/renderer.h eyeBlur*,
 // plugin/host_params.h), on OSMesa (llvmpipe).
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include "bench/bench_spec.h"
 #include "groundtruth/reference_technique.h"
 #include "plugin/plugin_library.h"
-#include "shadowlab/eye_blur_shared.h"
+#include "host_shared/eye_blur_shared.h"
 #include "test_support.h"
 #include "util/paths.h"
 

@@ -8,7 +8,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "../plugins/lispsm/lispsm_warp.h"
+#include "shadowlab/kit/lispsm_warp.h"
 #include "camera.h"
 #include "render/light_space.h"
 #include "shadowlab/kit/focus.h"

@@ -2,11 +2,13 @@
 // light-space fitting, and timing percentiles.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "../plugins/planar/planar_projection.h"
+#include "shadowlab/kit/planar_projection.h"
 #include "render/light_space.h"
 #include "util/stats.h"
 
@@ -107,4 +109,22 @@ TEST(Stats, PercentilesInterpolateBetweenRanks) {
     EXPECT_DOUBLE_EQ(s.mean, 50.5);
     EXPECT_DOUBLE_EQ(percentile({3.0}, 0.95), 3.0);
     EXPECT_DOUBLE_EQ(summarize({}).median, 0.0);
+}
+
+// The linear-time selection gives exactly what interpolating in a sorted copy gives, ties included.
+TEST(Stats, PercentilesEqualThoseOfASortedCopy) {
+    std::mt19937 random(7);
+    std::uniform_int_distribution<int> small(0, 40);   // many ties
+    for (int trial = 0; trial < 20; ++trial) {
+        std::vector<double> values(size_t(1 + trial * 37));
+        for (double& v : values) v = trial % 2 ? double(small(random)) : std::ldexp(double(random()), -20);
+        std::vector<double> sorted = values;
+        std::sort(sorted.begin(), sorted.end());
+        for (const double fraction : {0.0, 0.05, 0.5, 0.95, 1.0, 0.333}) {
+            const double rank = fraction * double(sorted.size() - 1);
+            const size_t below = size_t(std::floor(rank)), above = std::min(below + 1, sorted.size() - 1);
+            const double expected = sorted[below] + (sorted[above] - sorted[below]) * (rank - double(below));
+            EXPECT_EQ(percentile(values, fraction), expected) << trial << " " << fraction;
+        }
+    }
 }

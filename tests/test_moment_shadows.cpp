@@ -11,7 +11,7 @@
 #include <random>
 #include <set>
 
-#include "../plugins/msm/hamburger4msm.h"
+#include "shadowlab/kit/hamburger4msm.h"
 #include "shadowlab/kit/moment_light_space.h"
 #include "shadowlab/kit/moment_map_shared.h"
 #include "render/light_space.h"

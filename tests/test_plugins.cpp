@@ -103,16 +103,44 @@ TEST(PluginLibrary, RefusesAWrongAbiVersionNamingTheFile) {
     std::string error;
     EXPECT_FALSE(PluginLibrary::open(kTestPlugins / "wrong_abi.so", error));
     EXPECT_NE(error.find("wrong_abi.so"), std::string::npos) << error;
-    EXPECT_NE(error.find("ABI version " + std::to_string(SHADOWLAB_ABI_VERSION + 1000)), std::string::npos) << error;
-    EXPECT_NE(error.find("host expects " + std::to_string(SHADOWLAB_ABI_VERSION)), std::string::npos) << error;
+    EXPECT_NE(error.find("ABI version " + std::to_string(SHADOWLAB_ABI_VERSION + 1000) + ".0"), std::string::npos) << error;
+    EXPECT_NE(error.find("host expects " + std::to_string(SHADOWLAB_ABI_VERSION) + ".x"), std::string::npos) << error;
+}
+
+// The host's built-in techniques own their ids: a library claiming one is refused, named.
+TEST(PluginLibrary, ScanRefusesALibraryClaimingAReservedId) {
+    const PluginScan scan = scanPlugins(kTestPlugins, {"reload_test"});
+    for (const auto& info : scan.techniques) EXPECT_NE(info.id, "reload_test");
+    bool named = false;
+    for (const auto& error : scan.errors)
+        named |= error.find("reload_v1.so: technique id 'reload_test' belongs to the host's built-in technique") != std::string::npos;
+    EXPECT_TRUE(named);
+}
+
+// CLAP's rule: any minor version of the host's major version loads. A 3.0 entry ends before
+// structSize (read nothing past it); a later minor version's longer entry is read as far as known.
+TEST(PluginLibrary, LoadsPluginsBuiltForAnyMinorVersionOfAbi3) {
+    for (const auto& [file, minor] : {std::pair{"abi3_0.so", 0u}, std::pair{"abi3_9.so", 9u}}) {
+        std::string error;
+        auto library = PluginLibrary::open(kTestPlugins / file, error);
+        ASSERT_TRUE(library) << file << ": " << error;
+        EXPECT_EQ(library->abiMinor(), minor) << file;
+        EXPECT_EQ(library->info().id, "abi3_test") << file;
+        shadowlab::IShadowTechnique* technique = library->entry().create();
+        ASSERT_NE(technique, nullptr) << file;
+        library->entry().destroy(technique);
+    }
+    EXPECT_EQ(SHADOWLAB_ABI_ENTRY_VERSION, (1u << 16) | 3u);
+    const shadowlab::PluginEntry current{SHADOWLAB_ABI_ENTRY_VERSION, nullptr, nullptr, nullptr};
+    EXPECT_EQ(current.structSize, sizeof(shadowlab::PluginEntry));   // initialised by default
 }
 
 TEST(PluginLibrary, RefusesAnAbi2PluginNamingTheFileAndBothVersions) {
     std::string error;
     EXPECT_FALSE(PluginLibrary::open(kTestPlugins / "abi2.so", error));
     EXPECT_NE(error.find("abi2.so"), std::string::npos) << error;
-    EXPECT_NE(error.find("plugin ABI version 2,"), std::string::npos) << error;
-    EXPECT_NE(error.find("host expects 3"), std::string::npos) << error;
+    EXPECT_NE(error.find("plugin ABI version 2.0,"), std::string::npos) << error;
+    EXPECT_NE(error.find("host expects 3.x"), std::string::npos) << error;
     EXPECT_EQ(SHADOWLAB_ABI_VERSION, 3u);
 }
 

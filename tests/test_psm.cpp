@@ -8,7 +8,7 @@
 
 #include <random>
 
-#include "../plugins/psm/psm_space.h"
+#include "shadowlab/kit/psm_space.h"
 #include "camera.h"
 #include "shadowlab/kit/focus.h"
 

@@ -14,7 +14,7 @@ shift || true
 packages=(build-essential cmake ninja-build pkg-config python3 python3-glad
           libglfw3-dev libglm-dev libimgui-dev libtinyobjloader-dev libstb-dev
           libegl-dev libgl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri
-          libgtest-dev libcli11-dev nlohmann-json3-dev libembree-dev
+          libgtest-dev libcli11-dev libpng-dev nlohmann-json3-dev libembree-dev
           glslang-tools python3-matplotlib xvfb xauth xdotool fonts-dejavu-core
           chromium)
 missing=()

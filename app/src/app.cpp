@@ -16,7 +16,7 @@
 #include "groundtruth/reference_technique.h"
 #include "render/light_space.h"
 #include "shadowlab/kit/depth_map_shared.h"
-#include "util/gl_limits.h"
+#include "render/render_limits.h"
 #include "util/log.h"
 #include "util/paths.h"
 
@@ -77,7 +77,7 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
     translucentLayers_ = options.translucentLayers;
     referenceDevice_ = options.referenceDevice;
     techniques_ = std::make_unique<TechniqueManager>(HostContext{*renderer_, *shaders_, *timer_, backend_->loader()}, pluginDir());
-    techniques_->scan();
+    techniques_->scan({referenceDescriptor().id});
     techniques_->registerBuiltin(copyDescriptor(referenceDescriptor(), {}), [this] {
         return std::make_unique<ReferenceTechnique>(
             [this](const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
@@ -574,7 +574,18 @@ bool App::traceReference(const GBufferView& gbuffer, const ReferenceOptions& opt
             groundTruth_->setScene(*scene_);   // the BVH is built once per scene
             groundTruthGeneration_ = sceneGeneration_;
         }
-        groundTruth_->trace(gbuffer, light_, options, visibility, stats);
+        // Every technique of a frame has the same G-buffer: its reference is traced once.
+        const ReferenceCache::Key key = ReferenceCache::keyOf(gbuffer, light_, options, sceneGeneration_);
+        const ReferenceStats* cachedStats = nullptr;
+        if (const auto* cached = referenceCache_.find(key, &cachedStats)) {
+            visibility = *cached;
+            if (stats) *stats = *cachedStats;
+            return true;
+        }
+        ReferenceStats traced;
+        groundTruth_->trace(gbuffer, light_, options, visibility, &traced);
+        referenceCache_.insert(key, visibility, traced);
+        if (stats) *stats = std::move(traced);
     } catch (const std::exception& e) {
         error = std::string("ground truth: ") + e.what();
         return false;

@@ -13,6 +13,7 @@
 #include "camera.h"
 #include "groundtruth/groundtruth.h"
 #include "groundtruth/metrics.h"
+#include "groundtruth/reference_cache.h"
 #include "groundtruth/texel_footprint.h"
 #include "plugin/host_params.h"
 #include "plugin/params.h"
@@ -181,6 +182,9 @@ public:
     // Traces the current scene and light for `gbuffer` (loads the Embree module on first use).
     bool traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
                         std::string& error, ReferenceStats* stats = nullptr);
+    // The traces of this run, shared by every technique measured on the same G-buffer, light and
+    // options (groundtruth/reference_cache.h); `enabled = false` traces every time.
+    ReferenceCache& referenceCache() { return referenceCache_; }
 
     GlBackend& backend() { return *backend_; }
     Renderer& renderer() { return *renderer_; }
@@ -191,6 +195,7 @@ public:
     const Scene& scene() const { return *scene_; }
     LightInfo& light() { return light_; }
     CameraController& camera() { return camera_; }
+    const AppOptions& options() const { return options_; }
     std::string firstTechnique() const;
     double lastCpuFrameMs() const { return lastCpuFrameMs_; }
     const FrameContext& lastFrame() const { return frame_; }
@@ -231,6 +236,7 @@ private:
     GroundTruthPtr groundTruth_;
     ReferenceDevice referenceDevice_ = ReferenceDevice::Cpu;
     std::unique_ptr<GpuReference> gpuReference_;   // made on first use with the GPU device
+    ReferenceCache referenceCache_;
     uint64_t sceneGeneration_ = 0;         // bumped when the scene changes
     uint64_t groundTruthGeneration_ = ~0ull;
 };

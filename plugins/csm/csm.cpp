@@ -29,7 +29,7 @@
 #include <shadowlab/kit/shadow_map_report.h>
 #include <shadowlab/kit/technique_base.h>
 
-#include "csm_shared.h"
+#include "shadowlab/kit/csm_shared.h"
 
 namespace {
 

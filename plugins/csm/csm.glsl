@@ -5,7 +5,7 @@
 // to reach back over that band, kit/cascades.h: cascadeRanges). Point lights: the kit's cube map.
 #include "light_space.glsl"
 #include "cube_shadow.glsl"
-#include "csm_shared.h"
+#include "shadowlab/kit/csm_shared.h"
 
 layout(binding = kCascadeMapsUnit) uniform sampler2DArrayShadow uCascadeMaps;
 

@@ -3,7 +3,7 @@
 // triangle misses on one side emit nothing. CSM_CASCADES (csm.cpp builds one program per count)
 // sets the instances per triangle, so no invocation is spent on a cascade that does not exist. Depth is
 // clamped (GL_DEPTH_CLAMP), so casters nearer the light than a cascade's near plane still land.
-#include "csm_shared.h"
+#include "shadowlab/kit/csm_shared.h"
 
 layout(triangles, invocations = CSM_CASCADES) in;
 layout(triangle_strip, max_vertices = 3) out;

@@ -3,7 +3,7 @@
 // camera sees, reduced from the host's camera pre-pass. One texel per invocation, a 16 x 16 tile
 // reduced in shared memory, then one atomic per tile into the frame's slot of the ring.
 #include "shadowlab/frame_block.h"
-#include "csm_shared.h"
+#include "shadowlab/kit/csm_shared.h"
 
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(binding = kPrepassPositionUnit) uniform sampler2D uPrepassPosition;   // xyz world, w = 1 where drawn

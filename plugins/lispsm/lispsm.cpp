@@ -16,7 +16,7 @@
 #include <shadowlab/kit/technique_base.h>
 
 #include "lispsm_shared.h"
-#include "lispsm_warp.h"
+#include "shadowlab/kit/lispsm_warp.h"
 
 namespace {
 

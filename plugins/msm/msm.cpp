@@ -14,7 +14,7 @@
 #include <shadowlab/kit/params.h>
 
 #include "msm_shared.h"
-#include "hamburger4msm.h"
+#include "shadowlab/kit/hamburger4msm.h"
 
 namespace {
 

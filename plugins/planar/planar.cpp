@@ -18,7 +18,7 @@
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
-#include "planar_projection.h"
+#include "shadowlab/kit/planar_projection.h"
 #include "planar_shared.h"
 
 namespace {

@@ -10,7 +10,7 @@
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
-#include "psm_space.h"
+#include "shadowlab/kit/psm_space.h"
 
 namespace {
 

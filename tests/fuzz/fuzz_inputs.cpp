@@ -232,4 +232,19 @@ bool fuzzPath(const uint8_t* data, size_t size) {
     return accepted;
 }
 
+bool fuzzTexture(const uint8_t* data, size_t size) {
+    const std::string bytes(reinterpret_cast<const char*>(data), size);
+    try {
+        // 64 MiB of decoded texels at most, so inputs at the budget stay fast.
+        const Texture texture = decodePngTexture(bytes, "fuzz.png", 0.5f, uint64_t(64) << 20);
+        if (texture.width < 1 || texture.height < 1 || texture.width > kMaxTextureSize || texture.height > kMaxTextureSize)
+            broken("a texture of a size out of range was accepted");
+        if (texture.rgba.size() != size_t(texture.width) * size_t(texture.height) * 4) broken("texels and size disagree");
+        return true;
+    } catch (const SceneError& e) {
+        if (std::string(e.what()).rfind("fuzz.png: ", 0) != 0) broken(std::string("the error does not name the file: ") + e.what());
+        return false;
+    }
+}
+
 } // namespace shadowlab::fuzz

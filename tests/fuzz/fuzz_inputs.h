@@ -41,4 +41,8 @@ bool fuzzTour(const uint8_t* data, size_t size);
 // naming the source. Returns whether either accepted it.
 bool fuzzPath(const uint8_t* data, size_t size);
 
+// A texture file (PNG, the one image format scenes take): decodePngTexture either gives a texture
+// of 1 to kMaxTextureSize texels a side with all its texels, or a SceneError naming the file.
+bool fuzzTexture(const uint8_t* data, size_t size);
+
 } // namespace shadowlab::fuzz

@@ -17,6 +17,39 @@
 //   host: main-pass state, forward Blinn-Phong; `vec3 shadowTerm(ShadowInput s)` (the GLSL file
 //         named by TechniqueDesc::shadowGlsl) multiplies the direct light
 //
+// Threads, GL contexts and lifetimes (the rules every call below follows; CLAP states them per call):
+//   - One thread. The host calls into a plugin only from its render thread, the thread that owns
+//     the GL context; never from two threads at once. A plugin must not call the host from any
+//     other thread (IHost is not thread-safe) and must not keep threads of its own running across
+//     calls (hot reload unloads the library right after destroy()).
+//   - GL context. describe() is called without any GL context (`shadowlab list`, plugin scans);
+//     create() and destroy() may be called without one too, so a constructor or destructor makes
+//     no GL call. init(), renderShadows(), bindMainPass(), shutdown(), every installed hook and
+//     every IHost method are called with the host's one GL context current.
+//   - Lifetimes of what the host hands out:
+//       IHost&: from init() until the technique is destroyed;
+//       objects(), bounds(): until the next scene load (the host keeps the technique across scene
+//         loads: re-read objectCount() and objects() every frame, never cache the pointer);
+//       extension(id): the returned struct lives as long as the IHost; what it points at (the
+//         camera pre-pass textures, the scene's geometry buffers) is valid during the frame it is
+//         queried in (re-query every frame: they change on resize and scene load);
+//       ParamValues and its data, FrameContext: during the call they are passed to only;
+//       GL names from createTexture/createBuffer/createFramebuffer, ProgramId: until the
+//         technique destroys them, or until shutdown() returns (the host releases leftovers);
+//         glProgram(id) may change between frames (shader hot reload): look it up every frame.
+//   - Lifetimes of what a plugin hands the host: the descriptor, its strings and parameter table
+//     while the library is loaded (static data); reported structs (shadow maps, footprints) are
+//     copied during the report call; a hook's `user` pointer until it is removed or shutdown().
+//
+// Versions. SHADOWLAB_ABI_VERSION is the major version: a plugin of another major version is
+// refused. SHADOWLAB_ABI_MINOR counts additions that keep every existing layout and meaning (new
+// fields at the end of a struct with structSize, new extensions): a host accepts plugins built for
+// any minor version of its major version, and reads the newer fields only where structSize (or
+// the entry's minor version) says they exist. PluginEntry::abiVersion carries both:
+// (minor << 16) | major; ABI 3.0 plugins wrote a bare 3, which reads as 3.0.
+//   3.0  the interface below without PluginEntry::structSize;
+//   3.1  PluginEntry::structSize; every extension struct initialises its structSize.
+//
 // Growing without breaking plugins: structs that cross the boundary and may grow start with
 // structSize (the host reads only what the plugin's size covers, and fills only what the plugin's
 // size covers); optional host capabilities are queried by id with IHost::extension() instead of
@@ -40,6 +73,9 @@
 #include <glm/glm.hpp>
 
 #define SHADOWLAB_ABI_VERSION 3u
+#define SHADOWLAB_ABI_MINOR 1u
+// PluginEntry::abiVersion of a plugin built against this header.
+#define SHADOWLAB_ABI_ENTRY_VERSION ((SHADOWLAB_ABI_MINOR << 16) | SHADOWLAB_ABI_VERSION)
 
 namespace shadowlab {
 
@@ -271,7 +307,7 @@ using ProgramId = uint32_t;                  // host handle; stays valid across 
 // vertex transform as the main pass (so depths match it exactly).
 #define SHADOWLAB_EXT_CAMERA_PREPASS "shadowlab.camera-prepass/1"
 struct CameraPrepass {
-    uint32_t structSize;
+    uint32_t structSize = sizeof(CameraPrepass);
     uint32_t depth;                          // GL_DEPTH24_STENCIL8
     uint32_t position;                       // GL_RGBA32F: xyz world, w = 1 where geometry was drawn
     uint32_t normal;                         // GL_RGBA16F: xyz unit world normal facing the viewer
@@ -303,7 +339,7 @@ struct ShadowMapInfo {
     uint32_t focusBodyEdgeCount = 0;
 };
 struct ShadowMapReport {
-    uint32_t structSize;
+    uint32_t structSize = sizeof(ShadowMapReport);
     void* context;
     void (*report)(void* context, const ShadowMapInfo* maps, uint32_t count);
 };
@@ -340,7 +376,7 @@ struct FilterFootprint {
     glm::vec4 lightAxis{0.0f};       // xyz: world direction along which the map measures depth
 };
 struct FilterFootprintReport {
-    uint32_t structSize;
+    uint32_t structSize = sizeof(FilterFootprintReport);
     void* context;
     void (*report)(void* context, const FilterFootprint* footprint);
 };
@@ -369,7 +405,7 @@ struct TranslucentDrawHook {
     void (*beforeObject)(void* user, const FrameContext& frame, const ParamValues& params, uint32_t objectIndex) = nullptr;
 };
 struct TranslucentDraws {
-    uint32_t structSize;
+    uint32_t structSize = sizeof(TranslucentDraws);
     void* context;
     void (*install)(void* context, const TranslucentDrawHook* hook);   // copied; null removes the hook
 };
@@ -512,11 +548,15 @@ public:
     virtual void shutdown() {}
 };
 
+// What shadowlab_plugin_entry() returns: static data, valid while the library is loaded.
 struct PluginEntry {
-    uint32_t abiVersion;                      // SHADOWLAB_ABI_VERSION the plugin was built with
-    const TechniqueDesc* (*describe)();
-    IShadowTechnique* (*create)();
-    void (*destroy)(IShadowTechnique*);
+    uint32_t abiVersion;                      // SHADOWLAB_ABI_ENTRY_VERSION: (minor << 16) | major
+    const TechniqueDesc* (*describe)();       // no GL context needed; the same pointer every call
+    IShadowTechnique* (*create)();            // no GL call in the constructor (see above)
+    void (*destroy)(IShadowTechnique*);       // after shutdown(); no GL call in the destructor
+    // Added in ABI 3.1, read only when abiVersion's minor version is 1 or more (3.0 plugins end
+    // before it). Later minor versions append fields after it; the host reads what it covers.
+    uint32_t structSize = sizeof(PluginEntry);
 };
 
 } // namespace shadowlab
@@ -528,8 +568,9 @@ struct PluginEntry {
     extern "C" __attribute__((visibility("default"))) const shadowlab::PluginEntry*                 \
     shadowlab_plugin_entry() {                                                                     \
         static const shadowlab::PluginEntry entry{                                                 \
-            SHADOWLAB_ABI_VERSION, []() -> const shadowlab::TechniqueDesc* { return &(descriptor); }, \
+            SHADOWLAB_ABI_ENTRY_VERSION, []() -> const shadowlab::TechniqueDesc* { return &(descriptor); }, \
             []() -> shadowlab::IShadowTechnique* { return new TechniqueType(); },                  \
-            [](shadowlab::IShadowTechnique* technique) { delete technique; }};                     \
+            [](shadowlab::IShadowTechnique* technique) { delete technique; },                      \
+            sizeof(shadowlab::PluginEntry)};                                                       \
         return &entry;                                                                             \
     }

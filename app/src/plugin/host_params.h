@@ -4,7 +4,7 @@
 // entries (App::applyAssignments, bench_spec.h isHostKey, ui/ui.cpp).
 //
 // The eye-space depth-dependent blur of the shadow term and the lighting rules of seed 002
-// ch. 6 (sec. 6.2, 6.3, 9.4; shadowlab/eye_blur_shared.h, render/renderer.h eyeBlur*).
+// ch. 6 (sec. 6.2, 6.3, 9.4; host_shared/eye_blur_shared.h, render/renderer.h eyeBlur*).
 #pragma once
 
 #include "plugin/params.h"

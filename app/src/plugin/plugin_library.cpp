@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <cstddef>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -15,7 +16,6 @@
 #include <set>
 #include <system_error>
 
-#include "groundtruth/reference_technique.h"
 #include "util/scratch_dir.h"
 #include "util/strings.h"
 
@@ -226,11 +226,21 @@ std::unique_ptr<PluginLibrary> PluginLibrary::open(const std::filesystem::path& 
         error = file.string() + ": entry point returned nothing";
         return nullptr;
     }
-    if (entry->abiVersion != SHADOWLAB_ABI_VERSION) {
-        error = file.string() + ": plugin ABI version " + std::to_string(entry->abiVersion) + ", host expects " +
-                std::to_string(SHADOWLAB_ABI_VERSION) + " (rebuild the plugin against this shadowlab/technique.h)";
+    // The major version must match; any minor version of it loads (technique.h, "Versions").
+    const uint32_t major = entry->abiVersion & 0xFFFFu, minor = entry->abiVersion >> 16;
+    if (major != SHADOWLAB_ABI_VERSION) {
+        error = file.string() + ": plugin ABI version " + std::to_string(major) + "." + std::to_string(minor) +
+                ", host expects " + std::to_string(SHADOWLAB_ABI_VERSION) + ".x (rebuild the plugin against this "
+                "shadowlab/technique.h)";
         return nullptr;
     }
+    // From 3.1 the entry says how much of it the plugin has; 3.0 entries end before structSize.
+    if (minor >= 1 && (entry->structSize < offsetof(PluginEntry, structSize) + sizeof(uint32_t) || entry->structSize > 4096)) {
+        error = file.string() + ": plugin entry structSize " + std::to_string(entry->structSize) +
+                " does not fit an ABI 3." + std::to_string(minor) + " entry";
+        return nullptr;
+    }
+    library->abiMinor_ = minor;
     if (!entry->describe || !entry->create || !entry->destroy || !entry->describe()) {
         error = file.string() + ": plugin entry is incomplete (describe/create/destroy missing)";
         return nullptr;
@@ -252,7 +262,7 @@ PluginLibrary::~PluginLibrary() {
     if (!loadedCopy_.empty()) std::filesystem::remove(loadedCopy_, ec);
 }
 
-PluginScan scanPlugins(const std::filesystem::path& dir) {
+PluginScan scanPlugins(const std::filesystem::path& dir, const std::vector<std::string>& reservedIds) {
     PluginScan scan;
     std::error_code ec;
     if (!std::filesystem::is_directory(dir, ec)) {
@@ -266,7 +276,6 @@ PluginScan scanPlugins(const std::filesystem::path& dir) {
     // Two libraries claiming one id: neither is loaded, since which one is meant cannot be known
     // (a stale copy, a renamed build) and taking either silently changes what is measured.
     std::map<std::string, std::vector<TechniqueInfo>> byId;
-    const std::string builtinId = referenceDescriptor().id;
     for (const auto& file : files) {
         std::string error;
         auto library = PluginLibrary::open(file, error);
@@ -274,8 +283,9 @@ PluginScan scanPlugins(const std::filesystem::path& dir) {
             scan.errors.push_back(error);
             continue;
         }
-        if (library->info().id == builtinId) {
-            scan.errors.push_back(file.string() + ": technique id '" + builtinId + "' belongs to the host's built-in technique");
+        if (std::find(reservedIds.begin(), reservedIds.end(), library->info().id) != reservedIds.end()) {
+            scan.errors.push_back(file.string() + ": technique id '" + library->info().id +
+                                  "' belongs to the host's built-in technique");
             continue;
         }
         byId[library->info().id].push_back(library->info());

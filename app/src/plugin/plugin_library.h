@@ -25,6 +25,8 @@ public:
 
     const PluginEntry& entry() const { return *entry_; }
     const TechniqueInfo& info() const { return info_; }
+    // The minor ABI version the plugin was built for (0 for ABI 3.0: its entry has no structSize).
+    uint32_t abiMinor() const { return abiMinor_; }
     const std::filesystem::path& file() const { return file_; }
     std::filesystem::file_time_type fileTime() const { return fileTime_; }
     uintmax_t fileSize() const { return fileSize_; }
@@ -34,6 +36,7 @@ private:
     void* handle_ = nullptr;
     const PluginEntry* entry_ = nullptr;
     TechniqueInfo info_;
+    uint32_t abiMinor_ = 0;
     std::filesystem::path file_;
     std::filesystem::path loadedCopy_;
     std::filesystem::file_time_type fileTime_{};
@@ -64,7 +67,8 @@ struct PluginScan {
 };
 
 // Opens every *.so in `dir` to read its descriptor (no GL involved) and closes it again. An id
-// claimed by two libraries is refused for both, with an error naming both files.
-PluginScan scanPlugins(const std::filesystem::path& dir);
+// claimed by two libraries is refused for both, with an error naming both files. A library claiming
+// one of `reservedIds` (the host's built-in techniques) is refused too.
+PluginScan scanPlugins(const std::filesystem::path& dir, const std::vector<std::string>& reservedIds = {});
 
 } // namespace shadowlab

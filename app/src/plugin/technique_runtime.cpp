@@ -419,8 +419,8 @@ GLuint LoadedTechnique::translucentLayerProgram(std::string& error) { return mai
 TechniqueManager::TechniqueManager(HostContext context, std::filesystem::path pluginDir)
     : context_(context), pluginDir_(std::move(pluginDir)) {}
 
-void TechniqueManager::scan() {
-    PluginScan scan = scanPlugins(pluginDir_);
+void TechniqueManager::scan(const std::vector<std::string>& reservedIds) {
+    PluginScan scan = scanPlugins(pluginDir_, reservedIds);
     techniques_ = std::move(scan.techniques);
     scanErrors_ = std::move(scan.errors);
     for (const auto& error : scanErrors_) logWarning("skipped plugin: " + error);

@@ -183,7 +183,7 @@ private:
 class TechniqueManager {
 public:
     TechniqueManager(HostContext context, std::filesystem::path pluginDir);
-    void scan();
+    void scan(const std::vector<std::string>& reservedIds = {});
     const std::vector<TechniqueInfo>& techniques() const { return techniques_; }
     const std::vector<std::string>& scanErrors() const { return scanErrors_; }
     const TechniqueInfo* find(const std::string& id) const;

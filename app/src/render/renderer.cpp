@@ -7,10 +7,10 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "host_shared/eye_blur_shared.h"
 #include "render/bvh.h"
-#include "shadowlab/eye_blur_shared.h"
 #include "shadowlab/frame_block.h"
-#include "shadowlab/translucent_layers_shared.h"
+#include "host_shared/translucent_layers_shared.h"
 #include "util/log.h"
 #include "util/paths.h"
 

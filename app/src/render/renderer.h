@@ -108,7 +108,7 @@ public:
 
     // Evaluation frames only (never timed): translucent layer `k` (0 = nearest the camera) in front
     // of the opaque depth of the last accuracy main pass, peeled behind layer k - 1 (call them in
-    // order 0, 1, ...; shadowlab/translucent_layers_shared.h). `program` is the technique's main
+    // order 0, 1, ...; host_shared/translucent_layers_shared.h). `program` is the technique's main
     // pass built with SHADOWLAB_ACCURACY_TARGETS and SHADOWLAB_TRANSLUCENT_PEEL; the layer's shadow
     // term, position and normal go to targets read with readLayer(). False (nothing drawn) when the
     // scene has no translucent object or the main pass is multisampled (its single-sample depth
@@ -132,7 +132,7 @@ public:
     bool accuracyTargetsCurrent() const { return accuracyCurrent_; }
 
     // The eye-space depth-dependent blur of the shadow term (seed 002 sec. 6.3, 9.4.2;
-    // shadowlab/eye_blur_shared.h), between the technique's shadow pass and the main pass:
+    // host_shared/eye_blur_shared.h), between the technique's shadow pass and the main pass:
     // eyeBlurTermPass() draws the opaque surfaces with `program` (the technique's main pass built
     // with SHADOWLAB_EYE_BLUR_TERM) into a screen texture, rgb = shadow term, a = view depth;
     // eyeBlur() blurs it along x, then y, back into that texture. Main passes after

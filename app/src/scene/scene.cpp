@@ -703,7 +703,10 @@ int readTexture(const json& value, const std::string& path, float plainAlpha, Sc
         if (file.empty()) context.fail(path, "empty file name");
         const std::filesystem::path resolved = sceneFilePath(builder.baseDir, file);
         try {
-            texture = loadPngTexture(resolved, plainAlpha, builder.budget.fileBytes);
+            // The decoded size against what the GPU budget leaves, before the pixels are allocated.
+            const uint64_t used = builder.gpuBytes();
+            const uint64_t left = used < builder.budget.gpuBytes ? builder.budget.gpuBytes - used : 0;
+            texture = loadPngTexture(resolved, plainAlpha, builder.budget.fileBytes, left);
         } catch (const SceneError& error) {
             if (!optional) context.fail(path, error.what());   // the message names the file
             if (!builder.checkOnly)

@@ -76,10 +76,16 @@ inline glm::vec4 sampleTexture(const Texture& texture, glm::vec2 uv) {
     return glm::mix(glm::mix(texel(0, 0), texel(1, 0), f.x), glm::mix(texel(0, 1), texel(1, 1), f.x), f.y);
 }
 
-// PNG via stb_image (SceneError naming the file when it is missing, not a PNG, or larger than
-// kMaxTextureSize). An image without an alpha channel (grey or RGB) gets alpha 1 where it is
-// black and `plainAlpha` elsewhere: black is opaque.
-Texture loadPngTexture(const std::filesystem::path& file, float plainAlpha, uint64_t maxFileBytes);
+// PNG via libpng (SceneError naming the file when it is missing, not a PNG, corrupt, larger than
+// kMaxTextureSize, or decoding to more than `maxDecodedBytes`, checked before the pixels are
+// allocated). Any colour type and bit depth, read as stored (no gamma), 16-bit samples reduced to
+// 8. An image without alpha (grey or RGB, no tRNS) gets alpha 1 where it is black and
+// `plainAlpha` elsewhere: black is opaque.
+Texture loadPngTexture(const std::filesystem::path& file, float plainAlpha, uint64_t maxFileBytes,
+                       uint64_t maxDecodedBytes = UINT64_MAX);
+// The same from the file's bytes (`name` for messages): the fuzz target's entry.
+Texture decodePngTexture(const std::string& bytes, const std::string& name, float plainAlpha,
+                         uint64_t maxDecodedBytes = UINT64_MAX);
 // Procedural textures of the built-in scenes (textures.cpp).
 Texture makeRoseWindowTexture(int size, uint32_t seed, float alpha);
 Texture makeRainbowTexture(int size, float alpha);

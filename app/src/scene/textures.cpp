@@ -1,25 +1,23 @@
-// Material textures (docs/scene-format.md, "Textures"): PNG files read with stb_image, and the
+// Material textures (docs/scene-format.md, "Textures"): PNG files decoded with libpng, and the
 // procedural images of the built-in scenes (seed 001's rose window, sec. 5.3.2, and the rainbow
 // quad of its layered-transparency test, sec. 5.3.3), generated here so no image is downloaded.
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
-#define STBI_NO_STDIO            // files are read through readRegularFile (size-checked)
-#define STBI_FAILURE_USERMSG
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-but-set-variable"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#endif
-#include <stb_image.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
+//
+// Why libpng and not stb_image (issue 31): Debian's stb is a 2022 snapshot whose PNG reader passes
+// a chunk length of 0xffffffff to a signed byte count and crashes (a segmentation fault before any
+// message, seen on corrupted IDAT lengths and on a few flipped bytes). libpng checks every chunk's
+// length and CRC, is fuzzed continuously upstream, and is packaged by Debian; stb keeps writing
+// PNGs (util/image.cpp). Decoding keeps stb's results: no gamma conversion (values as stored),
+// 16-bit samples reduced to their high byte, palettes and low bit depths expanded, grey to RGB.
+#include <csetjmp>
+#include <cstring>
+
+#include <png.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <vector>
 
 #include <glm/gtc/constants.hpp>
 
@@ -64,36 +62,157 @@ uint32_t hash32(uint32_t x) {
 
 } // namespace
 
-Texture loadPngTexture(const std::filesystem::path& file, float plainAlpha, uint64_t maxFileBytes) {
-    std::string bytes, error;
-    if (!readRegularFile(file, maxFileBytes, bytes, error, "texture"))
-        throw SceneError(error);
-    int width = 0, height = 0, channels = 0;
-    if (bytes.size() > size_t(INT32_MAX)) throw SceneError(file.string() + ": texture file too large");
-    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
-    if (!stbi_info_from_memory(data, static_cast<int>(bytes.size()), &width, &height, &channels))
-        throw SceneError(file.string() + ": not a readable PNG image (" + stbi_failure_reason() + ")");
-    if (width < 1 || height < 1 || width > kMaxTextureSize || height > kMaxTextureSize)
-        throw SceneError(file.string() + ": " + std::to_string(width) + " x " + std::to_string(height) +
+namespace {
+
+// What decodePng found: the rows, top-down, RGBA8, and whether the file had alpha.
+struct DecodedPng {
+    uint32_t width = 0, height = 0;
+    bool hasAlpha = false;
+    std::vector<uint8_t> rgba;
+};
+
+struct PngSource {
+    const uint8_t* data;
+    size_t size;
+    size_t offset;
+};
+
+[[noreturn]] void pngError(png_structp png, png_const_charp message) {
+    auto* text = static_cast<char*>(png_get_error_ptr(png));
+    std::snprintf(text, 256, "%s", message ? message : "unknown libpng error");
+    std::longjmp(png_jmpbuf(png), 1);
+}
+
+void pngWarning(png_structp, png_const_charp) {}
+
+void pngRead(png_structp png, png_bytep out, size_t count) {
+    auto* source = static_cast<PngSource*>(png_get_io_ptr(png));
+    if (count > source->size - source->offset) png_error(png, "file ends inside a chunk");
+    std::memcpy(out, source->data + source->offset, count);
+    source->offset += count;
+}
+
+// The chunk layout checked before libpng sees the file: every chunk's length within the PNG limit
+// (2^31 - 1) and within the bytes left, up to IEND. libpng checks lengths too, but some of its
+// handlers (the APNG chunks Debian patches in) act on a length before finding the file too short:
+// fuzzing found an acTL chunk claiming 1.7 GB that kept one busy for over 10 s.
+bool chunksFit(const uint8_t* data, size_t size, char* message) {
+    size_t offset = 8;
+    while (offset < size) {
+        if (size - offset < 12) {
+            std::snprintf(message, 256, "a chunk header at byte %zu is cut off", offset);
+            return false;
+        }
+        const uint32_t length = uint32_t(data[offset]) << 24 | uint32_t(data[offset + 1]) << 16 |
+                                uint32_t(data[offset + 2]) << 8 | uint32_t(data[offset + 3]);
+        char kind[5] = {0};
+        for (int i = 0; i < 4; ++i) {
+            const char c = char(data[offset + 4 + size_t(i)]);
+            kind[i] = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ? c : '?';
+        }
+        if (length > 0x7FFFFFFFu || length > size - offset - 12) {
+            std::snprintf(message, 256, "chunk %s at byte %zu claims %u bytes, more than the %zu left", kind, offset, length,
+                          size - offset - 12);
+            return false;
+        }
+        offset += 12 + size_t(length);
+        if (std::memcmp(kind, "IEND", 4) == 0) return true;
+    }
+    std::snprintf(message, 256, "no IEND chunk");
+    return false;
+}
+
+// libpng reports errors by longjmp: no object with a destructor lives in this frame between
+// setjmp and the end (the row pointers and pixels are the caller's), so nothing is skipped.
+// Returns "" or the problem. The size is checked against kMaxTextureSize before the pixels are
+// allocated; the caller's `out.rgba` is allocated here.
+const char* decodePng(const uint8_t* data, size_t size, uint64_t maxDecodedBytes, DecodedPng& out, std::vector<png_bytep>& rows,
+                      char* message) {
+    if (size < 8 || png_sig_cmp(data, 0, 8) != 0) return "not a PNG file (no PNG signature)";
+    if (!chunksFit(data, size, message)) return message;
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, message, pngError, pngWarning);
+    if (!png) return "libpng could not start";
+    png_infop info = png_create_info_struct(png);
+    if (!info) {
+        png_destroy_read_struct(&png, nullptr, nullptr);
+        return "libpng could not start";
+    }
+    PngSource source{data, size, 0};
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        return message;
+    }
+    png_set_read_fn(png, &source, pngRead);
+    png_set_user_limits(png, kMaxTextureSize, kMaxTextureSize);
+    png_set_chunk_malloc_max(png, 8u << 20);   // ancillary chunks (text, profiles): 8 MiB at most
+    png_read_info(png, info);
+    out.width = png_get_image_width(png, info);
+    out.height = png_get_image_height(png, info);
+    const int colourType = png_get_color_type(png, info);
+    out.hasAlpha = (colourType & PNG_COLOR_MASK_ALPHA) != 0 || png_get_valid(png, info, PNG_INFO_tRNS) != 0;
+    png_set_expand(png);   // palette to RGB, grey below 8 bits to 8, tRNS to alpha
+    png_set_strip_16(png);
+    png_set_gray_to_rgb(png);
+    if (!out.hasAlpha) png_set_filler(png, 0xFF, PNG_FILLER_AFTER);
+    png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    if (png_get_rowbytes(png, info) != size_t(out.width) * 4) png_error(png, "unexpected row layout after expansion");
+    if (uint64_t(out.width) * uint64_t(out.height) * 4 > maxDecodedBytes) {
+        std::snprintf(message, 256, "%u x %u texels decode to %llu bytes, more than the %llu bytes the scene budget leaves",
+                      out.width, out.height, static_cast<unsigned long long>(uint64_t(out.width) * out.height * 4),
+                      static_cast<unsigned long long>(maxDecodedBytes));
+        png_destroy_read_struct(&png, &info, nullptr);
+        return message;
+    }
+    out.rgba.resize(size_t(out.width) * size_t(out.height) * 4);   // at most 8192^2 * 4 (user limits)
+    rows.resize(out.height);
+    for (uint32_t y = 0; y < out.height; ++y) rows[y] = out.rgba.data() + size_t(y) * size_t(out.width) * 4;
+    png_read_image(png, rows.data());
+    png_read_end(png, nullptr);
+    png_destroy_read_struct(&png, &info, nullptr);
+    return "";
+}
+
+} // namespace
+
+Texture decodePngTexture(const std::string& bytes, const std::string& name, float plainAlpha, uint64_t maxDecodedBytes) {
+    DecodedPng png;
+    std::vector<png_bytep> rows;
+    char message[256] = {0};
+    const char* problem =
+        decodePng(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), maxDecodedBytes, png, rows, message);
+    if (problem[0] != '\0') {
+        const std::string text = problem;
+        if (text.find("exceeds user limit") != std::string::npos || text.find("Image width") != std::string::npos ||
+            text.find("Image height") != std::string::npos)
+            throw SceneError(name + ": not a usable PNG image (" + text + "); a texture is 1 to " +
+                             std::to_string(kMaxTextureSize) + " texels on each side");
+        throw SceneError(name + ": not a readable PNG image (" + text + ")");
+    }
+    if (png.width < 1 || png.height < 1)
+        throw SceneError(name + ": " + std::to_string(png.width) + " x " + std::to_string(png.height) +
                          " texels; a texture is 1 to " + std::to_string(kMaxTextureSize) + " texels on each side");
-    stbi_uc* pixels = stbi_load_from_memory(data, static_cast<int>(bytes.size()), &width, &height, &channels, 4);
-    if (!pixels) throw SceneError(file.string() + ": not a readable PNG image (" + stbi_failure_reason() + ")");
-    Texture texture = blank(file.string(), width, height);
+    const int width = int(png.width), height = int(png.height);
+    Texture texture = blank(name, width, height);
     // PNG rows run top-down; textures are stored bottom-up (uv (0, 0) at the image's lower left).
-    const bool plain = channels == 1 || channels == 3;
     for (int y = 0; y < height; ++y) {
-        const stbi_uc* row = pixels + static_cast<size_t>(height - 1 - y) * static_cast<size_t>(width) * 4;
+        const uint8_t* row = png.rgba.data() + static_cast<size_t>(height - 1 - y) * static_cast<size_t>(width) * 4;
         for (int x = 0; x < width; ++x) {
-            const stbi_uc* in = row + static_cast<size_t>(x) * 4;
+            const uint8_t* in = row + static_cast<size_t>(x) * 4;
             uint8_t* out = &texture.rgba[(static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) * 4];
             std::copy(in, in + 4, out);
             // An image without alpha: black is opaque (lead, tracery), any other colour is glass
             // of the material's alpha.
-            if (plain) out[3] = (in[0] | in[1] | in[2]) == 0 ? 255 : toByte(plainAlpha);
+            if (!png.hasAlpha) out[3] = (in[0] | in[1] | in[2]) == 0 ? 255 : toByte(plainAlpha);
         }
     }
-    stbi_image_free(pixels);
     return texture;
+}
+
+Texture loadPngTexture(const std::filesystem::path& file, float plainAlpha, uint64_t maxFileBytes, uint64_t maxDecodedBytes) {
+    std::string bytes, error;
+    if (!readRegularFile(file, maxFileBytes, bytes, error, "texture")) throw SceneError(error);
+    return decodePngTexture(bytes, file.string(), plainAlpha, maxDecodedBytes);
 }
 
 // A rose window after seed 001's Strasbourg test image (Fig. 5.3.2.A): black tracery (opaque)

@@ -7,7 +7,7 @@
 #include <ctime>
 #include <map>
 
-#include "bench/path_run.h"
+#include "app_paths.h"
 
 namespace shadowlab {
 

@@ -1,5 +1,5 @@
 // The headless tour pages (see tour_pages.h).
-#include "ui/tour_pages.h"
+#include "bench/tour_pages.h"
 #include "util/strings.h"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
-// Render-target limits of the device (see gl_limits.h).
-#include "util/gl_limits.h"
+// Render-target limits of the device (see render_limits.h).
+#include "render/render_limits.h"
 
 #include <algorithm>
 #include <cstdio>

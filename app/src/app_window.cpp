@@ -1,0 +1,429 @@
+// The classroom window's frame loop (App::runInteractive; options in ui/session.h). A frame, top
+// to bottom (WindowSession::frame):
+//   input -> the smoke test's and the path's changes -> the surface and the layout (panel beside
+//   the view, halves of a comparison) -> for each side: its technique's frame at the side's size,
+//   presented into the display texture and composed into its rectangle (render/view_compositor.h)
+//   -> the panel and the labels (ImGui, ui/ui.h) -> the commands the panel queued (screenshot,
+//   measure, load scene, tour step, load tour, save or load session), each its own function ->
+//   swap.
+// --tour and --session are the same commands, run once before the first frame.
+#include "app.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include <GLFW/glfw3.h>
+
+#include "app_paths.h"
+#include "render/view_compositor.h"
+#include "ui/session.h"
+#include "ui/tour_player.h"
+#include "ui/ui.h"
+#include "util/log.h"
+#include "util/paths.h"
+#include "util/text_file.h"
+
+namespace shadowlab {
+
+class WindowSession {
+public:
+    WindowSession(App& app, const InteractiveOptions& options)
+        : app_(app), options_(options), window_(app.backend().window()), compositor_(app.shaders()) {}
+
+    int run() {
+        if (int code = start()) return code;
+        while (!app_.backend().shouldClose()) {
+            if (!frame()) break;
+            if (options_.frames > 0 && frameIndex_ >= options_.frames) break;
+            if (state_.quitRequested) break;
+        }
+        app_.camera().setFramingAspect(0.0f);
+        ui_.shutdown();
+        return exitCode_;
+    }
+
+private:
+    // Checks, the UI, the state from the options, then --tour and --session.
+    int start() {
+        if (!window_ && options_.frames <= 0) {
+            logError("the offscreen window needs a number of frames to draw (--frames N)");
+            return 2;
+        }
+        // --tour: every step's debug view checked before anything is drawn (a view would otherwise
+        // only be found missing when its step comes up in class).
+        if (std::string error; options_.tour && !checkTourDebugViews(app_, *options_.tour, error)) {
+            logError(error);
+            return 2;
+        }
+        if (!ui_.init(window_, options_.uiScale)) {
+            logError("could not initialise the user interface");
+            return 1;
+        }
+        state_.technique = options_.technique.empty() ? app_.firstTechnique() : options_.technique;
+        state_.compareTechnique = options_.compareTechnique;
+        state_.compareLayout = options_.compareLayout;
+        state_.wipe = options_.wipe;
+        state_.showUi = options_.showUi;
+        state_.view = options_.view;
+        if (options_.probe) app_.setProbePixel(options_.probe);
+        state_.uiScale = options_.uiScale;
+        state_.msaaSamples = app_.renderer().msaaSamples();
+        app_.camera().setFramingAspect(kSceneFramingAspect);
+        last_ = std::chrono::steady_clock::now();
+        if (window_) glfwGetCursorPos(window_, &lastMouse_.x, &lastMouse_.y);
+        if (options_.tour) {
+            state_.tour = options_.tour;
+            runCommand({UiCommand::Kind::TourStep, std::to_string(options_.tourStep)});
+        }
+        if (!options_.session.empty()) runCommand({UiCommand::Kind::LoadSession, options_.session});
+        return 0;
+    }
+
+    // One frame; false when the window cannot go on (its offscreen surface failed).
+    bool frame() {
+        app_.backend().pollEvents();
+        const auto now = std::chrono::steady_clock::now();
+        const float seconds = std::chrono::duration<float>(now - last_).count();
+        last_ = now;
+        handleInput(seconds);
+        driveSmokeTest();
+        advancePath();
+        queueTimedMeasurement();
+        if (!prepareSurface()) return false;
+        const bool comparing = !state_.compareTechnique.empty();
+        state_.layout = computeViewLayout(surfaceSize_, state_.showUi, panelWidthFor(state_.uiScale, surfaceSize_.x), comparing,
+                                          state_.compareLayout, state_.wipe);
+        if (surfaceSize_.x > 0 && surfaceSize_.y > 0) {
+            renderSides(comparing);
+            markStaleMeasurement(comparing);
+        }
+        ui_.draw(app_, state_, seconds, surface_, surfaceSize_);
+        runQueuedCommands();
+        app_.backend().swapBuffers();
+        ++frameIndex_;
+        return true;
+    }
+
+    // Camera input, unless the UI has the mouse or keyboard or the wipe divider is dragged.
+    void handleInput(float seconds) {
+        if (!window_) return;
+        CameraController& camera = app_.camera();
+        glm::dvec2 mouse;
+        glfwGetCursorPos(window_, &mouse.x, &mouse.y);
+        const glm::vec2 delta = glm::vec2(mouse - lastMouse_);
+        lastMouse_ = mouse;
+        if (!ui_.wantsMouse() && !state_.draggingWipe) {
+            if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) camera.look(delta);
+            if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS) camera.pan(delta);
+            if (state_.scroll != 0.0f) camera.zoom(state_.scroll);
+        }
+        state_.scroll = 0.0f;
+        if (!ui_.wantsKeyboard() && camera.mode() == CameraController::Mode::Fly) {
+            glm::vec3 move(0.0f);
+            auto pressed = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS ? 1.0f : 0.0f; };
+            move.z = pressed(GLFW_KEY_W) - pressed(GLFW_KEY_S);
+            move.x = pressed(GLFW_KEY_D) - pressed(GLFW_KEY_A);
+            move.y = pressed(GLFW_KEY_E) - pressed(GLFW_KEY_Q);
+            camera.fly(move, seconds);
+        }
+    }
+
+    // --smoke-test: every technique and view in turn while drawing the UI, the comparison for a
+    // while in each layout, and once a measurement of both sides.
+    void driveSmokeTest() {
+        const int smokeFrames = options_.cycle ? options_.frames : 0;
+        const auto& all = app_.techniques().techniques();
+        if (smokeFrames <= 0 || all.empty()) return;
+        const int perTechnique = std::max(1, smokeFrames / int(all.size()));
+        state_.technique = all[size_t(std::min(frameIndex_ / perTechnique, int(all.size()) - 1))].id;
+        if (state_.view.kind != ViewSelection::Kind::ErrorHeatmap || frameIndex_ > smokeFrames / 2 + 5)
+            state_.view.kind = (frameIndex_ / 7) % 2 ? ViewSelection::Kind::Visibility : ViewSelection::Kind::Lit;
+        state_.compareTechnique = (frameIndex_ % 50) >= 35 ? app_.firstTechnique() : std::string();
+        state_.compareLayout = CompareLayout((frameIndex_ / 50) % 3);
+        if (frameIndex_ == smokeFrames / 2) {
+            state_.compareTechnique = app_.firstTechnique();
+            state_.compareLayout = CompareLayout::SideBySide;
+            state_.commands.push_back({UiCommand::Kind::Measure, ""});
+        }
+    }
+
+    // The step's path: one path frame per window frame, looping (camera and light set before the
+    // frame is drawn, so frame k of a step shows path frame k).
+    void advancePath() {
+        if (!state_.path || !state_.pathPlaying || state_.path->frames <= 0) return;
+        state_.pathFrame %= state_.path->frames;
+        setPathFrame(app_, *state_.path, state_.pathFrame, state_.pathCamera, state_.pathLight);
+    }
+
+    // --measure: late enough for the GPU timings (read kFramesInFlight frames late), early enough
+    // that the last frames show the heatmap.
+    void queueTimedMeasurement() {
+        const int at = options_.frames > 0 ? std::max(1, std::min(options_.frames - 2, GpuTimer::kFramesInFlight + 2))
+                                           : GpuTimer::kFramesInFlight + 2;
+        if (options_.measure && frameIndex_ == at) state_.commands.push_back({UiCommand::Kind::Measure, ""});
+    }
+
+    // The surface: the window's framebuffer, or the offscreen one.
+    bool prepareSurface() {
+        surfaceSize_ = window_ ? app_.backend().framebufferSize() : app_.options().size;
+        if (!window_) {
+            std::string error;
+            if (!compositor_.prepareOffscreen(surfaceSize_, error)) {
+                logError(error);
+                exitCode_ = 1;
+                return false;
+            }
+        }
+        surface_ = window_ ? 0 : compositor_.offscreenFramebuffer();
+        return true;
+    }
+
+    // Each side's frame at its size, composed into its rectangle of the surface.
+    void renderSides(bool comparing) {
+        const ViewLayout& layout = state_.layout;
+        Renderer& renderer = app_.renderer();
+        std::string error;
+        if (!renderer.resize(layout.renderSize, state_.msaaSamples, error)) logError(error);
+        glBindFramebuffer(GL_FRAMEBUFFER, surface_);
+        glViewport(0, 0, surfaceSize_.x, surfaceSize_.y);
+        glDisable(GL_SCISSOR_TEST);
+        glClearColor(0.09f, 0.09f, 0.11f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        state_.frameError.clear();
+        const std::string sides[2] = {state_.technique, state_.compareTechnique};
+        const bool difference = comparing && state_.compareLayout == CompareLayout::Difference;
+        const FrameOutputs outputs =
+            difference || state_.view.needsAccuracyTargets() ? FrameOutputs::Accuracy : FrameOutputs::Colour;
+        probeUnderMouse();
+        for (int s = 0; s < (comparing ? 2 : 1); ++s) {
+            if (!app_.renderFrame(sides[s], error, outputs)) {
+                state_.frameError = error;
+                if (s == 1) state_.compareTechnique.clear();
+                break;
+            }
+            state_.sideTimings[s] = app_.timer().latest();   // this side's: the sides alternate frame by frame
+            if (difference) {
+                // A's shadow term is kept while B renders into the same targets; then |A - B|.
+                if (s == 0) compositor_.keepFirstTerm(renderer);
+                else if (compositor_.drawDifference(renderer))
+                    ViewCompositor::blitDisplay(renderer, surface_, surfaceSize_, layout.view.origin, layout.view.size, 0);
+                continue;
+            }
+            presentSide(s, sides[s]);
+            const PixelRect& rect = layout.halves[s];
+            const int sourceX = comparing && state_.compareLayout == CompareLayout::Wipe ? rect.origin.x - layout.view.origin.x : 0;
+            ViewCompositor::blitDisplay(renderer, surface_, surfaceSize_, rect.origin, rect.size, sourceX);
+        }
+        if (!comparing) state_.sideTimings[1].clear();
+    }
+
+    // The kernel view probes the pixel under the mouse (over the view, not the panel); without a
+    // mouse (offscreen) it keeps --probe's.
+    void probeUnderMouse() {
+        if (!window_ || state_.view.kind != ViewSelection::Kind::Kernel || ui_.wantsMouse()) return;
+        glm::dvec2 mouse;
+        glfwGetCursorPos(window_, &mouse.x, &mouse.y);
+        const PixelRect& rect = state_.layout.halves[0];
+        if (rect.contains(glm::vec2(mouse)) && rect.size.x > 0 && rect.size.y > 0)
+            app_.setProbePixel(glm::ivec2((glm::vec2(mouse) - glm::vec2(rect.origin)) * glm::vec2(state_.layout.renderSize) /
+                                          glm::vec2(rect.size)));
+    }
+
+    // Side `s`'s view (or its error heatmap) into the display texture.
+    void presentSide(int s, const std::string& technique) {
+        Renderer& renderer = app_.renderer();
+        const bool heatmap = state_.view.kind == ViewSelection::Kind::ErrorHeatmap && size_t(s) < state_.measurement.size() &&
+                             compositor_.heatmap(s) != 0;
+        if (heatmap) {
+            renderer.present(PresentMode::Color, compositor_.heatmap(s), renderer.displayFramebuffer(), renderer.size());
+            return;
+        }
+        std::string error;
+        const ViewSelection view = state_.view.kind == ViewSelection::Kind::ErrorHeatmap ? ViewSelection{} : state_.view;
+        if (!app_.presentView(technique, view, ~0u, {}, error)) {
+            // B may lack A's debug image: it shows lit, A says why it could not.
+            if (s == 0) {
+                state_.view = {};
+                state_.frameError = error;
+            }
+            app_.presentView(technique, {}, ~0u, {}, error);
+        }
+    }
+
+    // The heatmap and figures say when they no longer describe the view.
+    void markStaleMeasurement(bool comparing) {
+        const std::string sides[2] = {state_.technique, state_.compareTechnique};
+        state_.staleReason.clear();
+        for (size_t s = 0; s < state_.measurement.size() && state_.staleReason.empty(); ++s)
+            state_.staleReason = staleReason(state_.measurement[s].key, currentMeasurementKey(app_, sides[s]));
+        if (state_.measurement.size() != (comparing ? 2u : 1u) && !state_.measurement.empty())
+            state_.staleReason = "the comparison changed";
+    }
+
+    // The panel's commands, outside the ImGui frame. The screenshot first: it saves the frame just
+    // drawn, panel included.
+    void runQueuedCommands() {
+        const bool finalShot = options_.frames > 0 && frameIndex_ + 1 == options_.frames && !options_.screenshot.empty();
+        std::vector<UiCommand> commands;
+        commands.swap(state_.commands);
+        if (finalShot) commands.insert(commands.begin(), UiCommand{UiCommand::Kind::Screenshot, options_.screenshot});
+        if (options_.frames > 0)
+            for (const auto& [at, file] : options_.screenshotsAt)
+                if (at == frameIndex_ && !(finalShot && file == options_.screenshot))
+                    commands.insert(commands.begin(), UiCommand{UiCommand::Kind::Screenshot, file});
+        if (state_.path && state_.pathPlaying) ++state_.pathFrame;   // a step applied by a command below starts at 0
+        for (const UiCommand& command : commands) runCommand(command);
+    }
+
+    void runCommand(const UiCommand& command) {
+        switch (command.kind) {
+        case UiCommand::Kind::Screenshot: return screenshot(command.argument);
+        case UiCommand::Kind::Measure: return measure();
+        case UiCommand::Kind::LoadScene: return loadScene(command.argument);
+        case UiCommand::Kind::TourStep: return tourStep(command.argument);
+        case UiCommand::Kind::LoadTour: return loadTour(command.argument);
+        case UiCommand::Kind::SaveSession: return saveSession(command.argument);
+        case UiCommand::Kind::LoadSession: return loadSession(command.argument);
+        }
+    }
+
+    // An error of a command: on the panel, in the log, and, in a run of --frames N (slides, CI),
+    // the exit code.
+    void failed(std::string& status, bool& isError, const std::string& error, int code) {
+        status = error;
+        isError = true;
+        logError(error);
+        if (options_.frames > 0 && code) exitCode_ = code;
+    }
+
+    void screenshot(const std::string& argument) {
+        std::filesystem::path file = argument;
+        if (file.empty()) {
+            std::error_code ec;
+            std::filesystem::create_directories(options_.screenshotFolder, ec);
+            file = uniqueScreenshotPath(options_.screenshotFolder, app_.scene().name, state_.technique, state_.compareTechnique,
+                                        std::chrono::system_clock::now());
+        }
+        std::string error;
+        if (writePng(file, ViewCompositor::readSurface(surface_, surfaceSize_), error)) {
+            logInfo("screenshot saved: " + file.string());
+            state_.lastScreenshot = "saved " + file.string();
+        } else {
+            bool unused = false;
+            failed(state_.lastScreenshot, unused, error, 1);
+        }
+    }
+
+    // Each side measured against the reference for its own technique; the heatmaps replace the
+    // view until it changes.
+    void measure() {
+        ReferenceOptions reference;
+        reference.mode = state_.referenceMode == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
+        reference.samplesPerPixel = state_.referenceSamples;
+        std::vector<SideMeasurement> results;
+        state_.measureError.clear();
+        const std::string sides[2] = {state_.technique, state_.compareTechnique};
+        for (int s = 0; s < (state_.compareTechnique.empty() ? 1 : 2); ++s) {
+            const TechniqueInfo* info = app_.techniques().find(sides[s]);
+            reference.model = state_.referenceModel == 1 && info ? info->translucencyModel : TranslucencyModel::Physical;
+            SideMeasurement result;
+            std::string error;
+            if (!measureSide(app_, sides[s], reference, result, error)) {
+                state_.measureError = sides[s] + ": " + error;
+                return;
+            }
+            const auto frameMs = state_.sideTimings[s].find("frame");
+            result.gpuMs = frameMs == state_.sideTimings[s].end() ? 0.0 : frameMs->second;
+            state_.measured.push_back({result.label, result.gpuMs, result.metrics.mae});
+            char figures[128];
+            std::snprintf(figures, sizeof(figures), ": MAE %.6f, %.3f ms GPU, %.2f MiB", result.metrics.mae, result.gpuMs,
+                          double(result.gpuBytes) / (1024.0 * 1024.0));
+            logInfo("accuracy of " + result.label + figures);
+            compositor_.setHeatmap(s, result.heatmap);
+            results.push_back(std::move(result));
+        }
+        state_.measurement = std::move(results);
+        if (state_.compareLayout != CompareLayout::Difference) state_.view = {ViewSelection::Kind::ErrorHeatmap, ""};
+    }
+
+    void loadScene(const std::string& name) {
+        std::string error;
+        state_.sceneError = app_.loadScene(name, {}, error) ? "" : error;
+        if (state_.sceneError.empty()) state_.path.reset();   // a step's path belongs to its scene
+    }
+
+    // "next", "previous", "restart" or a step index from 0.
+    void tourStep(const std::string& argument) {
+        if (!state_.tour || state_.tour->steps.empty()) return;
+        const int last = int(state_.tour->steps.size()) - 1;
+        int index = state_.tourStep;
+        if (argument == "next") index = std::min(index + 1, last);
+        else if (argument == "previous") index = std::max(index - 1, 0);
+        else if (argument != "restart") index = std::clamp(std::atoi(argument.c_str()), 0, last);
+        const std::string where = state_.tour->source + ": steps[" + std::to_string(index) + "]";
+        std::string error;
+        if (!applyTourStep(app_, state_.tour->steps[size_t(index)], state_, error))
+            return failed(state_.tourStatus, state_.tourStatusIsError, where + ": " + error, 1);
+        state_.tourStep = index;
+        state_.tourStatus.clear();
+        state_.tourStatusIsError = false;
+        logInfo("tour step " + std::to_string(index + 1) + " of " + std::to_string(last + 1) + ": " +
+                state_.tour->steps[size_t(index)].title);
+    }
+
+    // Checked whole before its first step is shown, debug views included.
+    void loadTour(const std::string& file) {
+        auto tour = std::make_shared<Tour>();
+        std::string error;
+        if (!shadowlab::loadTour(file, app_.techniques().techniques(), *tour, error) || !checkTourDebugViews(app_, *tour, error))
+            return failed(state_.tourStatus, state_.tourStatusIsError, error, 0);
+        state_.tour = std::move(tour);
+        state_.tourStep = 0;
+        tourStep("0");
+    }
+
+    void saveSession(const std::string& argument) {
+        std::filesystem::path file = argument;
+        if (file.empty()) {
+            std::error_code ec;
+            std::filesystem::create_directories(options_.sessionFolder, ec);
+            file = uniqueSessionPath(options_.sessionFolder, app_.scene().name, state_.technique, std::chrono::system_clock::now());
+        }
+        std::string error;
+        const TourStep step = captureSession(app_, state_);
+        if (!writeWholeFile(file, tourStepJson(step).dump(2) + "\n", error))
+            return failed(state_.sessionStatus, state_.sessionStatusIsError, error, 1);
+        state_.sessionStatus = "saved " + file.string();
+        state_.sessionStatusIsError = false;
+        logInfo("session saved: " + file.string());
+    }
+
+    void loadSession(const std::string& file) {
+        TourStep step;
+        std::string error;
+        if (!shadowlab::loadSession(file, app_.techniques().techniques(), step, error) || !applyTourStep(app_, step, state_, error))
+            return failed(state_.sessionStatus, state_.sessionStatusIsError, error, 2);
+        state_.sessionStatus = "loaded " + file;
+        state_.sessionStatusIsError = false;
+        logInfo("session loaded: " + file);
+    }
+
+    App& app_;
+    const InteractiveOptions& options_;
+    GLFWwindow* window_;
+    Ui ui_;
+    UiState state_;
+    ViewCompositor compositor_;
+    GLuint surface_ = 0;
+    glm::ivec2 surfaceSize_{0};
+    int frameIndex_ = 0;
+    int exitCode_ = 0;
+    std::chrono::steady_clock::time_point last_;
+    glm::dvec2 lastMouse_{0.0};
+};
+
+int App::runInteractive(const InteractiveOptions& options) { return WindowSession(*this, options).run(); }
+
+} // namespace shadowlab

@@ -1,0 +1,120 @@
+// The command line, one file per command (app/src/cli/<command>.cpp). Each command declares its
+// own options on the parser and runs when it was given; main() parses and dispatches:
+//   shadowlab                 the main job (window.cpp): the window if a display exists, else the
+//                             report (every technique rendered to out/images, timings, charts)
+//   shadowlab list [--json]   techniques and their parameters (no GL needed)
+//   shadowlab render ...      one frame headless to a PNG (a path's frames, a comparison, a probe)
+//   shadowlab eval | bench | stress | report | tour | reload-latency
+// Exit codes: 0 success, 1 failure of the machine (no GL, ...), 2 bad input (with a message).
+// Every input is checked before the first frame.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "groundtruth/groundtruth.h"
+#include "plugin/plugin_library.h"
+#include "ui/session.h"
+
+namespace shadowlab {
+class App;
+}
+
+namespace shadowlab::cli {
+
+constexpr int kExitFailure = 1;
+constexpr int kExitBadInput = 2;
+
+// Options every command takes (scene, technique, output).
+struct CommonOptions {
+    std::string scene;
+    std::vector<std::string> sceneParams;
+    std::string technique;
+    std::string backend;
+    std::string size = "1280x720";
+    std::vector<std::string> sets;
+    std::string lightDirection;
+    std::string lightSize;      // text: checked against the scene's light type once it is known
+    int msaa = 0;
+    bool depthPrepass = false;
+    int translucentLayers = 4;
+    std::string referenceDevice = "cpu";
+    std::string budget;
+    bool quiet = false;
+};
+void addCommonOptions(CLI::App& cmd, CommonOptions& o);
+std::optional<double> lightSizeOption(const CommonOptions& common);
+// Logs `error` and returns `code`.
+int fail(const std::string& error, int code);
+// Creates the App headless (or windowed) and reports errors with the right exit code (0: started).
+int startApp(App& app, const CommonOptions& common, bool windowed);
+// "a,b,,c" -> {a, b, c}
+std::vector<std::string> splitList(const std::string& text);
+
+// What the classroom window is asked to do (the main job with a display, or offscreen; render's
+// comparisons and probes are slides of it).
+struct WindowOptions {
+    int smokeFrames = 0;
+    int frames = 0;
+    std::string screenshot;
+    std::string compare;
+    std::string compareLayout = "side-by-side";
+    double wipe = 0.5;
+    double uiScale = 1.0;
+    bool hideUi = false;
+    bool measure = false;
+    std::string screenshotDir = "screenshots";
+    std::string tour;            // a built-in tour's name or a tour file
+    int tourStep = 1;            // from 1
+    std::string session;         // a session file applied at the start
+    std::string sessionDir = "sessions";
+    std::string probe;           // X,Y: the kernel view's pixel, in the view's pixels from its top left
+};
+// "X,Y": two whole numbers, pixels from the top left.
+bool parseProbe(const std::string& text, glm::ivec2& pixel);
+// Checks the window options against each other and the techniques; fills `out` (0: fine).
+int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& technique, InteractiveOptions& out);
+
+// The techniques as their descriptors say, without GL (list, and checking tours and sessions
+// before anything is created), the host's built-in reference included.
+std::vector<TechniqueInfo> describedTechniques();
+// --reference: hard | soft | both | auto (hard for hard techniques, both for filtered and soft).
+bool referenceModes(const std::string& text, const TechniqueInfo& info, std::vector<ReferenceOptions::Mode>& modes,
+                    std::string& error);
+// The report: a sweep measured, charted and written up into `outDir` (the default spec for the
+// renderer when `specFile` is empty). Without a display this is the main job.
+int runReport(const CommonOptions& common, const std::string& specFile, const std::string& outDir);
+
+// One subcommand: declare() adds it and its options to the parser, run() runs it once parsed.
+class Command {
+public:
+    virtual ~Command() = default;
+    virtual CLI::App* declare(CLI::App& cli) = 0;
+    virtual int run(const CommonOptions& common) = 0;
+};
+std::unique_ptr<Command> listCommand();
+std::unique_ptr<Command> renderCommand();
+std::unique_ptr<Command> evalCommand();
+std::unique_ptr<Command> benchCommand();
+std::unique_ptr<Command> stressCommand();
+std::unique_ptr<Command> reportCommand();
+std::unique_ptr<Command> tourCommand();
+std::unique_ptr<Command> reloadLatencyCommand();
+
+// The main job, when no subcommand is given: its options are the window's (group "Window") and
+// the headless report's folder.
+class MainJob {
+public:
+    void declare(CLI::App& cli);
+    int run(const CommonOptions& common, const CLI::App& cli);
+
+private:
+    WindowOptions window_;
+    std::string outDir_ = "out";
+};
+
+} // namespace shadowlab::cli

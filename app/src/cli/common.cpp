@@ -1,0 +1,237 @@
+// The options and checks every command shares (see cli.h).
+#include "cli/cli.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app.h"
+#include "bench/bench.h"
+#include "bench/path_run.h"
+#include "bench/report.h"
+#include "bench/stress.h"
+#include "groundtruth/reference_technique.h"
+#include "render/render_limits.h"
+#include "ui/session.h"
+#include "ui/tour.h"
+#include "bench/tour_pages.h"
+#include "util/log.h"
+#include "util/paths.h"
+#include "util/strings.h"
+#include "util/text_file.h"
+#include "host_shared/translucent_layers_shared.h"
+
+namespace shadowlab::cli {
+
+namespace {
+
+// Three finite numbers "x,y,z", not all zero, each within +-kMaxWorldCoordinate.
+bool parseVec3(const std::string& text, glm::vec3& v, std::string& error) {
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
+    bool valid = parts.size() == 3 && text.back() != ',';
+    for (size_t i = 0; valid && i < 3; ++i) {
+        const auto number = parseNumberText(parts[i]);
+        valid = number && std::abs(*number) <= kMaxWorldCoordinate;
+        if (valid) v[glm::length_t(i)] = static_cast<float>(*number);
+    }
+    if (!valid || !(glm::length(glm::dvec3(v)) > 1e-12)) {
+        error = "--light-dir '" + text + "': expected three finite numbers x,y,z, not all zero";
+        return false;
+    }
+    return true;
+}
+
+} // namespace
+
+std::optional<double> lightSizeOption(const CommonOptions& common) {
+    if (common.lightSize.empty()) return std::nullopt;
+    return parseNumberText(common.lightSize);
+}
+
+bool buildOptions(const CommonOptions& common, AppOptions& options, std::string& error) {
+    options.scene = common.scene;
+    options.msaaSamples = common.msaa;
+    options.depthPrepass = common.depthPrepass;
+    options.translucentLayers = common.translucentLayers;
+    if (common.referenceDevice == "gpu") {
+        options.referenceDevice = ReferenceDevice::Gpu;
+    } else if (common.referenceDevice != "cpu") {
+        error = "--reference-device '" + common.referenceDevice + "': expected cpu or gpu";
+        return false;
+    }
+    if (!parseSize(common.size, options.size, error)) return false;
+    // The budget part of the render-target check needs no GL: before a context or buffer exists.
+    if (error = renderTargetBudgetProblem(options.size, options.msaaSamples, 0); !error.empty()) return false;
+    if (!common.backend.empty()) {
+        options.backend = parseBackend(common.backend);
+        if (!options.backend) {
+            error = "--backend '" + common.backend + "': expected glfw, egl or osmesa";
+            return false;
+        }
+    }
+    if (!common.lightDirection.empty()) {
+        glm::vec3 dir;
+        if (!parseVec3(common.lightDirection, dir, error)) return false;
+        options.lightDirection = dir;
+    }
+    if (!common.lightSize.empty()) {
+        const auto size = lightSizeOption(common);
+        if (!size || *size < 0.0) {
+            error = "--light-size '" + common.lightSize + "': expected a finite number >= 0 (degrees for directional "
+                    "lights, 0 to 45; world units for spot and point lights)";
+            return false;
+        }
+        options.lightSize = static_cast<float>(*size);
+    }
+    for (const auto& text : common.sceneParams) {
+        const auto equals = text.find('=');
+        const auto value = equals == std::string::npos ? std::nullopt : parseNumberText(text.substr(equals + 1));
+        if (equals == 0 || !value) {
+            error = "--scene-param '" + text + "': expected name=number";
+            return false;
+        }
+        options.sceneParameters[text.substr(0, equals)] = *value;
+    }
+    return true;
+}
+
+void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
+    cmd.add_option("--scene", o.scene, "built-in scene name or path to a scene JSON file")->group("Scene");
+    cmd.add_option("--scene-param", o.sceneParams, "override a scene parameter: name=value (repeatable)")->group("Scene");
+    cmd.add_option("--light-dir", o.lightDirection, "light travel direction x,y,z (directional and spot lights)")->group("Scene");
+    cmd.add_option("--light-size", o.lightSize, "light radius (world units), or angular radius in degrees for directional lights")->group("Scene");
+    cmd.add_option("--technique,-t", o.technique, "technique id (see `shadowlab list`)")->group("Technique");
+    cmd.add_option("--set", o.sets, "parameter value key=value or technique.key=value (repeatable)")->group("Technique");
+    cmd.add_option("--backend", o.backend, "glfw | egl | osmesa (default: glfw with a display, else egl)")->group("Output");
+    cmd.add_option("--size", o.size, "render size WIDTHxHEIGHT (default 1280x720)")->group("Output");
+    cmd.add_option("--msaa", o.msaa, "MSAA samples of the main pass (0 = off)")->check(CLI::IsMember({0, 2, 4, 8}))->group("Output");
+    cmd.add_flag("--depth-prepass", o.depthPrepass,
+                 "depth-only pre-pass of the opaque surfaces, then the main pass with depth test EQUAL: the shadow term "
+                 "runs once per visible pixel")
+        ->group("Output");
+    cmd.add_option("--translucent-layers", o.translucentLayers,
+                   "evaluation: translucent receivers peeled from the camera and measured, 0-8 (default 4; seed 001 "
+                   "sec. 5.3.3)")
+        ->check(CLI::Range(0, SHADOWLAB_MAX_TRANSLUCENT_LAYERS))
+        ->group("Output");
+    cmd.add_option("--reference-device", o.referenceDevice,
+                   "the ground truth of eval, bench and Measure accuracy: cpu (Embree, default) | gpu (the GPU ray tracer "
+                   "of issue 27, checked against Embree by the tests; docs/raytraced.md)")
+        ->group("Output");
+    cmd.add_option("--budget", o.budget,
+                   "raise or lower the scene budget: objects=N,triangles=N,gpu-mib=N,file-mib=N (docs/scene-format.md, Limits)")
+        ->group("Scene");
+    cmd.add_flag("--quiet,-q", o.quiet, "only warnings and errors on stderr");
+}
+
+int fail(const std::string& error, int code) {
+    logError(error);
+    return code;
+}
+
+// Creates the App headless (or windowed) and reports errors with the right exit code.
+int startApp(App& app, const CommonOptions& common, bool windowed) {
+    setLogQuiet(common.quiet);
+    AppOptions options;
+    std::string error;
+    if (!buildOptions(common, options, error)) return fail(error, kExitBadInput);
+    if (!windowed && options.backend == BackendKind::Glfw) windowed = true;
+    bool badInput = false;
+    if (!app.init(options, windowed, error, badInput)) return fail(error, badInput ? kExitBadInput : kExitFailure);
+    // The one range for --light-size and scene files, which depends on the scene's light.
+    if (options.lightSize) {
+        if (const std::string problem = lightSizeProblem(app.scene().light.type, *options.lightSize); !problem.empty())
+            return fail("--light-size " + common.lightSize + ": " + problem, kExitBadInput);
+    }
+    return 0;
+}
+
+// "X,Y": two whole numbers, pixels from the top left.
+bool parseProbe(const std::string& text, glm::ivec2& pixel) {
+    const auto comma = text.find(',');
+    if (comma == std::string::npos || comma == 0 || comma + 1 >= text.size()) return false;
+    const std::string x = text.substr(0, comma), y = text.substr(comma + 1);
+    auto digits = [](const std::string& t) {
+        return !t.empty() && t.size() <= 6 && std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    if (!digits(x) || !digits(y)) return false;
+    pixel = {std::stoi(x), std::stoi(y)};
+    return true;
+}
+
+// Checks the window options against each other and the techniques; fills `out`.
+int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& technique, InteractiveOptions& out) {
+    out.technique = technique;
+    out.compareTechnique = w.compare;
+    if (!w.compare.empty() && !app.techniques().find(w.compare)) {
+        std::string known;
+        for (const auto& t : app.techniques().techniques()) appendListItem(known, t.id);
+        return fail("--compare '" + w.compare + "': no such technique (available: " + known + ")", kExitBadInput);
+    }
+    if (!parseCompareLayout(w.compareLayout, out.compareLayout))
+        return fail("--compare-layout '" + w.compareLayout + "': expected side-by-side, wipe or difference", kExitBadInput);
+    out.wipe = float(w.wipe);
+    out.uiScale = float(w.uiScale);
+    out.showUi = !w.hideUi;
+    out.measure = w.measure;
+    out.screenshotFolder = w.screenshotDir;
+    out.screenshot = w.screenshot;
+    out.cycle = w.smokeFrames > 0;
+    out.frames = w.smokeFrames > 0 ? w.smokeFrames : w.frames;
+    out.session = w.session;
+    out.sessionFolder = w.sessionDir;
+    if (!w.probe.empty()) {
+        glm::ivec2 pixel;
+        if (!parseProbe(w.probe, pixel))
+            return fail("--probe '" + w.probe + "': expected X,Y, the pixel of the view (from its top left) whose filter "
+                        "kernel the kernel view shows",
+                        kExitBadInput);
+        out.probe = pixel;
+    }
+    return 0;
+}
+
+// The techniques as their descriptors say, without GL (list, and checking tours and sessions
+// before anything is created).
+std::vector<TechniqueInfo> describedTechniques() {
+    PluginScan scan = scanPlugins(pluginDir(), {referenceDescriptor().id});
+    scan.techniques.push_back(copyDescriptor(referenceDescriptor(), {}));   // built into the host
+    return scan.techniques;
+}
+
+// --reference: hard | soft | both | auto (hard for hard techniques, both for filtered and soft).
+bool referenceModes(const std::string& text, const TechniqueInfo& info, std::vector<ReferenceOptions::Mode>& modes,
+                    std::string& error) {
+    using Mode = ReferenceOptions::Mode;
+    if (text == "hard") modes = {Mode::Hard};
+    else if (text == "soft") modes = {Mode::Soft};
+    else if (text == "both") modes = {Mode::Hard, Mode::Soft};
+    else if (text == "auto")
+        modes = (info.category == "hard" || info.category == "baseline") ? std::vector<Mode>{Mode::Hard}
+                                                                         : std::vector<Mode>{Mode::Hard, Mode::Soft};
+    else {
+        error = "--reference '" + text + "': expected hard, soft, both or auto";
+        return false;
+    }
+    return true;
+}
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> items;
+    std::stringstream in(text);
+    std::string item;
+    while (std::getline(in, item, ','))
+        if (!item.empty()) items.push_back(item);
+    return items;
+}
+
+} // namespace shadowlab::cli

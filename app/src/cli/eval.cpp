@@ -1,0 +1,189 @@
+// `shadowlab eval`: accuracy against the ray-traced reference, with the frame timing of the same run.
+#include "cli/cli.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app.h"
+#include "bench/bench.h"
+#include "bench/path_run.h"
+#include "bench/report.h"
+#include "bench/stress.h"
+#include "groundtruth/reference_technique.h"
+#include "render/render_limits.h"
+#include "ui/session.h"
+#include "ui/tour.h"
+#include "bench/tour_pages.h"
+#include "util/log.h"
+#include "util/paths.h"
+#include "util/stats.h"
+#include "util/strings.h"
+#include "util/text_file.h"
+
+namespace shadowlab::cli {
+namespace {
+
+std::string describeParams(App& app, const TechniqueInfo& info) {
+    std::string text;
+    const auto& values = app.params().values(info);
+    for (size_t i = 0; i < info.params.size(); ++i) {
+        if (!text.empty()) text += " ";
+        text += info.params[i].id + "=" + formatParamValue(info.params[i], values[i]);
+    }
+    return text;
+}
+
+int commandEval(const CommonOptions& common, const std::string& reference, int samples, bool adaptive, int frames,
+                bool json) {
+    App app;
+    if (int code = startApp(app, common, false)) return code;
+    const std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;
+    const TechniqueInfo* info = app.techniques().find(technique);
+    if (!info) return fail("--technique '" + technique + "': no such technique", kExitBadInput);
+    std::string error;
+    std::vector<ReferenceOptions::Mode> modes;
+    if (!referenceModes(reference, *info, modes, error)) return fail(error, kExitBadInput);
+    if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
+    Measurement m;
+    if (!app.measure(technique, 5, frames, m, error)) return fail(error, kExitFailure);
+
+    nlohmann::json out = {{"scene", app.scene().name}, {"technique", technique}, {"parameters", describeParams(app, *info)},
+                          {"width", app.renderer().size().x}, {"height", app.renderer().size().y},
+                          {"renderer", glRendererString()}, {"gpu_bytes", m.gpuBytes}};
+    for (const auto& [pass, summary] : m.gpuMs)
+        out["gpu_ms"][pass] = {{"median", summary.median}, {"p5", summary.p5}, {"p95", summary.p95}};
+    out["cpu_ms"] = {{"median", m.cpuMs.median}, {"p5", m.cpuMs.p5}, {"p95", m.cpuMs.p95}};
+    out["translucency_model"] = translucencyModelName(info->translucencyModel);
+    out["reference_device"] = referenceDeviceName(app.referenceDevice());
+    // Against the physical model ("hard", "soft") and, where it differs, the technique's own
+    // ("hard_own", "soft_own"): docs/benchmarks.md, "Translucency models".
+    const std::vector<TranslucencyModel> models = judgedModels(info->translucencyModel, app.scene());
+    for (const auto mode : modes) {
+        for (const TranslucencyModel model : models) {
+            ReferenceOptions options;
+            options.mode = mode;
+            options.samplesPerPixel = samples;
+            options.adaptive = adaptive;
+            options.model = model;
+            Evaluation evaluation;
+            if (!app.evaluate(options, evaluation, error)) return fail(error, kExitFailure);
+            const std::string name = std::string(mode == ReferenceOptions::Mode::Hard ? "hard" : "soft") +
+                                     (model == TranslucencyModel::Physical ? "" : "_own");
+            out["accuracy"][name] = nlohmann::json::parse(metricsToJson(evaluation.metrics));
+            out["accuracy"][name]["model"] = translucencyModelName(model);
+            out["accuracy"][name]["trace_seconds"] = evaluation.traceSeconds;
+            if (!evaluation.translucentLayers.empty()) {
+                // The translucent receivers, every peeled layer together and layer by layer.
+                nlohmann::json receivers = nlohmann::json::parse(metricsToJson(evaluation.translucentMetrics));
+                for (const TranslucentLayerEvaluation& layer : evaluation.translucentLayers)
+                    receivers["layers"].push_back(nlohmann::json::parse(metricsToJson(layer.metrics)));
+                out["accuracy"][name]["translucent_receivers"] = receivers;
+            }
+            if (!out.contains("texel_footprint") && evaluation.footprint.maps > 0)
+                out["texel_footprint"] = nlohmann::json::parse(footprintToJson(evaluation.footprint));
+            if (mode == ReferenceOptions::Mode::Soft) {
+                // The reference's own penumbra error: soft figures below about 4x it are not resolved.
+                const ReferenceStats& r = evaluation.referenceStats;
+                out["accuracy"][name]["reference_rays"] = r.samplesPerPixel;
+                out["accuracy"][name]["reference_adaptive"] = r.adaptive;
+                out["accuracy"][name]["reference_floor"] = evaluation.referenceFloor;
+                out["accuracy"][name]["reference_refined_fraction"] =
+                    r.tracedPixels ? double(r.refinedPixels) / double(r.tracedPixels) : 0.0;
+                out["accuracy"][name]["reference_shadow_rays"] = r.shadowRays;
+            }
+        }
+    }
+    if (json) {
+        std::cout << out.dump(2) << "\n";
+        return 0;
+    }
+    std::printf("scene %s, technique %s (%s), %dx%d, %s\n", app.scene().name.c_str(), technique.c_str(),
+                describeParams(app, *info).c_str(), app.renderer().size().x, app.renderer().size().y,
+                glRendererString().c_str());
+    for (const auto& [pass, summary] : m.gpuMs)
+        std::printf("  GPU %-20s median %8.3f ms  (p5 %.3f, p95 %.3f)\n", pass.c_str(), summary.median, summary.p5, summary.p95);
+    std::printf("  host CPU per frame   median %8.3f ms;  GPU memory %.2f MiB\n", m.cpuMs.median, double(m.gpuBytes) / 1048576.0);
+    if (out.contains("texel_footprint")) {
+        // Seed 002 eq. 8.1's dp/ds: pixels one shadow-map texel covers along its worst direction.
+        const auto& f = out["texel_footprint"];
+        const auto& t = f["medianByViewDepth"];
+        std::printf("  texel footprint m (pixels per texel, worst direction; > 1 undersampled): median %.3f  p95 %.3f  "
+                    "max %.3g  undersampled %.1f%% of pixels  median by view-depth third %.3f / %.3f / %.3f  "
+                    "projection cos(a)/cos(b) median %.3f p95 %.3f  (%zu maps, %zu px uncovered)\n",
+                    f["median"].get<double>(), f["p95"].get<double>(), f["max"].get<double>(),
+                    100.0 * f["undersampledFraction"].get<double>(), t[0].get<double>(), t[1].get<double>(),
+                    t[2].get<double>(), f["projectionMedian"].get<double>(), f["projectionP95"].get<double>(),
+                    f["maps"].get<size_t>(), f["uncoveredPixels"].get<size_t>());
+    }
+    for (const auto& [name, metrics] : out["accuracy"].items()) {
+        std::printf("  vs %s reference (%s model): MAE %.4f  RMSE %.4f  false shadow %.3f%%  false light %.3f%%  "
+                    "MAE penumbra %.4f  MAE elsewhere %.4f  noise %.4f  compared %.1f%% of pixels\n",
+                    name.c_str(), metrics["model"].get<std::string>().c_str(), metrics["mae"].get<double>(), metrics["rmse"].get<double>(),
+                    100.0 * metrics["falseShadowRate"].get<double>(), 100.0 * metrics["falseLightRate"].get<double>(),
+                    metrics["maePenumbra"].get<double>(), metrics["maeOutsidePenumbra"].get<double>(),
+                    metrics["noiseEnergy"].get<double>(), 100.0 * metrics["comparedFraction"].get<double>());
+        const auto& thirds = metrics["maeByViewDepth"];
+        const auto& thirdPixels = metrics["comparedPixelsByViewDepth"];
+        std::printf("    MAE by view depth (thirds of near..far): near %.4f (%zu px)  mid %.4f (%zu px)  far %.4f (%zu px)\n",
+                    thirds[0].get<double>(), thirdPixels[0].get<size_t>(), thirds[1].get<double>(),
+                    thirdPixels[1].get<size_t>(), thirds[2].get<double>(), thirdPixels[2].get<size_t>());
+        if (metrics.contains("translucent_receivers")) {
+            const auto& t = metrics["translucent_receivers"];
+            const auto& channel = t["maePerChannel"];
+            std::printf("    translucent receivers (%zu layers, %zu px): MAE %.4f  (r %.4f g %.4f b %.4f)  false shadow %.3f%%  "
+                        "false light %.3f%%;  by layer:",
+                        t["layers"].size(), t["comparedPixels"].get<size_t>(), t["mae"].get<double>(),
+                        channel[0].get<double>(), channel[1].get<double>(), channel[2].get<double>(),
+                        100.0 * t["falseShadowRate"].get<double>(), 100.0 * t["falseLightRate"].get<double>());
+            for (const auto& layer : t["layers"])
+                std::printf(" %.4f (%zu px)", layer["mae"].get<double>(), layer["comparedPixels"].get<size_t>());
+            std::printf("\n");
+        }
+        if (metrics.contains("reference_floor"))
+            std::printf("    soft reference: %d rays per pixel%s (%.1f%% of pixels refined), traced in %.2f s; its own "
+                        "penumbra error (floor) %.4f\n",
+                        metrics["reference_rays"].get<int>(), metrics["reference_adaptive"].get<bool>() ? ", adaptive" : "",
+                        100.0 * metrics["reference_refined_fraction"].get<double>(),
+                        metrics["trace_seconds"].get<double>(), metrics["reference_floor"].get<double>());
+    }
+    return 0;
+}
+
+class EvalCommand final : public Command {
+public:
+    CLI::App* declare(CLI::App& cli) override {
+        auto* eval = cli.add_subcommand("eval", "accuracy against the ray-traced reference, with the frame timing of the same run");
+        eval->add_option("--reference", reference_, "hard | soft | both | auto (default: hard for hard techniques, else both)");
+        eval->add_option("--samples", samples_, "soft reference: rays per pixel (default 1024)")->check(CLI::Range(1, 4096));
+        eval->add_option("--reference-adaptive", adaptive_,
+                         "soft reference: a first batch everywhere, all --samples rays only near penumbrae: on | off (default on)");
+        eval->add_option("--frames", frames_, "timed frames (default 50)")->check(CLI::Range(1, 100000));
+        eval->add_flag("--json", json_, "machine-readable output");
+        return eval;
+    }
+    int run(const CommonOptions& common) override {
+        bool adaptive = true;
+        std::string error;
+        if (!parseOnOff(adaptive_, adaptive, error, "--reference-adaptive")) return fail(error, kExitBadInput);
+        return commandEval(common, reference_, samples_, adaptive, frames_, json_);
+    }
+
+private:
+    std::string reference_ = "auto", adaptive_ = "on";
+    int samples_ = BenchSpec{}.referenceSamples, frames_ = 50;
+    bool json_ = false;
+};
+
+} // namespace
+
+std::unique_ptr<Command> evalCommand() { return std::make_unique<EvalCommand>(); }
+
+} // namespace shadowlab::cli

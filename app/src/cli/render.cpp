@@ -1,0 +1,232 @@
+// `shadowlab render`: one frame headless to a PNG, or every frame of a path, a comparison of two
+// techniques, or the kernel view around a probed pixel (slides of the window).
+#include "cli/cli.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app.h"
+#include "bench/bench.h"
+#include "bench/path_run.h"
+#include "bench/report.h"
+#include "bench/stress.h"
+#include "groundtruth/reference_technique.h"
+#include "render/render_limits.h"
+#include "ui/session.h"
+#include "ui/tour.h"
+#include "bench/tour_pages.h"
+#include "util/log.h"
+#include "util/paths.h"
+#include "util/stats.h"
+#include "util/strings.h"
+#include "util/text_file.h"
+
+namespace shadowlab::cli {
+namespace {
+
+// Shadow term as grey (sRGB-encoded), pixels outside the comparison dark blue: `--view reference`.
+Image visibilityImage(const std::vector<glm::vec3>& visibility, const std::vector<uint8_t>& mask, int width, int height) {
+    Image image{width, height, 4, std::vector<uint8_t>(size_t(width) * size_t(height) * 4, 255)};
+    for (size_t i = 0; i < visibility.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            const float v = std::clamp(visibility[i][c], 0.0f, 1.0f);
+            const float srgb = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+            image.pixels[i * 4 + size_t(c)] = mask[i] ? uint8_t(std::lround(srgb * 255.0f)) : uint8_t(c == 2 ? 38 : 13);
+        }
+    }
+    return image;
+}
+
+ViewSelection parseView(const std::string& text) { return viewFromName(text); }
+
+// The kernel view as a slide: the window's frame loop offscreen without the panel, so the
+// footprint's numbers are drawn beside it, and printed.
+int renderProbeSlide(App& app, const std::string& technique, const std::string& view, int frames, const std::string& out,
+                     glm::ivec2 probePixel) {
+    // The kernel view as a slide: the window's frame loop offscreen without the panel, so the
+    // footprint's numbers are drawn beside it, and printed.
+    WindowOptions w;
+    w.frames = std::max(frames, 1);
+    w.screenshot = out;
+    w.hideUi = true;
+    InteractiveOptions options;
+    if (int code = windowOptionsProblem(app, w, technique, options)) return code;
+    options.view = parseView(view);
+    options.probe = probePixel;
+    const int code = app.runInteractive(options);
+    if (code) return code;
+    const KernelProbe& measured = app.lastProbe();
+    std::printf("probe %d,%d: %s\n", probePixel.x, probePixel.y, describeProbe(measured).c_str());
+    if (measured.valid)
+        std::printf("probe %d,%d: kernel=%s n=%d kernel_texels=%.4f samples=%d early_out=%d lit=%.4f search_texels=%.4f "
+                    "search_samples=%d blockers=%d blocker_depth=%.5f receiver_depth=%.5f penumbra_texels=%.4f "
+                    "penumbra_world=%.5f decision=%s\n",
+                    probePixel.x, probePixel.y,
+                    measured.kernel == FilterKernel::Box    ? "box"
+                    : measured.kernel == FilterKernel::Disc ? "disc"
+                                                            : "pcss",
+                    measured.n, double(measured.kernelTexels), measured.samplesTaken, measured.earlyOut ? 1 : 0,
+                    double(measured.lit), double(measured.searchRadiusTexels), measured.searchSamples, measured.blockers,
+                    double(measured.averageBlockerDepth), double(measured.receiverDepth), double(measured.kernelTexels),
+                    double(measured.penumbraWorld), measured.decision.empty() ? "-" : measured.decision.c_str());
+    std::fflush(stdout);
+    logInfo("wrote " + out);
+    return 0;
+}
+
+int commandRender(const CommonOptions& common, const std::string& out, const std::string& view, int frames,
+                  const std::string& reference, int samples, const WindowOptions& compare, const std::string& path,
+                  int pathFrames, const std::string& probe) {
+    glm::ivec2 probePixel(0);
+    if (!probe.empty()) {
+        // Checked before the app starts: a bad value costs no context.
+        if (!parseProbe(probe, probePixel))
+            return fail("--probe '" + probe + "': expected X,Y, the pixel from the top left (e.g. 640,360)", kExitBadInput);
+        if (view != "kernel")
+            return fail("--probe: the kernel view draws the probe (--view kernel), not --view " + view, kExitBadInput);
+        if (!compare.compare.empty() || !path.empty())
+            return fail("--probe: one technique, one frame (without --compare or --path)", kExitBadInput);
+    }
+    App app;
+    if (int code = startApp(app, common, false)) return code;
+    if (!probe.empty()) {
+        const glm::ivec2 size = app.renderer().size();
+        if (probePixel.x >= size.x || probePixel.y >= size.y)
+            return fail("--probe " + probe + ": outside the " + std::to_string(size.x) + "x" + std::to_string(size.y) +
+                            " image (x < " + std::to_string(size.x) + ", y < " + std::to_string(size.y) + ")",
+                        kExitBadInput);
+        app.setProbePixel(probePixel);
+    }
+    std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;
+    if (!path.empty()) {
+        // Every frame of a camera and light path, numbered, into the folder --out (docs/stability.md).
+        if (!compare.compare.empty()) return fail("--path: one technique at a time (without --compare)", kExitBadInput);
+        if (view == "error" || view == "reference") return fail("--path: --view " + view + " is not drawn per frame", kExitBadInput);
+        if (!app.techniques().find(technique)) return fail("--technique '" + technique + "': no such technique", kExitBadInput);
+        std::string error;
+        if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
+        const int code = renderPath(app, technique, path, pathFrames, view, out, error);
+        return code ? fail(error, code) : 0;
+    }
+    // --compare A,B (or --compare B with --technique A): both techniques in one image, labelled.
+    std::string other;
+    if (!compare.compare.empty()) {
+        const auto comma = compare.compare.find(',');
+        if (comma == std::string::npos) {
+            other = compare.compare;
+        } else {
+            technique = compare.compare.substr(0, comma);
+            other = compare.compare.substr(comma + 1);
+        }
+        if (technique.empty() || other.empty() || other.find(',') != std::string::npos)
+            return fail("--compare '" + compare.compare + "': expected A,B (two technique ids, e.g. pcss,reference) or "
+                        "one id to compare --technique with",
+                        kExitBadInput);
+        if (view != "lit" && view != "visibility")
+            return fail("--view " + view + ": --compare shows lit or visibility", kExitBadInput);
+    }
+    std::string error;
+    for (const std::string& id : {technique, other}) {
+        if (id.empty() || app.techniques().find(id)) continue;
+        std::string known;
+        for (const auto& t : app.techniques().techniques()) appendListItem(known, t.id);
+        return fail(std::string(other.empty() ? "--technique '" : "--compare: '") + id + "': no such technique (available: " +
+                        known + ")",
+                    kExitBadInput);
+    }
+    if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
+    if (!other.empty()) {
+        WindowOptions w = compare;
+        w.compare = other;
+        w.frames = std::max(frames, 1);
+        w.screenshot = out;
+        w.hideUi = true;   // a slide: the view and the two labels
+        InteractiveOptions options;
+        if (int code = windowOptionsProblem(app, w, technique, options)) return code;
+        options.view = parseView(view);
+        const int code = app.runInteractive(options);
+        if (code == 0) logInfo("wrote " + out);
+        return code;
+    }
+    if (!probe.empty()) return renderProbeSlide(app, technique, view, frames, out, probePixel);
+    for (int i = 0; i < std::max(frames, 1); ++i)
+        if (!app.renderFrame(technique, error)) return fail(error, kExitFailure);
+    Image image;
+    if (view == "error" || view == "reference") {
+        // Accuracy views: the reference traced from this frame's own G-buffer.
+        std::vector<ReferenceOptions::Mode> modes;
+        if (!referenceModes(reference == "auto" ? "hard" : reference, *app.techniques().find(technique), modes, error))
+            return fail(error, kExitBadInput);
+        ReferenceOptions options;
+        options.mode = modes.front();
+        options.samplesPerPixel = samples;
+        options.adaptive = true;   // as eval and bench: all the rays only where a penumbra may be
+        options.model = TranslucencyModel::Physical;
+        Evaluation evaluation;
+        if (!app.evaluate(options, evaluation, error)) return fail(error, kExitFailure);
+        image = view == "error" ? evaluation.heatmap()
+                                : visibilityImage(evaluation.reference, evaluation.mask, evaluation.width, evaluation.height);
+    } else {
+        if (!app.presentView(technique, parseView(view), ~0u, {}, error)) return fail(error, kExitBadInput);
+        image = app.readDisplay();
+        if (parseView(view).kind == ViewSelection::Kind::Kernel) std::printf("%s\n", describeProbe(app.lastProbe()).c_str());
+    }
+    if (!writePng(out, image, error)) return fail(error, kExitFailure);
+    logInfo("wrote " + out);
+    return 0;
+}
+
+class RenderCommand final : public Command {
+public:
+    CLI::App* declare(CLI::App& cli) override {
+        auto* render = cli.add_subcommand("render", "render one frame headless to a PNG file");
+        render->add_option("--out,-o", out_, "PNG file to write")->required();
+        render->add_option("--view", view_,
+                           "lit | visibility | error (heatmap vs the reference) | reference | footprint (texel footprint m, "
+                           "log2 heat map) | texel-grid | coverage (which map serves a pixel, and the light frusta) | "
+                           "focus-body (the focus body B, seed 002 eq. 4.2, and the map's volume) | kernel (the filter "
+                           "kernel around --probe) | a debug image (e.g. 'shadow map')");
+        render->add_option("--probe", probe_,
+                           "with --view kernel: X,Y, the pixel (from the top left) whose filter kernel is drawn and measured; "
+                           "its numbers are printed");
+        render->add_option("--frames", frames_, "frames to render before saving (default 3)")->check(CLI::Range(1, 10000));
+        render->add_option("--reference", reference_, "--view error/reference: hard | soft (default hard)");
+        render->add_option("--samples", samples_, "soft reference: rays per pixel, traced adaptively (default 1024)")
+            ->check(CLI::Range(1, 4096));
+        render->add_option("--compare", compare_.compare,
+                           "A,B: both techniques in one image with their labels (B may be 'reference', the ground truth)");
+        render->add_option("--compare-layout", compare_.compareLayout, "with --compare: side-by-side (default) | wipe | difference");
+        render->add_option("--wipe", compare_.wipe, "with --compare-layout wipe: divider position, 0..1 (default 0.5)")
+            ->check(CLI::Range(0.0, 1.0));
+        render->add_option("--ui-scale", compare_.uiScale, "with --compare: size of the labels (default 1)")
+            ->check(CLI::Range(0.5, 4.0));
+        render->add_option("--path", path_,
+                           "camera and light path (a JSON file, a path of the scene or built-in: orbit, dolly, sweep, walk, "
+                           "static): every frame to --out FOLDER/frame_NNNNN.png (and frames.mp4 with ffmpeg)");
+        render->add_option("--path-frames", pathFrames_, "with --path: frames along it (default: the path's own)")
+            ->check(CLI::Range(1, 100000));
+        return render;
+    }
+    int run(const CommonOptions& common) override {
+        return commandRender(common, out_, view_, frames_, reference_, samples_, compare_, path_, pathFrames_, probe_);
+    }
+
+private:
+    std::string out_, view_ = "lit", probe_, reference_ = "auto", path_;
+    int frames_ = 3, samples_ = BenchSpec{}.referenceSamples, pathFrames_ = 0;
+    WindowOptions compare_;
+};
+
+} // namespace
+
+std::unique_ptr<Command> renderCommand() { return std::make_unique<RenderCommand>(); }
+
+} // namespace shadowlab::cli
