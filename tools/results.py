@@ -76,6 +76,7 @@ STYLE = OrderedDict([
     ("cssm2", ("#c49c94", "s")),
     ("translucent-shadows", ("#f7b6d2", "^")),
     ("composited-translucent", ("#9edae5", "p")),
+    ("raytraced", ("#e6550d", "*")),
 ])
 FALLBACK_COLOURS = ("#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
                     "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac")

@@ -27,6 +27,7 @@ App::~App() {
     if (techniques_) techniques_->unloadAll();
     techniques_.reset();
     shadowMapViews_.release();
+    gpuReference_.reset();
     renderer_.reset();
     timer_.reset();
     shaders_.reset();
@@ -74,6 +75,7 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
     applyLightOverrides();
     depthPrepass_ = options.depthPrepass;
     translucentLayers_ = options.translucentLayers;
+    referenceDevice_ = options.referenceDevice;
     techniques_ = std::make_unique<TechniqueManager>(HostContext{*renderer_, *shaders_, *timer_, backend_->loader()}, pluginDir());
     techniques_->scan({referenceDescriptor().id});
     techniques_->registerBuiltin(copyDescriptor(referenceDescriptor(), {}), [this] {
@@ -556,6 +558,13 @@ bool App::measureDepthFloor(int resolution, int warmupFrames, int frames, Measur
 
 bool App::traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
                          std::string& error, ReferenceStats* stats) {
+    if (referenceDevice_ == ReferenceDevice::Gpu) {
+        if (!gpuReference_) gpuReference_ = std::make_unique<GpuReference>(*shaders_);
+        const bool traced = gpuReference_->trace(*renderer_, gbuffer, light_, options, visibility, stats, error);
+        renderer_->applyDefaultState();
+        if (!traced) error = "gpu reference: " + error;
+        return traced;
+    }
     if (!groundTruth_) {
         groundTruth_ = loadGroundTruth(error);
         if (!groundTruth_) return false;

@@ -18,6 +18,7 @@
 #include "plugin/host_params.h"
 #include "plugin/params.h"
 #include "plugin/technique_runtime.h"
+#include "render/gpu_reference.h"
 #include "render/gpu_timer.h"
 #include "render/renderer.h"
 #include "render/shadow_map_views.h"
@@ -40,6 +41,7 @@ struct AppOptions {
     std::optional<float> lightSize;                     // scene units (degrees for directional)
     bool depthPrepass = false;                          // host depth pre-pass, then main pass EQUAL
     int translucentLayers = 4;                          // evaluation: translucent receivers peeled, 0-8
+    ReferenceDevice referenceDevice = ReferenceDevice::Cpu; // the ground truth: Embree (cpu) or the GPU tracer
 };
 
 // One translucent layer of an evaluation (Evaluation::translucentLayers).
@@ -173,6 +175,10 @@ public:
     // Compares the last frame's shadow term with the reference traced from its own G-buffer
     // (re-rendering that frame with the accuracy targets when it was a timed frame).
     bool evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error);
+    // Which tracer evaluate() and the reference views use (--reference-device): Embree on the CPU
+    // (the default ground truth) or the GPU tracer of issue 27 (render/gpu_reference.h).
+    void setReferenceDevice(ReferenceDevice device) { referenceDevice_ = device; }
+    ReferenceDevice referenceDevice() const { return referenceDevice_; }
     // Traces the current scene and light for `gbuffer` (loads the Embree module on first use).
     bool traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
                         std::string& error, ReferenceStats* stats = nullptr);
@@ -228,6 +234,8 @@ private:
     double lastCpuFrameMs_ = 0.0;
     std::vector<std::string> lastReloaded_;
     GroundTruthPtr groundTruth_;
+    ReferenceDevice referenceDevice_ = ReferenceDevice::Cpu;
+    std::unique_ptr<GpuReference> gpuReference_;   // made on first use with the GPU device
     ReferenceCache referenceCache_;
     uint64_t sceneGeneration_ = 0;         // bumped when the scene changes
     uint64_t groundTruthGeneration_ = ~0ull;

@@ -432,6 +432,40 @@ struct TranslucentDraws {
     void (*install)(void* context, const TranslucentDrawHook* hook);   // copied; null removes the hook
 };
 
+// Extension "shadowlab.ray-tracing/1": the scene's shadow casters as a BVH in storage buffers, for
+// techniques that trace shadow rays on the GPU (issue 27; shaders/ray_trace.glsl traverses it:
+// #include "ray_trace.glsl" and bind the five buffers on its RT_*_BINDING points). scene() builds
+// the BVH on its first call after a scene load (binned SAH on the CPU, app/src/render/bvh.h, which
+// documents the layouts; seconds for millions of triangles) and returns the same struct until the
+// next scene load, which releases the buffers: call scene() every frame, never keep the names.
+// The buffers are host-owned and read-only for techniques (GL_SHADER_STORAGE_BUFFER, std430);
+// every caster is in world space (each object's transform applied to its mesh); objects that cast
+// no shadow are left out. Call scene() only from the render thread with the host's GL context
+// current (renderShadows, bindMainPass, hooks). Their memory is the host's (`bytes`), not counted
+// in the technique's; report it as a statistic if the bench should show it. Never null on a host
+// that has the extension; an empty scene gives one empty leaf.
+#define SHADOWLAB_EXT_RAY_TRACING "shadowlab.ray-tracing/1"
+struct RayTracingScene {
+    uint32_t structSize = sizeof(RayTracingScene);
+    uint32_t nodes = 0;              // GL buffer: 32-byte nodes (lo.xyz, first; hi.xyz, count), root first
+    uint32_t triangles = 0;          // GL buffer: 48-byte world-space triangles in leaf order
+    uint32_t uvs = 0;                // GL buffer: 32-byte uv records of textured triangles
+    uint32_t materials = 0;          // GL buffer: 32-byte records ((t, alpha), (flags, first texel, w, h))
+    uint32_t texels = 0;             // GL buffer: transmission textures, RGBA8 in one uint per texel
+    uint32_t nodeCount = 0;
+    uint32_t triangleCount = 0;      // shadow-casting triangles (0 for an empty scene)
+    uint32_t materialCount = 0;
+    uint32_t depth = 0;              // longest root-to-leaf path (ray_trace.glsl's stack holds 64)
+    float rayOffset = 1e-4f;         // the Embree reference's shadow-ray offset (world units)
+    float buildMilliseconds = 0.0f;  // CPU build time, upload excluded
+    uint64_t bytes = 0;              // the five buffers together
+};
+struct RayTracing {
+    uint32_t structSize = sizeof(RayTracing);
+    void* context;
+    const RayTracingScene* (*scene)(void* context);
+};
+
 // Host services, one table per loaded technique (so the host can account for its GPU memory and
 // release whatever it leaves behind on unload).
 class IHost {

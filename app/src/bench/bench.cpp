@@ -132,7 +132,8 @@ nlohmann::json benchEnvironment(App& app) {
     std::strftime(date, sizeof(date), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
     const auto* vendor = reinterpret_cast<const char*>(glGetString(GL_VENDOR));
     return {{"gpu", glRendererString()}, {"driver", glVersionString()}, {"vendor", vendor ? vendor : "unknown"},
-            {"backend", app.backend().description()}, {"date", date}, {"commit", kBuildCommit}};
+            {"backend", app.backend().description()}, {"date", date}, {"commit", kBuildCommit},
+            {"reference_device", referenceDeviceName(app.referenceDevice())}};
 }
 
 bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows, std::string& error,

@@ -42,6 +42,7 @@ struct CommonOptions {
     int msaa = 0;
     bool depthPrepass = false;
     int translucentLayers = 4;
+    std::string referenceDevice = "cpu";
     std::string budget;
     bool quiet = false;
 };

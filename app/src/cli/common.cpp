@@ -62,6 +62,12 @@ bool buildOptions(const CommonOptions& common, AppOptions& options, std::string&
     options.msaaSamples = common.msaa;
     options.depthPrepass = common.depthPrepass;
     options.translucentLayers = common.translucentLayers;
+    if (common.referenceDevice == "gpu") {
+        options.referenceDevice = ReferenceDevice::Gpu;
+    } else if (common.referenceDevice != "cpu") {
+        error = "--reference-device '" + common.referenceDevice + "': expected cpu or gpu";
+        return false;
+    }
     if (!parseSize(common.size, options.size, error)) return false;
     // The budget part of the render-target check needs no GL: before a context or buffer exists.
     if (error = renderTargetBudgetProblem(options.size, options.msaaSamples, 0); !error.empty()) return false;
@@ -116,6 +122,10 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
                    "evaluation: translucent receivers peeled from the camera and measured, 0-8 (default 4; seed 001 "
                    "sec. 5.3.3)")
         ->check(CLI::Range(0, SHADOWLAB_MAX_TRANSLUCENT_LAYERS))
+        ->group("Output");
+    cmd.add_option("--reference-device", o.referenceDevice,
+                   "the ground truth of eval, bench and Measure accuracy: cpu (Embree, default) | gpu (the GPU ray tracer "
+                   "of issue 27, checked against Embree by the tests; docs/raytraced.md)")
         ->group("Output");
     cmd.add_option("--budget", o.budget,
                    "raise or lower the scene budget: objects=N,triangles=N,gpu-mib=N,file-mib=N (docs/scene-format.md, Limits)")

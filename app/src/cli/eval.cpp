@@ -62,6 +62,7 @@ int commandEval(const CommonOptions& common, const std::string& reference, int s
         out["gpu_ms"][pass] = {{"median", summary.median}, {"p5", summary.p5}, {"p95", summary.p95}};
     out["cpu_ms"] = {{"median", m.cpuMs.median}, {"p5", m.cpuMs.p5}, {"p95", m.cpuMs.p95}};
     out["translucency_model"] = translucencyModelName(info->translucencyModel);
+    out["reference_device"] = referenceDeviceName(app.referenceDevice());
     // Against the physical model ("hard", "soft") and, where it differs, the technique's own
     // ("hard_own", "soft_own"): docs/benchmarks.md, "Translucency models".
     const std::vector<TranslucencyModel> models = judgedModels(info->translucencyModel, app.scene());

@@ -46,6 +46,11 @@ PluginHost::PluginHost(HostContext context, const TechniqueInfo& info)
     shadowMapReport_ = {sizeof(ShadowMapReport), this, &PluginHost::receiveShadowMaps};
     filterFootprintReport_ = {sizeof(FilterFootprintReport), this, &PluginHost::receiveFilterFootprint};
     translucentDraws_ = {sizeof(TranslucentDraws), this, &PluginHost::installTranslucentHook};
+    rayTracing_ = {sizeof(RayTracing), this, &PluginHost::rayTracingScene};
+}
+
+const RayTracingScene* PluginHost::rayTracingScene(void* context) {
+    return &static_cast<PluginHost*>(context)->context_.renderer.rayTracing();
 }
 
 void PluginHost::installTranslucentHook(void* context, const TranslucentDrawHook* hook) {
@@ -136,6 +141,7 @@ const void* PluginHost::extension(const char* id) const {
     if (name == SHADOWLAB_EXT_SHADOW_MAPS) return &shadowMapReport_;
     if (name == SHADOWLAB_EXT_FILTER_FOOTPRINT) return &filterFootprintReport_;
     if (name == SHADOWLAB_EXT_TRANSLUCENT_DRAWS) return &translucentDraws_;
+    if (name == SHADOWLAB_EXT_RAY_TRACING) return &rayTracing_;
     return nullptr;
 }
 

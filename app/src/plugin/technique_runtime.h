@@ -123,6 +123,8 @@ private:
     ShadowMapReport shadowMapReport_{};
     FilterFootprintReport filterFootprintReport_{};
     TranslucentDraws translucentDraws_{};
+    RayTracing rayTracing_{};
+    static const RayTracingScene* rayTracingScene(void* context);
     TranslucentDrawHook translucentHook_{};
     bool muteGpuPasses_ = false;
     static void installTranslucentHook(void* context, const TranslucentDrawHook* hook);

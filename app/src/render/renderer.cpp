@@ -9,6 +9,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "host_shared/eye_blur_shared.h"
+#include "render/bvh.h"
 #include "shadowlab/frame_block.h"
 #include "host_shared/translucent_layers_shared.h"
 #include "util/log.h"
@@ -134,6 +135,9 @@ void Renderer::setScene(const Scene& scene) {
     scene_ = &scene;
     adjacencyRanges_.clear();   // rebuilt on the first adjacency draw of this scene
     meshClosed_.clear();
+    for (GlBuffer& buffer : rayTracingBuffers_) buffer.reset();
+    rayTracing_ = {};
+    rayTracingBuilt_ = false;
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
     meshRanges_.clear();
@@ -738,6 +742,35 @@ void Renderer::allocatePrepassTargets() {
     if (status != GL_FRAMEBUFFER_COMPLETE) logError("camera pre-pass framebuffer is " + framebufferStatusName(status));
     prepass_ = {sizeof(CameraPrepass), prepassDepth_.get(), prepassPosition_.get(), prepassNormal_.get(),
                 prepassObjectId_.get(), size_};
+}
+
+const RayTracingScene& Renderer::rayTracing() {
+    if (rayTracingBuilt_ || !scene_) return rayTracing_;
+    const bvh::Bvh tree = bvh::build(*scene_);
+    auto upload = [&](GlBuffer& buffer, const void* data, size_t bytes, const char* label) {
+        GLuint name = 0;
+        glCreateBuffers(1, &name);
+        glNamedBufferStorage(name, GLsizeiptr(bytes), data, 0);
+        glObjectLabel(GL_BUFFER, name, -1, label);
+        buffer.reset(name);
+        return name;
+    };
+    RayTracingScene& r = rayTracing_;
+    r = {};
+    r.nodes = upload(rayTracingBuffers_[0], tree.nodes.data(), tree.nodes.size() * sizeof(bvh::Node), "bvh nodes");
+    r.triangles = upload(rayTracingBuffers_[1], tree.triangles.data(), tree.triangles.size() * sizeof(bvh::Triangle), "bvh triangles");
+    r.uvs = upload(rayTracingBuffers_[2], tree.uvs.data(), tree.uvs.size() * sizeof(bvh::UvRecord), "bvh uvs");
+    r.materials = upload(rayTracingBuffers_[3], tree.materials.data(), tree.materials.size() * sizeof(bvh::MaterialRecord), "bvh materials");
+    r.texels = upload(rayTracingBuffers_[4], tree.texels.data(), tree.texels.size() * sizeof(uint32_t), "bvh texels");
+    r.nodeCount = uint32_t(tree.nodes.size());
+    r.triangleCount = uint32_t(tree.triangleCount);
+    r.materialCount = uint32_t(tree.materials.size());
+    r.depth = uint32_t(tree.depth);
+    r.rayOffset = tree.rayOffset;
+    r.buildMilliseconds = float(tree.buildSeconds * 1000.0);
+    r.bytes = tree.bytes();
+    rayTracingBuilt_ = true;
+    return r;
 }
 
 void Renderer::cameraPrepass() {

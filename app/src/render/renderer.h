@@ -66,6 +66,10 @@ public:
     void cameraPrepass();
     const CameraPrepass& prepassTargets() const { return prepass_; }
 
+    // SHADOWLAB_EXT_RAY_TRACING: the shadow casters' BVH (render/bvh.h) in storage buffers, built
+    // on the first call after setScene() and kept (with its buffers) until the next setScene().
+    const RayTracingScene& rayTracing();
+
     // The main pass with a technique's main program: default state and the program bound,
     // bindTechnique() sets its uniforms and textures, then the host's main-pass state and draws.
     // `program` must be the variant built for `outputs` (LoadedTechnique::mainProgram).
@@ -238,6 +242,9 @@ private:
     GlTexture prepassDepth_, prepassPosition_, prepassNormal_, prepassObjectId_;
     GlFramebuffer prepassFbo_;
     CameraPrepass prepass_{};
+    GlBuffer rayTracingBuffers_[5];              // nodes, triangles, uvs, materials, texels
+    RayTracingScene rayTracing_{};
+    bool rayTracingBuilt_ = false;
 
     // The eye-space blur (eyeBlur*): [0] the term and the blurred result, [1] the blur along x.
     GlTexture eyeBlurTerm_[2], eyeBlurDepth_;
