@@ -29,6 +29,7 @@
 #include <cmath>
 
 #include <shadowlab/kit/handles.h>
+#include <shadowlab/kit/near_plane.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
@@ -73,36 +74,6 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .debugViews = ""},   // the host's views need a map; its own images are listed with them
     Params::table);
 
-// Conservative: does the near-plane rectangle, swept towards the light, touch any caster's box?
-// A sphere around the rectangle swept along the ray to the light against each box grown by its
-// radius (slab test). True means depth-pass may be wrong.
-bool nearPlaneMayBeInShadow(const FrameContext& frame, const ObjectInfo* objects, uint32_t count) {
-    const glm::vec3* c = frame.camera.frustumCorners;
-    const glm::vec3 centre = 0.25f * (c[0] + c[1] + c[2] + c[3]);
-    float radius = 0.0f;
-    for (int i = 0; i < 4; ++i) radius = std::max(radius, glm::length(c[i] - centre));
-    const bool directional = frame.light.type == LightType::Directional;
-    const glm::vec3 toLight = directional ? -frame.light.direction : frame.light.position - centre;
-    const float reach = directional ? 1e30f : 1.0f;   // along toLight
-    for (uint32_t i = 0; i < count; ++i) {
-        if (!objects[i].castsShadow()) continue;
-        const glm::vec3 lo = objects[i].bounds.min - radius, hi = objects[i].bounds.max + radius;
-        float t0 = 0.0f, t1 = reach;
-        for (int axis = 0; axis < 3 && t0 <= t1; ++axis) {
-            if (std::abs(toLight[axis]) < 1e-12f) {
-                if (centre[axis] < lo[axis] || centre[axis] > hi[axis]) t0 = 1.0f, t1 = 0.0f;
-                continue;
-            }
-            float a = (lo[axis] - centre[axis]) / toLight[axis], b = (hi[axis] - centre[axis]) / toLight[axis];
-            if (a > b) std::swap(a, b);
-            t0 = std::max(t0, a);
-            t1 = std::min(t1, b);
-        }
-        if (t0 <= t1) return true;
-    }
-    return false;
-}
-
 class ShadowVolumes final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         if (!volumes_.build(host(), {.vertexFile = "volume.vert", .geometryFile = "volume.geom", .fragmentFile = "volume_count.frag"}, error) ||
@@ -127,7 +98,7 @@ class ShadowVolumes final : public kit::TechniqueBase {
         const Params values = Params::read(params);
         const int counting = values.counting;
         const bool depthFail =
-            counting == kDepthFail || (counting == kAuto && nearPlaneMayBeInShadow(frame, host().objects(), host().objectCount()));
+            counting == kDepthFail || (counting == kAuto && kit::nearPlaneMayBeInShadow(frame, host().objects(), host().objectCount()));
         host().reportStatistic("depth-fail", depthFail ? 1.0 : 0.0);
         // The volumes start 1e-4 of the scene's size beyond each caster, as the reference's rays do.
         const Bounds scene = host().bounds(DrawSet::All);
@@ -135,12 +106,15 @@ class ShadowVolumes final : public kit::TechniqueBase {
                                             std::max(glm::length(scene.min), glm::length(scene.max)));
         {
             GpuPass pass(host(), "shadow volumes");
+            host().beginGpuPass("volume depth copy");
             glCopyImageSubData(prepass->depth, GL_TEXTURE_2D, 0, 0, 0, 0, depthStencil_, GL_TEXTURE_2D, 0, 0, 0, 0, size_.x,
                                size_.y, 1);
             glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
             glViewport(0, 0, size_.x, size_.y);
             glClearStencil(0);
             glClear(GL_STENCIL_BUFFER_BIT);
+            host().endGpuPass();
+            host().beginGpuPass("volume stencil");
             glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
             glDepthMask(GL_FALSE);
             glDepthFunc(GL_LESS);
@@ -157,11 +131,13 @@ class ShadowVolumes final : public kit::TechniqueBase {
             const size_t slot = frameCount_ % samples_.size();
             glBeginQuery(GL_SAMPLES_PASSED, samples_[slot]);
             glBeginQuery(GL_PRIMITIVES_GENERATED, primitives_[slot]);
-            drawVolumes(volumes_, push);
+            drawVolumes(volumes_, push, depthFail);
             glEndQuery(GL_PRIMITIVES_GENERATED);
             glEndQuery(GL_SAMPLES_PASSED);
             pending_[slot] = true;
+            host().endGpuPass();
             // The mask: 0 everywhere, 1 where the count is zero.
+            GpuPass mask(host(), "volume mask");
             glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
             const float shadowed = 0.0f;
             glClearBufferfv(GL_COLOR, 0, &shadowed);
@@ -181,9 +157,10 @@ class ShadowVolumes final : public kit::TechniqueBase {
         glBindSampler(kVolumeMaskUnit, host().sampler(SamplerKind::Nearest));
     }
 
-    void drawVolumes(const kit::Program& program, float push) {
+    void drawVolumes(const kit::Program& program, float push, bool caps) {
         glUseProgram(program.get());
         glUniform1f(kPushLocation, push);
+        glUniform1i(kCapsLocation, caps ? 1 : 0);
         DrawRequest request;
         request.set = DrawSet::Casters;
         request.primitive = DrawPrimitive::TrianglesAdjacency;
@@ -205,12 +182,12 @@ class ShadowVolumes final : public kit::TechniqueBase {
         glClearBufferfv(GL_COLOR, 0, &clear);
         glUseProgram(volumes_.get());
         glUniform1f(17, 1.0f / 16.0f);
-        drawVolumes(volumes_, push);
+        drawVolumes(volumes_, push, true);
         glNamedFramebufferTexture(debugFramebuffer_, GL_COLOR_ATTACHMENT0, edgeImage_, 0);
         glClearBufferfv(GL_COLOR, 0, &clear);
         glUseProgram(edges_.get());
         glUniform1f(17, 1.0f);
-        drawVolumes(edges_, push);
+        drawVolumes(edges_, push, false);
         glDisable(GL_BLEND);
     }
 

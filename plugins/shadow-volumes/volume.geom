@@ -34,6 +34,9 @@ in vec3 vWorld[];
 
 layout(location = 6) uniform int uClosedMesh;
 layout(location = kPushLocation) uniform float uPush;
+// Depth-pass needs no caps: a near cap lies on its caster (a push behind it), so it is never in
+// front of the visible surface, and a far cap is at infinity; depth-fail needs both.
+layout(location = kCapsLocation) uniform int uCaps;
 
 bool directional() { return lightType() == LIGHT_DIRECTIONAL; }
 
@@ -100,6 +103,7 @@ void main() {
         }
     }
 #ifndef SHADOW_VOLUME_EDGES
+    if (uCaps == 0) return;
     // Caps, turned to face the light: near cap counter-clockwise from the light, far cap reversed.
     vec3 p0 = corner[0], p1 = lit ? corner[1] : corner[2], p2 = lit ? corner[2] : corner[1];
     gl_Position = nearPoint(p0);
