@@ -131,7 +131,7 @@ class ShadowVolumes final : public kit::TechniqueBase {
             const size_t slot = frameCount_ % samples_.size();
             glBeginQuery(GL_SAMPLES_PASSED, samples_[slot]);
             glBeginQuery(GL_PRIMITIVES_GENERATED, primitives_[slot]);
-            drawVolumes(volumes_, push, depthFail);
+            drawVolumes(volumes_, push, true);
             glEndQuery(GL_PRIMITIVES_GENERATED);
             glEndQuery(GL_SAMPLES_PASSED);
             pending_[slot] = true;

@@ -34,8 +34,9 @@ in vec3 vWorld[];
 
 layout(location = 6) uniform int uClosedMesh;
 layout(location = kPushLocation) uniform float uPush;
-// Depth-pass needs no caps: a near cap lies on its caster (a push behind it), so it is never in
-// front of the visible surface, and a far cap is at infinity; depth-fail needs both.
+// 1: draw the caps. Depth-fail needs them; depth-pass too, in this implementation: a near cap is
+// pushed beyond its caster, so at a silhouette pixel it can cover background behind the caster
+// (skipping them left single wrong pixels there, tests/test_shadow_volumes.cpp).
 layout(location = kCapsLocation) uniform int uCaps;
 
 bool directional() { return lightType() == LIGHT_DIRECTIONAL; }
