@@ -37,29 +37,27 @@ namespace {
 using namespace shadowlab;
 using shared::raytraced::RaytracedUniforms;
 
-constexpr ParamDesc kParams[] = {
-    {"rays", "rays per pixel N", ParamType::Int, 1, 256, 1, "",
+constexpr ParamDesc kRaysParam = {"rays", "rays per pixel N", ParamType::Int, 1, 256, 1, "",
      "1: one shadow ray to the light's centre, a hard shadow exact up to float ties. N > 1: N jittered "
      "stratified rays over the light's area (its size), a soft shadow whose noise falls as 1/sqrt(N); cost grows "
-     "linearly with N.", nullptr},
-    {"temporal", "temporal weight", ParamType::Float, 0, 0.98, 0, "",
+     "linearly with N.", nullptr};
+constexpr ParamDesc kTemporalParam = {"temporal", "temporal weight", ParamType::Float, 0, 0.98, 0, "",
      "Weight of the previous frame's result, reprojected to this frame's pixel (0: off). High weights average many "
      "frames of jitter into a smooth penumbra but lag behind moving shadows (ghosting); rejected where the "
-     "reprojected pixel held another surface.", nullptr},
-    {"pass", "where rays start", ParamType::Enum, 0, 1, 0, "",
+     "reprojected pixel held another surface.", nullptr};
+constexpr ParamDesc kPassParam = {"pass", "where rays start", ParamType::Enum, 0, 1, 0, "",
      "compute: a compute pass over the host's camera pre-pass, once per pixel, into a screen image. fragment: the main "
      "pass's shadowTerm() traces itself (a ray query in the fragment stage): no pre-pass, but every shaded fragment "
-     "traces, overdraw included (use the host's depth pre-pass). Counters and temporal need compute.", "compute|fragment"},
-    {"counters", "count rays and visits", ParamType::Bool, 0, 1, 0, "",
+     "traces, overdraw included (use the host's depth pre-pass). Counters and temporal need compute.", "compute|fragment"};
+constexpr ParamDesc kCountersParam = {"counters", "count rays and visits", ParamType::Bool, 0, 1, 0, "",
      "Counts rays, BVH node visits and triangle tests per pixel (statistics and the 'ray cost' heat map). Costs "
-     "atomics and a second program variant; off for timing.", nullptr},
-};
-enum : uint32_t {
-    kRays = kit::paramIndex(kParams, "rays"),
-    kTemporal = kit::paramIndex(kParams, "temporal"),
-    kPass = kit::paramIndex(kParams, "pass"),
-    kCounters = kit::paramIndex(kParams, "counters"),
-};
+     "atomics and a second program variant; off for timing.", nullptr};
+#define RAYTRACED_PARAMS(X)          \
+    X(int, rays, kRaysParam) \
+    X(float, temporal, kTemporalParam) \
+    X(int, pass, kPassParam) \
+    X(bool, counters, kCountersParam)
+SHADOWLAB_PARAMS(Params, RAYTRACED_PARAMS);
 
 // The camera pre-pass only feeds the compute pass.
 constexpr FlagCondition kFlagConditions[] = {{kTechniqueNeedsCameraPrepass, "pass", "compute"}};
@@ -77,8 +75,9 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .flags = kTechniqueNeedsCameraPrepass,
      .translucencyModel = TranslucencyModel::Physical,
      .flagConditions = kFlagConditions,
-     .flagConditionCount = 1},
-    kParams);
+     .flagConditionCount = 1,
+     .debugViews = ""},   // no map for the host's views; its own image is 'ray cost' 
+    Params::table);
 
 // Counter read-back ring: slot i is read only once its end timestamp is available (the GPU has
 // passed it), so nothing waits; results are one to three frames old.
@@ -110,10 +109,11 @@ class RayTraced final : public kit::TechniqueBase {
         host().reportStatistic("bvh MiB", double(scene->bytes) / (1024.0 * 1024.0));
         host().reportStatistic("bvh depth", scene->depth);
         const auto* prepass = static_cast<const CameraPrepass*>(host().extension(SHADOWLAB_EXT_CAMERA_PREPASS));
-        const bool fragment = params.asInt(kPass) == 1 || !prepass || !prepass->position;
-        const bool counters = params.asBool(kCounters) && !fragment;
-        const float temporal = params.asFloat(kTemporal);
-        const int rays = params.asInt(kRays);
+        const Params values = Params::read(params);
+        const bool fragment = values.pass == 1 || !prepass || !prepass->position;
+        const bool counters = values.counters && !fragment;
+        const float temporal = values.temporal;
+        const int rays = values.rays;
         // Results in flight were counted with other settings: dropped. Without counters the
         // counted statistics read NaN, so a table never shows an earlier setting's figures.
         if (!counters || rays != lastRays_)
