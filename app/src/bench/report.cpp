@@ -91,53 +91,11 @@ std::string percent(const nlohmann::json& row, const std::string& key) {
     return row.contains(key) ? fixed(100.0 * row[key].get<double>(), 2) + "%" : "-";
 }
 
-} // namespace
-
-std::filesystem::path defaultReportSpec(bool softwareRenderer) {
-    return dataRoot() / "assets" / "bench" / (softwareRenderer ? "quick.json" : "default.json");
-}
-
-int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesystem::path& outDir, std::string& error,
-              std::optional<double> lightSize) {
-    std::error_code ec;
-    std::filesystem::create_directories(outDir / "images", ec);
-    std::filesystem::create_directories(outDir / "charts", ec);
-    // Every spec checked before the first frame of the first one.
-    for (size_t i = 0; i < specs.size(); ++i) {
-        if (!checkBenchSpec(specs[i], app.techniques().techniques(), error, lightSize)) {
-            error = "benchmark spec " + std::to_string(i) + ": " + error;
-            return 2;
-        }
-    }
-    std::vector<nlohmann::json> rows;
-    printBenchHeader();
-    for (const BenchSpec& spec : specs)
-        if (!runBench(app, spec, rows, error, printBenchRow)) return 2;
-    if (!writeBenchResults(outDir / "results.csv", rows, error) || !writeBenchResults(outDir / "results.json", rows, error))
-        return 1;
-
-    std::vector<ReportImage> images;
-    if (!specs.empty() && !writeImages(app, specs.front(), outDir / "images", images, error)) return 1;
-    size_t imageFiles = 0;
-    for (const ReportImage& image : images) imageFiles += image.heatmap.empty() ? 1 : 2;
-
-    // Charts: matplotlib from Debian (python3-matplotlib) lives with the system interpreter.
-    const auto script = dataRoot() / "tools" / "charts.py";
-    const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    std::vector<std::string> charts;
-    const std::string command = python + " " + shellQuote(script.string()) + " " +
-                                shellQuote((outDir / "results.json").string()) + " " + shellQuote((outDir / "charts").string());
-    if (FILE* pipe = popen(command.c_str(), "r")) {
-        char line[1024];
-        while (std::fgets(line, sizeof(line), pipe)) {
-            std::string path = line;
-            while (!path.empty() && (path.back() == '\n' || path.back() == '\r')) path.pop_back();
-            charts.push_back(std::filesystem::path(path).filename().string());
-        }
-        if (pclose(pipe) != 0) logWarning("charts: " + command + " failed (is python3-matplotlib installed?)");
-    }
-
-    const nlohmann::json environment = rows.empty() ? benchEnvironment(app) : rows.front();
+// The Markdown page: the machine, the columns explained, the charts, the results table and the
+// images with their heatmaps.
+std::string reportPage(const nlohmann::json& environment, const std::vector<BenchSpec>& specs,
+                       const std::vector<nlohmann::json>& rows, const std::vector<std::string>& charts,
+                       const std::vector<ReportImage>& images, size_t imageFiles) {
     std::ostringstream page;
     page << "# shadowlab report\n\n"
          << "- GPU: " << environment.value("gpu", "") << "\n- driver: " << environment.value("driver", "")
@@ -220,7 +178,58 @@ int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesyst
              << ") | ![" << image.heatmap << "](images/" << image.heatmap << ") |\n";
     }
     page << "\n";
-    if (!writeWholeFile(outDir / "README.md", page.str(), error)) return 1;
+    return page.str();
+}
+
+} // namespace
+
+std::filesystem::path defaultReportSpec(bool softwareRenderer) {
+    return dataRoot() / "assets" / "bench" / (softwareRenderer ? "quick.json" : "default.json");
+}
+
+int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesystem::path& outDir, std::string& error,
+              std::optional<double> lightSize) {
+    std::error_code ec;
+    std::filesystem::create_directories(outDir / "images", ec);
+    std::filesystem::create_directories(outDir / "charts", ec);
+    // Every spec checked before the first frame of the first one.
+    for (size_t i = 0; i < specs.size(); ++i) {
+        if (!checkBenchSpec(specs[i], app.techniques().techniques(), error, lightSize)) {
+            error = "benchmark spec " + std::to_string(i) + ": " + error;
+            return 2;
+        }
+    }
+    std::vector<nlohmann::json> rows;
+    printBenchHeader();
+    for (const BenchSpec& spec : specs)
+        if (!runBench(app, spec, rows, error, printBenchRow)) return 2;
+    if (!writeBenchResults(outDir / "results.csv", rows, error) || !writeBenchResults(outDir / "results.json", rows, error))
+        return 1;
+
+    std::vector<ReportImage> images;
+    if (!specs.empty() && !writeImages(app, specs.front(), outDir / "images", images, error)) return 1;
+    size_t imageFiles = 0;
+    for (const ReportImage& image : images) imageFiles += image.heatmap.empty() ? 1 : 2;
+
+    // Charts: matplotlib from Debian (python3-matplotlib) lives with the system interpreter.
+    const auto script = dataRoot() / "tools" / "charts.py";
+    const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    std::vector<std::string> charts;
+    const std::string command = python + " " + shellQuote(script.string()) + " " +
+                                shellQuote((outDir / "results.json").string()) + " " + shellQuote((outDir / "charts").string());
+    if (FILE* pipe = popen(command.c_str(), "r")) {
+        char line[1024];
+        while (std::fgets(line, sizeof(line), pipe)) {
+            std::string path = line;
+            while (!path.empty() && (path.back() == '\n' || path.back() == '\r')) path.pop_back();
+            charts.push_back(std::filesystem::path(path).filename().string());
+        }
+        if (pclose(pipe) != 0) logWarning("charts: " + command + " failed (is python3-matplotlib installed?)");
+    }
+
+    const nlohmann::json environment = rows.empty() ? benchEnvironment(app) : rows.front();
+    const std::string page = reportPage(environment, specs, rows, charts, images, imageFiles);
+    if (!writeWholeFile(outDir / "README.md", page, error)) return 1;
     std::printf("report: %zu rows, %zu charts, %zu images (%zu technique images and their error heatmaps) in %s\n", rows.size(),
                 charts.size(), imageFiles, images.size(), outDir.string().c_str());
     return 0;
