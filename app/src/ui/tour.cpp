@@ -138,6 +138,67 @@ bool tourPathIsFile(const std::string& text, const std::filesystem::path& baseDi
 
 } // namespace
 
+// A step's "camera": {position, target, fov}.
+static bool readTourCamera(const json& object, const std::string& where, TourStep& step, std::string& error) {
+    const json& camera = object;
+    const std::string at = where + ".camera";
+    if (!camera.is_object()) {
+        error = at + ": expected an object {position, target, fov}, found " + typeName(camera);
+        return false;
+    }
+    if (!rejectUnknownKeys(camera, {"position", "target", "fov"}, at, error)) return false;
+    if (!camera.contains("position") || !camera.contains("target")) {
+        error = at + ": needs 'position' and 'target'";
+        return false;
+    }
+    TourCamera c;
+    if (!readVec3(camera["position"], at + ".position", c.position, error)) return false;
+    if (!readVec3(camera["target"], at + ".target", c.target, error)) return false;
+    if (!(glm::length(glm::dvec3(c.position - c.target)) > 1e-4)) {
+        error = at + ": position and target are the same point";
+        return false;
+    }
+    if (camera.contains("fov")) {
+        double fov = 0.0;
+        if (!finiteNumber(camera["fov"], fov) || fov < 1.0 || fov > 170.0) {
+            error = at + ".fov: expected the vertical field of view in degrees, 1 to 170";
+            return false;
+        }
+        c.fovDegrees = float(fov);
+    }
+    step.camera = c;
+    return true;
+}
+
+// A step's "light": {direction, size}.
+static bool readTourLight(const json& object, const std::string& where, TourStep& step, std::string& error) {
+    const json& light = object;
+    const std::string at = where + ".light";
+    if (!light.is_object()) {
+        error = at + ": expected an object {direction, size}, found " + typeName(light);
+        return false;
+    }
+    if (!rejectUnknownKeys(light, {"direction", "size"}, at, error)) return false;
+    if (light.contains("direction")) {
+        glm::vec3 direction;
+        if (!readVec3(light["direction"], at + ".direction", direction, error)) return false;
+        if (!(glm::length(glm::dvec3(direction)) > 1e-6)) {
+            error = at + ".direction: must not be zero";
+            return false;
+        }
+        step.light.direction = direction;
+    }
+    if (light.contains("size")) {
+        double size = 0.0;
+        if (!finiteNumber(light["size"], size)) {
+            error = at + ".size: expected a finite number (degrees for a directional light)";
+            return false;
+        }
+        step.light.size = size;
+    }
+    return true;
+}
+
 bool parseTourStep(const json& object, const std::string& where, const std::filesystem::path& baseDir, TourStep& step,
                    std::string& error) {
     step = {};
@@ -201,61 +262,8 @@ bool parseTourStep(const json& object, const std::string& where, const std::file
             step.parameters.emplace_back(key, text);
         }
     }
-    if (object.contains("camera")) {
-        const json& camera = object["camera"];
-        const std::string at = where + ".camera";
-        if (!camera.is_object()) {
-            error = at + ": expected an object {position, target, fov}, found " + typeName(camera);
-            return false;
-        }
-        if (!rejectUnknownKeys(camera, {"position", "target", "fov"}, at, error)) return false;
-        if (!camera.contains("position") || !camera.contains("target")) {
-            error = at + ": needs 'position' and 'target'";
-            return false;
-        }
-        TourCamera c;
-        if (!readVec3(camera["position"], at + ".position", c.position, error)) return false;
-        if (!readVec3(camera["target"], at + ".target", c.target, error)) return false;
-        if (!(glm::length(glm::dvec3(c.position - c.target)) > 1e-4)) {
-            error = at + ": position and target are the same point";
-            return false;
-        }
-        if (camera.contains("fov")) {
-            double fov = 0.0;
-            if (!finiteNumber(camera["fov"], fov) || fov < 1.0 || fov > 170.0) {
-                error = at + ".fov: expected the vertical field of view in degrees, 1 to 170";
-                return false;
-            }
-            c.fovDegrees = float(fov);
-        }
-        step.camera = c;
-    }
-    if (object.contains("light")) {
-        const json& light = object["light"];
-        const std::string at = where + ".light";
-        if (!light.is_object()) {
-            error = at + ": expected an object {direction, size}, found " + typeName(light);
-            return false;
-        }
-        if (!rejectUnknownKeys(light, {"direction", "size"}, at, error)) return false;
-        if (light.contains("direction")) {
-            glm::vec3 direction;
-            if (!readVec3(light["direction"], at + ".direction", direction, error)) return false;
-            if (!(glm::length(glm::dvec3(direction)) > 1e-6)) {
-                error = at + ".direction: must not be zero";
-                return false;
-            }
-            step.light.direction = direction;
-        }
-        if (light.contains("size")) {
-            double size = 0.0;
-            if (!finiteNumber(light["size"], size)) {
-                error = at + ".size: expected a finite number (degrees for a directional light)";
-                return false;
-            }
-            step.light.size = size;
-        }
-    }
+    if (object.contains("camera") && !readTourCamera(object["camera"], where, step, error)) return false;
+    if (object.contains("light") && !readTourLight(object["light"], where, step, error)) return false;
     if (!readString(object, "view", where, step.view, error, false, 128)) return false;
     if (step.view.empty()) step.view = "lit";
     if (object.contains("path")) {
