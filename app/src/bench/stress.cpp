@@ -299,6 +299,70 @@ bool runStressCell(App& app, const StressSuite& suite, const StressCase& c, cons
     return true;
 }
 
+// The suite's Markdown page: the table of verdicts against the literature's claims, the cases and
+// the worst frames.
+static std::string stressPage(App& app, const StressSuite& suite, const StressOptions& options,
+                              const std::vector<const StressCase*>& cases, const std::vector<std::string>& techniques,
+                              const std::vector<StressCell>& cells, bool chart) {
+    const json environment = benchEnvironment(app);
+    std::ostringstream page;
+    page << "# shadowlab stress: where shadow techniques fail\n\n"
+         << "- renderer: " << environment.value("gpu", "") << " (" << environment.value("backend", "") << ")\n"
+         << "- commit: " << environment.value("commit", "") << ", date: " << environment.value("date", "") << "\n"
+         << "- cases: " << suite.file << ", " << size_t(options.size.value_or(suite.size).x) << "x"
+         << size_t(options.size.value_or(suite.size).y) << "\n\n"
+         << "Each cell is the case's metric for the technique with its defaults plus the case's settings, and the "
+            "verdict against the case's threshold (pass: at most the threshold). A mark after the verdict says "
+            "whether the measurement agrees with the literature's claim for that technique (the claims are below): "
+            "`(as claimed)` when the technique does what the claim says (a technique it names as failing fails, one it "
+            "names as doing better passes, or the reference passes), `(claim: fails)` when a technique named as failing "
+            "passes, `(claim: passes)` when one named as doing better fails; no mark where the claim names no verdict. Spatial metrics are the worst frame of the case; temporal ones the mean over "
+            "its path (docs/stability.md).\n\n";
+    if (chart) page << "![verdicts](stress.png)\n\n";
+    // A case with "footprint" gets a column of the texel footprint m beside it (median / nearest third).
+    page << "| technique |";
+    size_t columns = 0;
+    for (const StressCase* c : cases) {
+        page << " " << c->id << " |";
+        if (c->footprint) page << " " << c->id << ": m median / near third |";
+        columns += c->footprint ? 2 : 1;
+    }
+    page << "\n|---|";
+    for (size_t i = 0; i < columns; ++i) page << "---:|";
+    page << "\n";
+    for (const std::string& technique : techniques) {
+        page << "| " << technique << " |";
+        for (const StressCase* c : cases) {
+            const auto cell = std::find_if(cells.begin(), cells.end(),
+                                           [&](const StressCell& s) { return s.technique == technique && s.caseId == c->id; });
+            if (cell->skipped) {
+                page << (c->footprint ? " skipped | - |" : " skipped |");
+                continue;
+            }
+            std::string mark;
+            const bool reference = app.techniques().find(technique)->category == "reference";
+            if (cell->expectedFail) mark = cell->pass ? " (claim: fails)" : " (as claimed)";
+            else if (cell->expectedPass) mark = cell->pass ? " (as claimed)" : " (claim: passes)";
+            else if (reference && cell->pass) mark = " (as claimed)";
+            page << " " << (cell->image.empty() ? fixed(cell->value, 4) : "[" + fixed(cell->value, 4) + "](" + cell->image + ")")
+                 << " " << (cell->pass ? "pass" : "**fail**") << mark << " |";
+            if (c->footprint)
+                page << " " << (cell->footprintPixels ? fixed(cell->footprintMedian, 2) + " / " + fixed(cell->footprintNear, 2) : "-") << " |";
+        }
+        page << "\n";
+    }
+    page << "\n## The cases\n\n| case | what | metric | threshold | the literature's claim | source |\n|---|---|---|---:|---|---|\n";
+    for (const StressCase* c : cases) {
+        page << "| " << c->id << " | " << c->title << " (`" << c->scene << "`" << (c->path.empty() ? "" : ", path `" + c->path + "`, " + std::to_string(c->frames) + " frames")
+             << ") | " << stressMetricName(c->metric) << " | " << c->threshold << " | " << c->claim << " | " << c->source << " |\n";
+    }
+    page << "\n## Worst frames\n\nThe error image of each cell's worst frame (spatial: magenta false shadow, green false light; "
+            "temporal: the change of the technique against the change of the reference, same colours).\n\n";
+    for (const StressCell& cell : cells)
+        if (!cell.image.empty()) page << "![" << cell.technique << " " << cell.caseId << "](" << cell.image << ")\n";
+    return page.str();
+}
+
 int runStress(App& app, const StressSuite& suite, const StressOptions& options, std::vector<StressCell>& cells,
               std::string& error) {
     // Everything named is checked before the first frame.
@@ -396,63 +460,8 @@ int runStress(App& app, const StressSuite& suite, const StressOptions& options, 
     const bool chart = std::system(command.c_str()) == 0;
     if (!chart) logWarning("stress chart: " + command + " failed (is python3-matplotlib installed?)");
 
-    const json environment = benchEnvironment(app);
-    std::ostringstream page;
-    page << "# shadowlab stress: where shadow techniques fail\n\n"
-         << "- renderer: " << environment.value("gpu", "") << " (" << environment.value("backend", "") << ")\n"
-         << "- commit: " << environment.value("commit", "") << ", date: " << environment.value("date", "") << "\n"
-         << "- cases: " << suite.file << ", " << size_t(options.size.value_or(suite.size).x) << "x"
-         << size_t(options.size.value_or(suite.size).y) << "\n\n"
-         << "Each cell is the case's metric for the technique with its defaults plus the case's settings, and the "
-            "verdict against the case's threshold (pass: at most the threshold). A mark after the verdict says "
-            "whether the measurement agrees with the literature's claim for that technique (the claims are below): "
-            "`(as claimed)` when the technique does what the claim says (a technique it names as failing fails, one it "
-            "names as doing better passes, or the reference passes), `(claim: fails)` when a technique named as failing "
-            "passes, `(claim: passes)` when one named as doing better fails; no mark where the claim names no verdict. Spatial metrics are the worst frame of the case; temporal ones the mean over "
-            "its path (docs/stability.md).\n\n";
-    if (chart) page << "![verdicts](stress.png)\n\n";
-    // A case with "footprint" gets a column of the texel footprint m beside it (median / nearest third).
-    page << "| technique |";
-    size_t columns = 0;
-    for (const StressCase* c : cases) {
-        page << " " << c->id << " |";
-        if (c->footprint) page << " " << c->id << ": m median / near third |";
-        columns += c->footprint ? 2 : 1;
-    }
-    page << "\n|---|";
-    for (size_t i = 0; i < columns; ++i) page << "---:|";
-    page << "\n";
-    for (const std::string& technique : techniques) {
-        page << "| " << technique << " |";
-        for (const StressCase* c : cases) {
-            const auto cell = std::find_if(cells.begin(), cells.end(),
-                                           [&](const StressCell& s) { return s.technique == technique && s.caseId == c->id; });
-            if (cell->skipped) {
-                page << (c->footprint ? " skipped | - |" : " skipped |");
-                continue;
-            }
-            std::string mark;
-            const bool reference = app.techniques().find(technique)->category == "reference";
-            if (cell->expectedFail) mark = cell->pass ? " (claim: fails)" : " (as claimed)";
-            else if (cell->expectedPass) mark = cell->pass ? " (as claimed)" : " (claim: passes)";
-            else if (reference && cell->pass) mark = " (as claimed)";
-            page << " " << (cell->image.empty() ? fixed(cell->value, 4) : "[" + fixed(cell->value, 4) + "](" + cell->image + ")")
-                 << " " << (cell->pass ? "pass" : "**fail**") << mark << " |";
-            if (c->footprint)
-                page << " " << (cell->footprintPixels ? fixed(cell->footprintMedian, 2) + " / " + fixed(cell->footprintNear, 2) : "-") << " |";
-        }
-        page << "\n";
-    }
-    page << "\n## The cases\n\n| case | what | metric | threshold | the literature's claim | source |\n|---|---|---|---:|---|---|\n";
-    for (const StressCase* c : cases) {
-        page << "| " << c->id << " | " << c->title << " (`" << c->scene << "`" << (c->path.empty() ? "" : ", path `" + c->path + "`, " + std::to_string(c->frames) + " frames")
-             << ") | " << stressMetricName(c->metric) << " | " << c->threshold << " | " << c->claim << " | " << c->source << " |\n";
-    }
-    page << "\n## Worst frames\n\nThe error image of each cell's worst frame (spatial: magenta false shadow, green false light; "
-            "temporal: the change of the technique against the change of the reference, same colours).\n\n";
-    for (const StressCell& cell : cells)
-        if (!cell.image.empty()) page << "![" << cell.technique << " " << cell.caseId << "](" << cell.image << ")\n";
-    if (!writeWholeFile(dir / "README.md", page.str(), error)) return 1;
+    const std::string page = stressPage(app, suite, options, cases, techniques, cells, chart);
+    if (!writeWholeFile(dir / "README.md", page, error)) return 1;
     std::printf("stress: %zu cells (%zu cases x %zu techniques) in %.0f s, written to %s\n", cells.size(), cases.size(),
                 techniques.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                 dir.string().c_str());
