@@ -136,27 +136,18 @@ nlohmann::json benchEnvironment(App& app) {
             {"reference_device", referenceDeviceName(app.referenceDevice())}};
 }
 
-bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows, std::string& error,
-              const std::function<void(const nlohmann::json&)>& onRow) {
-    // Every value checked before the first frame; below, conversions cannot fail.
-    if (!checkBenchSpec(spec, app.techniques().techniques(), error)) {
-        error = "benchmark: " + error;
-        return false;
-    }
-    const auto measured = benchTechniques(spec, app.techniques().techniques(), error);
-    if (!measured) return false;
+// The plan: every row in order. Per scene, scene settings and size: the depth-floor rows, then
+// `none` (the main-pass floor of every row after it), then the other techniques.
+static std::vector<BenchJob> planBenchJobs(const BenchSpec& spec, const std::vector<const TechniqueInfo*>& measured,
+                                           const TechniqueInfo* none) {
     auto number = [](const std::string& text) { return parseNumberText(text).value_or(0.0); };
-    const TechniqueInfo* none = app.techniques().find("none");
-
-    // The plan: every row in order. Per scene, scene settings and size: the depth-floor rows,
-    // then `none` (the main-pass floor of every row after it), then the other techniques.
     BenchSettingLists sceneLists;
     for (const auto& [key, values] : spec.sweeps)
         if (isSceneKey(key)) sceneLists.push_back({key, values});
     std::vector<const TechniqueInfo*> ordered;
-    for (const TechniqueInfo* info : *measured)
+    for (const TechniqueInfo* info : measured)
         if (info == none) ordered.push_back(info);
-    for (const TechniqueInfo* info : *measured)
+    for (const TechniqueInfo* info : measured)
         if (info != none) ordered.push_back(info);
     std::vector<BenchJob> jobs;
     for (const auto& sceneName : spec.scenes) {
@@ -190,9 +181,140 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
             }
         }
     }
+    return jobs;
+}
+
+// The first row of a group (scene, scene settings, size): the scene loaded with its settings, the
+// render size set, and the columns every row of the group shares.
+static bool startBenchGroup(App& app, const BenchSpec& spec, const BenchJob& job, const nlohmann::json& environment,
+                            nlohmann::json& common, LightInfo& sceneLight, std::string& error) {
+    auto number = [](const std::string& text) { return parseNumberText(text).value_or(0.0); };
+    std::map<std::string, double> overrides;
+    for (const auto& [key, value] : job.sceneSettings) overrides[key.substr(6)] = number(value);
+    if (!app.loadScene(job.scene, overrides, error)) return false;
+    sceneLight = app.light();
+    if (!app.setRenderSize(job.size, error)) return false;
+    common = environment;
+    if (!spec.tag.empty()) common["spec"] = spec.tag;
+    common["scene"] = app.scene().name;
+    common["triangles"] = app.scene().triangleCount();
+    for (const auto& [key, value] : job.sceneSettings) common[key] = number(value);
+    common["width"] = job.size.x;
+    common["height"] = job.size.y;
+    common["pixels"] = job.size.x * job.size.y;
+    return true;
+}
+
+// A depth-floor row: a bare depth-only pass at `resolution`, the floor of every shadow pass.
+static bool addDepthFloorRow(App& app, const BenchSpec& spec, int resolution, nlohmann::json& row,
+                             std::map<int, double>& depthFloor, std::string& error) {
+    Measurement m;
+    if (!app.measureDepthFloor(resolution, spec.warmupFrames, spec.frames, m, error)) return false;
+    row["technique"] = "depth-floor";
+    row["category"] = "floor";
+    row["param.resolution"] = resolution;
+    addTiming(row, m);
+    row["technique_passes_ms"] = depthFloor[resolution] = m.gpuMs["depth floor"].median;
+    return true;
+}
+
+// The ground-truth columns of a row (spec.accuracy): the last timed frame re-rendered untimed with
+// the accuracy targets and measured against each reference mode and translucency model asked for.
+static bool addAccuracyColumns(App& app, const BenchSpec& spec, const TechniqueInfo* info, const LightInfo& rowLight,
+                               nlohmann::json& row, std::string& error) {
+    const ReferenceOptions::Mode modes[2] = {ReferenceOptions::Mode::Hard, ReferenceOptions::Mode::Soft};
+    // Measured on the last timed frame, re-rendered untimed with the accuracy targets
+    // (App::evaluate); the measure() above had the lit colour only.
+    app.light() = rowLight;
+    const bool hardOnly = spec.reference == "hard" ||
+                          (spec.reference == "auto" && (info->category == "hard" || info->category == "baseline"));
+    const bool softOnly = spec.reference == "soft";
+    // Physical in the plain columns (hard_mae, ...), the technique's own model where it
+    // differs in hard_own_* / soft_own_* (docs/benchmarks.md, "Translucency models").
+    row["translucency_model"] = translucencyModelName(info->translucencyModel);
+    const std::vector<TranslucencyModel> models = judgedModels(info->translucencyModel, app.scene());
+    for (const auto mode : modes) {
+        if ((mode == ReferenceOptions::Mode::Soft && hardOnly) || (mode == ReferenceOptions::Mode::Hard && softOnly))
+            continue;
+        for (const TranslucencyModel model : models) {
+            const bool own = model != TranslucencyModel::Physical;
+            ReferenceOptions options;
+            options.mode = mode;
+            options.samplesPerPixel = spec.referenceSamples;
+            options.adaptive = spec.referenceAdaptive;
+            options.model = model;
+            Evaluation evaluation;
+            if (!app.evaluate(options, evaluation, error)) return false;
+            const std::string prefix =
+                std::string(mode == ReferenceOptions::Mode::Hard ? "hard_" : "soft_") + (own ? "own_" : "");
+            const AccuracyMetrics& a = evaluation.metrics;
+            row[prefix + "mae"] = a.mae;
+            row[prefix + "rmse"] = a.rmse;
+            row[prefix + "false_shadow"] = a.falseShadowRate;
+            row[prefix + "false_light"] = a.falseLightRate;
+            row[prefix + "mae_penumbra"] = a.maePenumbra;
+            row[prefix + "mae_outside_penumbra"] = a.maeOutsidePenumbra;
+            row[prefix + "compared_fraction"] = a.comparedFraction;
+            row[prefix + "noise"] = a.noiseEnergy;
+            // Per channel on the opaque receivers, and the translucent receivers (peeled
+            // layers; seed 001 sec. 5.3.3) where the scene has some in view.
+            static constexpr const char* kChannels[] = {"r", "g", "b"};
+            for (int c = 0; c < 3; ++c) row[prefix + "mae_" + kChannels[c]] = a.maePerChannel[c];
+            if (!evaluation.translucentLayers.empty()) {
+                const AccuracyMetrics& t = evaluation.translucentMetrics;
+                row[prefix + "translucent_mae"] = t.mae;
+                for (int c = 0; c < 3; ++c) row[prefix + "translucent_mae_" + kChannels[c]] = t.maePerChannel[c];
+                row[prefix + "translucent_false_shadow"] = t.falseShadowRate;
+                row[prefix + "translucent_false_light"] = t.falseLightRate;
+                row[prefix + "translucent_noise"] = t.noiseEnergy;
+                row[prefix + "translucent_pixels"] = t.comparedPixels;
+                row[prefix + "translucent_layers"] = evaluation.translucentLayers.size();
+            }
+            if (own) continue;
+            // By view-depth third (perspective aliasing: seed 002 sec. 3.1).
+            static constexpr const char* kThirds[] = {"near", "mid", "far"};
+            for (size_t t = 0; t < 3; ++t) row[prefix + "mae_" + kThirds[t]] = a.maeByViewDepth[t];
+            if (evaluation.footprint.maps > 0 && !row.contains("footprint_median")) {
+                const TexelFootprint& f = evaluation.footprint;
+                row["footprint_median"] = f.median;
+                row["footprint_p95"] = f.p95;
+                row["footprint_max"] = f.max;
+                row["footprint_undersampled"] = f.undersampledFraction;
+                for (size_t t = 0; t < 3; ++t) row[std::string("footprint_") + kThirds[t]] = f.medianByViewDepth[t];
+                row["projection_ratio_median"] = f.projectionMedian;
+                row["shadow_maps"] = f.maps;
+            }
+            row["technique_penumbra_fraction"] = a.techniquePenumbraFraction;
+            if (mode == ReferenceOptions::Mode::Soft) {
+                // The soft reference's own error: soft figures (and differences between
+                // them) below about 4x the floor are not resolved.
+                const ReferenceStats& r = evaluation.referenceStats;
+                row["soft_reference_rays"] = r.samplesPerPixel;
+                row["soft_reference_adaptive"] = r.adaptive;
+                row["soft_reference_floor"] = evaluation.referenceFloor;
+                row["soft_reference_refined_fraction"] =
+                    r.tracedPixels ? double(r.refinedPixels) / double(r.tracedPixels) : 0.0;
+            }
+        }
+    }
+    return true;
+}
+
+bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows, std::string& error,
+              const std::function<void(const nlohmann::json&)>& onRow) {
+    // Every value checked before the first frame; below, conversions cannot fail.
+    if (!checkBenchSpec(spec, app.techniques().techniques(), error)) {
+        error = "benchmark: " + error;
+        return false;
+    }
+    const auto measured = benchTechniques(spec, app.techniques().techniques(), error);
+    if (!measured) return false;
+    auto number = [](const std::string& text) { return parseNumberText(text).value_or(0.0); };
+    const TechniqueInfo* none = app.techniques().find("none");
+
+    const std::vector<BenchJob> jobs = planBenchJobs(spec, *measured, none);
 
     const nlohmann::json environment = benchEnvironment(app);
-    ReferenceOptions::Mode modes[2] = {ReferenceOptions::Mode::Hard, ReferenceOptions::Mode::Soft};
     const auto started = std::chrono::steady_clock::now();
     LightInfo sceneLight;
     nlohmann::json common;
@@ -217,32 +339,14 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
     for (size_t index = 0; index < jobs.size(); ++index) {
         const BenchJob& job = jobs[index];
         if (index == 0 || !sameGroup(job, jobs[index - 1])) {
-            std::map<std::string, double> overrides;
-            for (const auto& [key, value] : job.sceneSettings) overrides[key.substr(6)] = number(value);
-            if (!app.loadScene(job.scene, overrides, error)) return false;
-            sceneLight = app.light();
-            if (!app.setRenderSize(job.size, error)) return false;
-            common = environment;
-            if (!spec.tag.empty()) common["spec"] = spec.tag;
-            common["scene"] = app.scene().name;
-            common["triangles"] = app.scene().triangleCount();
-            for (const auto& [key, value] : job.sceneSettings) common[key] = number(value);
-            common["width"] = job.size.x;
-            common["height"] = job.size.y;
-            common["pixels"] = job.size.x * job.size.y;
+            if (!startBenchGroup(app, spec, job, environment, common, sceneLight, error)) return false;
             mainFloor.clear();
             depthFloor.clear();
         }
         nlohmann::json row = common;
         if (!job.technique) {
-            Measurement m;
             app.light() = sceneLight;
-            if (!app.measureDepthFloor(job.depthFloorResolution, spec.warmupFrames, spec.frames, m, error)) return false;
-            row["technique"] = "depth-floor";
-            row["category"] = "floor";
-            row["param.resolution"] = job.depthFloorResolution;
-            addTiming(row, m);
-            row["technique_passes_ms"] = depthFloor[job.depthFloorResolution] = m.gpuMs["depth floor"].median;
+            if (!addDepthFloorRow(app, spec, job.depthFloorResolution, row, depthFloor, error)) return false;
         } else {
             const TechniqueInfo* info = job.technique;
             app.params().resetToDefaults(*info);
@@ -302,82 +406,7 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
             LoadedTechnique* loaded = app.techniques().get(info->id, error);
             if (loaded)
                 for (const auto& [name, value] : loaded->host().statistics()) row["stat." + columnName(name)] = value;
-            if (spec.accuracy) {
-                // Measured on the last timed frame, re-rendered untimed with the accuracy targets
-                // (App::evaluate); the measure() above had the lit colour only.
-                app.light() = rowLight;
-                const bool hardOnly = spec.reference == "hard" ||
-                                      (spec.reference == "auto" && (info->category == "hard" || info->category == "baseline"));
-                const bool softOnly = spec.reference == "soft";
-                // Physical in the plain columns (hard_mae, ...), the technique's own model where it
-                // differs in hard_own_* / soft_own_* (docs/benchmarks.md, "Translucency models").
-                row["translucency_model"] = translucencyModelName(info->translucencyModel);
-                const std::vector<TranslucencyModel> models = judgedModels(info->translucencyModel, app.scene());
-                for (const auto mode : modes) {
-                    if ((mode == ReferenceOptions::Mode::Soft && hardOnly) || (mode == ReferenceOptions::Mode::Hard && softOnly))
-                        continue;
-                    for (const TranslucencyModel model : models) {
-                        const bool own = model != TranslucencyModel::Physical;
-                        ReferenceOptions options;
-                        options.mode = mode;
-                        options.samplesPerPixel = spec.referenceSamples;
-                        options.adaptive = spec.referenceAdaptive;
-                        options.model = model;
-                        Evaluation evaluation;
-                        if (!app.evaluate(options, evaluation, error)) return false;
-                        const std::string prefix =
-                            std::string(mode == ReferenceOptions::Mode::Hard ? "hard_" : "soft_") + (own ? "own_" : "");
-                        const AccuracyMetrics& a = evaluation.metrics;
-                        row[prefix + "mae"] = a.mae;
-                        row[prefix + "rmse"] = a.rmse;
-                        row[prefix + "false_shadow"] = a.falseShadowRate;
-                        row[prefix + "false_light"] = a.falseLightRate;
-                        row[prefix + "mae_penumbra"] = a.maePenumbra;
-                        row[prefix + "mae_outside_penumbra"] = a.maeOutsidePenumbra;
-                        row[prefix + "compared_fraction"] = a.comparedFraction;
-                        row[prefix + "noise"] = a.noiseEnergy;
-                        // Per channel on the opaque receivers, and the translucent receivers (peeled
-                        // layers; seed 001 sec. 5.3.3) where the scene has some in view.
-                        static constexpr const char* kChannels[] = {"r", "g", "b"};
-                        for (int c = 0; c < 3; ++c) row[prefix + "mae_" + kChannels[c]] = a.maePerChannel[c];
-                        if (!evaluation.translucentLayers.empty()) {
-                            const AccuracyMetrics& t = evaluation.translucentMetrics;
-                            row[prefix + "translucent_mae"] = t.mae;
-                            for (int c = 0; c < 3; ++c) row[prefix + "translucent_mae_" + kChannels[c]] = t.maePerChannel[c];
-                            row[prefix + "translucent_false_shadow"] = t.falseShadowRate;
-                            row[prefix + "translucent_false_light"] = t.falseLightRate;
-                            row[prefix + "translucent_noise"] = t.noiseEnergy;
-                            row[prefix + "translucent_pixels"] = t.comparedPixels;
-                            row[prefix + "translucent_layers"] = evaluation.translucentLayers.size();
-                        }
-                        if (own) continue;
-                        // By view-depth third (perspective aliasing: seed 002 sec. 3.1).
-                        static constexpr const char* kThirds[] = {"near", "mid", "far"};
-                        for (size_t t = 0; t < 3; ++t) row[prefix + "mae_" + kThirds[t]] = a.maeByViewDepth[t];
-                        if (evaluation.footprint.maps > 0 && !row.contains("footprint_median")) {
-                            const TexelFootprint& f = evaluation.footprint;
-                            row["footprint_median"] = f.median;
-                            row["footprint_p95"] = f.p95;
-                            row["footprint_max"] = f.max;
-                            row["footprint_undersampled"] = f.undersampledFraction;
-                            for (size_t t = 0; t < 3; ++t) row[std::string("footprint_") + kThirds[t]] = f.medianByViewDepth[t];
-                            row["projection_ratio_median"] = f.projectionMedian;
-                            row["shadow_maps"] = f.maps;
-                        }
-                        row["technique_penumbra_fraction"] = a.techniquePenumbraFraction;
-                        if (mode == ReferenceOptions::Mode::Soft) {
-                            // The soft reference's own error: soft figures (and differences between
-                            // them) below about 4x the floor are not resolved.
-                            const ReferenceStats& r = evaluation.referenceStats;
-                            row["soft_reference_rays"] = r.samplesPerPixel;
-                            row["soft_reference_adaptive"] = r.adaptive;
-                            row["soft_reference_floor"] = evaluation.referenceFloor;
-                            row["soft_reference_refined_fraction"] =
-                                r.tracedPixels ? double(r.refinedPixels) / double(r.tracedPixels) : 0.0;
-                        }
-                    }
-                }
-            }
+            if (spec.accuracy && !addAccuracyColumns(app, spec, info, rowLight, row, error)) return false;
         }
         rows.push_back(row);
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
