@@ -294,38 +294,9 @@ std::optional<std::vector<const TechniqueInfo*>> benchTechniques(const BenchSpec
     return out;
 }
 
-bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& techniques, std::string& error,
-                    std::optional<double> lightSize) {
-    if (spec.frames < 1 || spec.frames > kMaxBenchFrames || spec.warmupFrames < 0 || spec.warmupFrames > kMaxBenchFrames) {
-        error = nameOf(spec, "--frames/--warmup", "frames/warmup") + ": frames must be 1 to " + std::to_string(kMaxBenchFrames) +
-                " and warm-up frames 0 to " + std::to_string(kMaxBenchFrames);
-        return false;
-    }
-    if (spec.reference != "hard" && spec.reference != "soft" && spec.reference != "both" && spec.reference != "auto") {
-        error = nameOf(spec, "--reference", "reference") + " '" + spec.reference + "': expected hard, soft, both or auto";
-        return false;
-    }
-    if (spec.referenceSamples < 1 || spec.referenceSamples > kMaxReferenceSamples) {
-        error = nameOf(spec, "--samples", "referenceSamples") + " " + std::to_string(spec.referenceSamples) +
-                ": expected 1 to " + std::to_string(kMaxReferenceSamples) + " rays per pixel";
-        return false;
-    }
-    if (spec.sizes.empty() || spec.scenes.empty()) {
-        error = nameOf(spec, "--size/--scenes", "sizes/scenes") + ": nothing to measure (an empty list)";
-        return false;
-    }
-    for (const glm::ivec2 size : spec.sizes) {
-        if (size.x < kMinRenderSize || size.y < kMinRenderSize || size.x > kMaxRenderSize || size.y > kMaxRenderSize) {
-            error = nameOf(spec, "--size", "sizes") + " " + std::to_string(size.x) + "x" + std::to_string(size.y) +
-                    ": expected " + std::to_string(kMinRenderSize) + " to " + std::to_string(kMaxRenderSize);
-            return false;
-        }
-    }
-    const auto measured = benchTechniques(spec, techniques, error);
-    if (!measured) return false;
-
-    // Every key must mean something, so a typo fails loudly instead of sweeping nothing; every
-    // value must parse for every technique it will be given to.
+// The sweeps: every key must mean something, so a typo fails loudly instead of sweeping nothing;
+// every value must parse for every technique it will be given to.
+static bool checkSweeps(const BenchSpec& spec, const std::vector<const TechniqueInfo*>& measured, std::string& error) {
     for (const auto& [key, values] : spec.sweeps) {
         if (values.empty()) {
             error = sweepName(spec, key) + ": no values";
@@ -373,7 +344,7 @@ bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& tec
             continue;
         }
         bool used = false;
-        for (const TechniqueInfo* t : *measured) {
+        for (const TechniqueInfo* t : measured) {
             const std::string param = benchParamFor(*t, key);
             if (param.empty()) continue;
             used = true;
@@ -391,6 +362,83 @@ bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& tec
             return false;
         }
     }
+    return true;
+}
+
+// Scenes: each with each combination of its swept parameters, as the run will load them, against
+// the light sizes and render sizes it will get.
+static bool checkBenchScenes(const BenchSpec& spec, std::optional<double> lightSize, std::string& error) {
+    BenchSettingLists sceneLists;
+    for (const auto& [key, values] : spec.sweeps)
+        if (isSceneKey(key)) sceneLists.push_back({key, values});
+    const auto lightSizes = spec.sweeps.find("light.size");
+    for (const auto& scene : spec.scenes) {
+        for (const auto& settings : benchCombinations(sceneLists)) {
+            std::map<std::string, double> overrides;
+            for (const auto& [key, value] : settings) overrides[key.substr(6)] = *parseNumberText(value);
+            SceneCheck check;
+            try {
+                check = checkScene(scene, overrides);
+            } catch (const SceneError& e) {
+                error = nameOf(spec, "--scenes", "scenes") + " '" + scene + "': " + e.what();
+                return false;
+            }
+            if (lightSizes != spec.sweeps.end()) {
+                for (const auto& value : lightSizes->second) {
+                    if (const std::string problem = lightSizeProblem(check.lightType, *parseNumberText(value)); !problem.empty()) {
+                        error = sweepName(spec, "light.size") + ": '" + value + "' on scene '" + scene + "': " + problem;
+                        return false;
+                    }
+                }
+            }
+            for (const glm::ivec2 size : spec.sizes) {
+                if (const std::string problem = renderTargetBudgetProblem(size, 0, check.gpuBytes); !problem.empty()) {
+                    error = nameOf(spec, "--size", "sizes") + " on scene '" + scene + "': " + problem;
+                    return false;
+                }
+            }
+            if (lightSize) {
+                if (const std::string problem = lightSizeProblem(check.lightType, *lightSize); !problem.empty()) {
+                    error = "--light-size on scene '" + scene + "': " + problem;
+                    return false;
+                }
+            }
+        }
+    }
+    return true;
+}
+
+bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& techniques, std::string& error,
+                    std::optional<double> lightSize) {
+    if (spec.frames < 1 || spec.frames > kMaxBenchFrames || spec.warmupFrames < 0 || spec.warmupFrames > kMaxBenchFrames) {
+        error = nameOf(spec, "--frames/--warmup", "frames/warmup") + ": frames must be 1 to " + std::to_string(kMaxBenchFrames) +
+                " and warm-up frames 0 to " + std::to_string(kMaxBenchFrames);
+        return false;
+    }
+    if (spec.reference != "hard" && spec.reference != "soft" && spec.reference != "both" && spec.reference != "auto") {
+        error = nameOf(spec, "--reference", "reference") + " '" + spec.reference + "': expected hard, soft, both or auto";
+        return false;
+    }
+    if (spec.referenceSamples < 1 || spec.referenceSamples > kMaxReferenceSamples) {
+        error = nameOf(spec, "--samples", "referenceSamples") + " " + std::to_string(spec.referenceSamples) +
+                ": expected 1 to " + std::to_string(kMaxReferenceSamples) + " rays per pixel";
+        return false;
+    }
+    if (spec.sizes.empty() || spec.scenes.empty()) {
+        error = nameOf(spec, "--size/--scenes", "sizes/scenes") + ": nothing to measure (an empty list)";
+        return false;
+    }
+    for (const glm::ivec2 size : spec.sizes) {
+        if (size.x < kMinRenderSize || size.y < kMinRenderSize || size.x > kMaxRenderSize || size.y > kMaxRenderSize) {
+            error = nameOf(spec, "--size", "sizes") + " " + std::to_string(size.x) + "x" + std::to_string(size.y) +
+                    ": expected " + std::to_string(kMinRenderSize) + " to " + std::to_string(kMaxRenderSize);
+            return false;
+        }
+    }
+    const auto measured = benchTechniques(spec, techniques, error);
+    if (!measured) return false;
+
+    if (!checkSweeps(spec, *measured, error)) return false;
     for (const auto& text : spec.base) {
         const size_t equals = text.find('=');
         if (equals == std::string::npos || equals == 0 || equals + 1 == text.size()) {
@@ -433,45 +481,7 @@ bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& tec
         }
     }
 
-    // Scenes: each with each combination of its swept parameters, as the run will load them.
-    BenchSettingLists sceneLists;
-    for (const auto& [key, values] : spec.sweeps)
-        if (isSceneKey(key)) sceneLists.push_back({key, values});
-    const auto lightSizes = spec.sweeps.find("light.size");
-    for (const auto& scene : spec.scenes) {
-        for (const auto& settings : benchCombinations(sceneLists)) {
-            std::map<std::string, double> overrides;
-            for (const auto& [key, value] : settings) overrides[key.substr(6)] = *parseNumberText(value);
-            SceneCheck check;
-            try {
-                check = checkScene(scene, overrides);
-            } catch (const SceneError& e) {
-                error = nameOf(spec, "--scenes", "scenes") + " '" + scene + "': " + e.what();
-                return false;
-            }
-            if (lightSizes != spec.sweeps.end()) {
-                for (const auto& value : lightSizes->second) {
-                    if (const std::string problem = lightSizeProblem(check.lightType, *parseNumberText(value)); !problem.empty()) {
-                        error = sweepName(spec, "light.size") + ": '" + value + "' on scene '" + scene + "': " + problem;
-                        return false;
-                    }
-                }
-            }
-            for (const glm::ivec2 size : spec.sizes) {
-                if (const std::string problem = renderTargetBudgetProblem(size, 0, check.gpuBytes); !problem.empty()) {
-                    error = nameOf(spec, "--size", "sizes") + " on scene '" + scene + "': " + problem;
-                    return false;
-                }
-            }
-            if (lightSize) {
-                if (const std::string problem = lightSizeProblem(check.lightType, *lightSize); !problem.empty()) {
-                    error = "--light-size on scene '" + scene + "': " + problem;
-                    return false;
-                }
-            }
-        }
-    }
-    return true;
+    return checkBenchScenes(spec, lightSize, error);
 }
 
 } // namespace shadowlab
