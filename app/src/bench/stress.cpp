@@ -128,6 +128,68 @@ FootprintSummary footprintOver(const Evaluation& e, const std::vector<uint8_t>& 
 
 std::filesystem::path defaultStressCases() { return dataRoot() / "assets" / "stress" / "cases.json"; }
 
+// The pixels a case counts (its region: an object's bounds or a sphere), or none for all of them.
+static bool caseRegion(const StressSuite& suite, const StressCase& c, const Scene& loaded,
+                       std::function<std::vector<uint8_t>(const Evaluation&)>& region, std::string& error) {
+    if (!c.regionObject.empty() || c.regionCentre) {
+        Bounds object{};
+        if (!c.regionObject.empty()) {
+            bool found = false;
+            for (size_t i = 0; i < loaded.objects.size(); ++i)
+                if (loaded.objects[i].name == c.regionObject) {
+                    object = found ? Bounds{glm::min(object.min, loaded.objectInfo[i].bounds.min), glm::max(object.max, loaded.objectInfo[i].bounds.max)}
+                                   : loaded.objectInfo[i].bounds;
+                    found = true;
+                }
+            if (!found) {
+                error = suite.file + ": case " + c.id + ": region.object: scene '" + loaded.name + "' has no object '" + c.regionObject + "'";
+                return false;
+            }
+            object.min.y += 0.02f * (object.max.y - object.min.y);
+        }
+        region = [&c, object](const Evaluation& e) {
+            std::vector<uint8_t> inside(e.mask.size(), 0);
+            for (size_t i = 0; i < inside.size(); ++i) {
+                const glm::vec3 p(e.positions[i]);
+                if (e.positions[i].w < 0.5f) continue;
+                inside[i] = c.regionCentre ? glm::length(p - *c.regionCentre) <= c.regionRadius
+                                           : glm::all(glm::greaterThanEqual(p, object.min)) && glm::all(glm::lessThanEqual(p, object.max));
+            }
+            return inside;
+        };
+    }
+    return true;
+}
+
+// The cell's figures from a measured path: spatial ones from its worst frame, temporal ones from
+// its summary, and the case's metric among them.
+static void foldPathResult(const StressCase& c, const PathAccuracy& result, StressCell& cell) {
+    for (const PathFrameResult& frame : result.frames) {
+        cell.mae = std::max(cell.mae, frame.metrics.mae);
+        cell.falseShadow = std::max(cell.falseShadow, frame.metrics.falseShadowRate);
+        cell.falseLight = std::max(cell.falseLight, frame.metrics.falseLightRate);
+        cell.maeNear = std::max(cell.maeNear, frame.metrics.maeByViewDepth[0]);
+        cell.maeFar = std::max(cell.maeFar, frame.metrics.maeByViewDepth[2]);
+        cell.pixels = std::max(cell.pixels, frame.metrics.comparedPixels);
+    }
+    cell.flicker = result.temporal.meanFlicker;
+    cell.popping = result.temporal.popping;
+    cell.noise = result.temporal.meanNoise;
+    switch (c.metric) {
+    case StressMetric::FalseShadow: cell.value = cell.falseShadow; break;
+    case StressMetric::FalseLight: cell.value = cell.falseLight; break;
+    case StressMetric::Mae: cell.value = cell.mae; break;
+    case StressMetric::MaeNearThird: cell.value = cell.maeNear; break;
+    case StressMetric::MaeFarThird: cell.value = cell.maeFar; break;
+    case StressMetric::Flicker: cell.value = cell.flicker; break;
+    case StressMetric::Popping:
+        cell.value = cell.popping;
+        if (result.temporal.poppingFrame >= 0) cell.worstFrame = result.temporal.poppingFrame;
+        break;
+    case StressMetric::Noise: cell.value = cell.noise; break;
+    }
+}
+
 bool runStressCell(App& app, const StressSuite& suite, const StressCase& c, const std::string& technique,
                    const StressOptions& options, StressCell& cell, std::string& error) {
     cell = {};
@@ -198,34 +260,7 @@ bool runStressCell(App& app, const StressSuite& suite, const StressCase& c, cons
     accuracy.reference.samplesPerPixel = c.referenceSamples;
     accuracy.reference.adaptive = true;
     accuracy.reference.model = TranslucencyModel::Physical;
-    const Scene& loaded = app.scene();
-    if (!c.regionObject.empty() || c.regionCentre) {
-        Bounds object{};
-        if (!c.regionObject.empty()) {
-            bool found = false;
-            for (size_t i = 0; i < loaded.objects.size(); ++i)
-                if (loaded.objects[i].name == c.regionObject) {
-                    object = found ? Bounds{glm::min(object.min, loaded.objectInfo[i].bounds.min), glm::max(object.max, loaded.objectInfo[i].bounds.max)}
-                                   : loaded.objectInfo[i].bounds;
-                    found = true;
-                }
-            if (!found) {
-                error = suite.file + ": case " + c.id + ": region.object: scene '" + loaded.name + "' has no object '" + c.regionObject + "'";
-                return false;
-            }
-            object.min.y += 0.02f * (object.max.y - object.min.y);
-        }
-        accuracy.region = [&, object](const Evaluation& e) {
-            std::vector<uint8_t> region(e.mask.size(), 0);
-            for (size_t i = 0; i < region.size(); ++i) {
-                const glm::vec3 p(e.positions[i]);
-                if (e.positions[i].w < 0.5f) continue;
-                region[i] = c.regionCentre ? glm::length(p - *c.regionCentre) <= c.regionRadius
-                                           : glm::all(glm::greaterThanEqual(p, object.min)) && glm::all(glm::lessThanEqual(p, object.max));
-            }
-            return region;
-        };
-    }
+    if (!caseRegion(suite, c, app.scene(), accuracy.region, error)) return false;
     Image worst;
     double worstValue = -1.0;
     auto spatialValue = [&](const AccuracyMetrics& m) {
@@ -266,31 +301,7 @@ bool runStressCell(App& app, const StressSuite& suite, const StressCase& c, cons
     PathAccuracy result;
     if (!measurePath(app, technique, path, camera, light, accuracy, result, error)) return false;
 
-    // Spatial figures: the worst frame of the path; temporal ones: the path's summary.
-    for (const PathFrameResult& frame : result.frames) {
-        cell.mae = std::max(cell.mae, frame.metrics.mae);
-        cell.falseShadow = std::max(cell.falseShadow, frame.metrics.falseShadowRate);
-        cell.falseLight = std::max(cell.falseLight, frame.metrics.falseLightRate);
-        cell.maeNear = std::max(cell.maeNear, frame.metrics.maeByViewDepth[0]);
-        cell.maeFar = std::max(cell.maeFar, frame.metrics.maeByViewDepth[2]);
-        cell.pixels = std::max(cell.pixels, frame.metrics.comparedPixels);
-    }
-    cell.flicker = result.temporal.meanFlicker;
-    cell.popping = result.temporal.popping;
-    cell.noise = result.temporal.meanNoise;
-    switch (c.metric) {
-    case StressMetric::FalseShadow: cell.value = cell.falseShadow; break;
-    case StressMetric::FalseLight: cell.value = cell.falseLight; break;
-    case StressMetric::Mae: cell.value = cell.mae; break;
-    case StressMetric::MaeNearThird: cell.value = cell.maeNear; break;
-    case StressMetric::MaeFarThird: cell.value = cell.maeFar; break;
-    case StressMetric::Flicker: cell.value = cell.flicker; break;
-    case StressMetric::Popping:
-        cell.value = cell.popping;
-        if (result.temporal.poppingFrame >= 0) cell.worstFrame = result.temporal.poppingFrame;
-        break;
-    case StressMetric::Noise: cell.value = cell.noise; break;
-    }
+    foldPathResult(c, result, cell);
     cell.pass = cell.value <= c.threshold;
     if (wantImage && !worst.pixels.empty()) {
         cell.image = "images/" + technique + "-" + c.id + ".png";
