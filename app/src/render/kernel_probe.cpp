@@ -146,6 +146,89 @@ void adaptiveDisc(KernelProbe& probe, const Sampler& sampler, const std::vector<
 
 } // namespace
 
+// The box kernel (shaders/box_pcf.glsl's boxPcfDepth): n x n taps `spacing` texels apart, each a
+// comparison with the cone bias growing with its offset.
+static void probeBox(KernelProbe& probe, const FilterFootprint& footprint, const Sampler& sampler, glm::vec3 coord, int res,
+                     bool bilinear, float slope, int n) {
+    // shaders/box_pcf.glsl's boxPcfDepth.
+    const glm::vec2 u = glm::vec2(coord) * float(res);
+    float lit = 0.0f;
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const glm::vec2 offset = (glm::vec2(i, j) - 0.5f * float(n - 1)) * footprint.spacing;
+            const glm::vec2 position = bilinear ? u + offset : glm::floor(u + offset) + 0.5f;
+            KernelTap tap;
+            tap.uv = position / float(res);
+            tap.lit = sampler.compare(tap.uv, coord.z - slope * glm::length(offset), bilinear);
+            lit += tap.lit;
+            probe.taps.push_back(tap);
+            // The texels this tap reads: its own, or the 2x2 around a bilinear tap.
+            const glm::vec2 first = bilinear ? glm::floor(position - 0.5f) : glm::floor(position);
+            lo = glm::min(lo, first);
+            hi = glm::max(hi, first + (bilinear ? 2.0f : 1.0f));
+        }
+    probe.boxMin = lo / float(res);
+    probe.boxMax = hi / float(res);
+    probe.kernelTexels = std::max(hi.x - lo.x, hi.y - lo.y);
+    probe.samplesTaken = n * n;
+    probe.lit = lit / float(n * n);
+}
+
+// The disc kernel (plugins/adaptive-pcf/adaptive-pcf.glsl, 2D map, classify = ring): the outer
+// ring first, the early out decided per pixel or per 2x2 quad.
+static void probeDisc(KernelProbe& probe, const FilterFootprint& footprint, const Sampler& sampler, const ProbeQuad& quad,
+                      glm::ivec2 pixel, glm::vec3 coord, int res, bool bilinear, float slope, int n, const glm::vec3& axis,
+                      glm::vec2 worldSize, const glm::mat4& worldToClip) {
+    // plugins/adaptive-pcf/adaptive-pcf.glsl (2D map, classify = ring).
+    const int m = std::max(footprint.sets, 1);
+    const glm::vec2 radiusUv(footprint.spacing / float(res));
+    probe.filterRadiusTexels = footprint.spacing;
+    probe.kernelTexels = 2.0f * footprint.spacing;
+    bool quadStops = true;
+    if (footprint.coherent) {
+        // Every pixel of the quad must agree (pixels without geometry or outside the map count as agreeing).
+        for (int q = 0; q < 4; ++q) {
+            if (quad.position[q].w < 0.5f) continue;
+            const glm::vec3 c = shadowMapCoord(worldToClip, glm::vec3(quad.position[q]));
+            if (!insideShadowMap(c)) continue;
+            const float s = footprint.coneBias *
+                            receiverDepthSlope(glm::normalize(quad.normal[q]), axis, c.z, footprint.lightDepth, worldSize);
+            const glm::ivec2 p = quad.origin + glm::ivec2(q % 2, q / 2);
+            if (!ringAgrees(sampler, discSet(n, m, footprint.discSeed, p), n, c, radiusUv, s * footprint.spacing, bilinear))
+                quadStops = false;
+        }
+    }
+    adaptiveDisc(probe, sampler, discSet(n, m, footprint.discSeed, pixel), n, coord, radiusUv, slope * footprint.spacing,
+                 bilinear, quadStops);
+}
+
+// PCSS's blocker search (seed 000 eq. 3.18; pcss.glsl's step 1): n_s x n_s disc samples over the
+// search region, each with the cone bias; returns the sum of the blockers' linear depths.
+static float blockerSearch(KernelProbe& probe, const FilterFootprint& footprint, const Sampler& sampler, glm::ivec2 pixel,
+                           glm::vec3 coord, glm::vec2 searchUv, float slope, int res, int m) {
+    const int ns = std::max(footprint.searchTaps, 1);
+    const std::vector<glm::vec2> search = discSet(ns, m, footprint.searchSeed, pixel);
+    const float searchRim = slope * std::max(searchUv.x, searchUv.y) * float(res);
+    float depthSum = 0.0f;
+    for (int k = 0; k < ns * ns; ++k) {
+        KernelTap tap;
+        tap.stage = KernelTap::Stage::Search;
+        tap.uv = glm::vec2(coord) + search[size_t(k)] * searchUv;
+        const float d = sampler.fetch(tap.uv);
+        const bool blocker = d < coord.z - searchRim * glm::length(search[size_t(k)]);
+        tap.lit = blocker ? 0.0f : 1.0f;
+        if (blocker) {
+            depthSum += lightLinearDepth(d, footprint.lightDepth);
+            ++probe.blockers;
+        }
+        probe.taps.push_back(tap);
+    }
+    probe.searchSamples = ns * ns;
+    probe.samplesTaken = ns * ns;
+    return depthSum;
+}
+
 KernelProbe probeKernel(const FilterFootprint& footprint, const ShadowMapInfo& map, const ProbeQuad& quad,
                         glm::ivec2 pixel, const DepthFetch& depth) {
     KernelProbe probe;
@@ -189,54 +272,12 @@ KernelProbe probeKernel(const FilterFootprint& footprint, const ShadowMapInfo& m
     const int n = std::max(footprint.taps, 1);
 
     if (footprint.kernel == FilterKernel::Box) {
-        // shaders/box_pcf.glsl's boxPcfDepth.
-        const glm::vec2 u = glm::vec2(coord) * float(res);
-        float lit = 0.0f;
-        glm::vec2 lo(1e30f), hi(-1e30f);
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const glm::vec2 offset = (glm::vec2(i, j) - 0.5f * float(n - 1)) * footprint.spacing;
-                const glm::vec2 position = bilinear ? u + offset : glm::floor(u + offset) + 0.5f;
-                KernelTap tap;
-                tap.uv = position / float(res);
-                tap.lit = sampler.compare(tap.uv, coord.z - slope * glm::length(offset), bilinear);
-                lit += tap.lit;
-                probe.taps.push_back(tap);
-                // The texels this tap reads: its own, or the 2x2 around a bilinear tap.
-                const glm::vec2 first = bilinear ? glm::floor(position - 0.5f) : glm::floor(position);
-                lo = glm::min(lo, first);
-                hi = glm::max(hi, first + (bilinear ? 2.0f : 1.0f));
-            }
-        probe.boxMin = lo / float(res);
-        probe.boxMax = hi / float(res);
-        probe.kernelTexels = std::max(hi.x - lo.x, hi.y - lo.y);
-        probe.samplesTaken = n * n;
-        probe.lit = lit / float(n * n);
+        probeBox(probe, footprint, sampler, coord, res, bilinear, slope, n);
         return probe;
     }
 
     if (footprint.kernel == FilterKernel::Disc) {
-        // plugins/adaptive-pcf/adaptive-pcf.glsl (2D map, classify = ring).
-        const int m = std::max(footprint.sets, 1);
-        const glm::vec2 radiusUv(footprint.spacing / float(res));
-        probe.filterRadiusTexels = footprint.spacing;
-        probe.kernelTexels = 2.0f * footprint.spacing;
-        bool quadStops = true;
-        if (footprint.coherent) {
-            // Every pixel of the quad must agree (pixels without geometry or outside the map count as agreeing).
-            for (int q = 0; q < 4; ++q) {
-                if (quad.position[q].w < 0.5f) continue;
-                const glm::vec3 c = coordOf(glm::vec3(quad.position[q]));
-                if (!insideShadowMap(c)) continue;
-                const float s = footprint.coneBias *
-                                receiverDepthSlope(glm::normalize(quad.normal[q]), axis, c.z, footprint.lightDepth, worldSize);
-                const glm::ivec2 p = quad.origin + glm::ivec2(q % 2, q / 2);
-                if (!ringAgrees(sampler, discSet(n, m, footprint.discSeed, p), n, c, radiusUv, s * footprint.spacing, bilinear))
-                    quadStops = false;
-            }
-        }
-        adaptiveDisc(probe, sampler, discSet(n, m, footprint.discSeed, pixel), n, coord, radiusUv, slope * footprint.spacing,
-                     bilinear, quadStops);
+        probeDisc(probe, footprint, sampler, quad, pixel, coord, res, bilinear, slope, n, axis, worldSize, map.worldToClip);
         return probe;
     }
 
@@ -275,25 +316,7 @@ KernelProbe probeKernel(const FilterFootprint& footprint, const ShadowMapInfo& m
         }
     }
     const int m = std::max(footprint.sets, 1);
-    const int ns = std::max(footprint.searchTaps, 1);
-    const std::vector<glm::vec2> search = discSet(ns, m, footprint.searchSeed, pixel);
-    const float searchRim = slope * std::max(searchUv.x, searchUv.y) * float(res);
-    float depthSum = 0.0f;
-    for (int k = 0; k < ns * ns; ++k) {
-        KernelTap tap;
-        tap.stage = KernelTap::Stage::Search;
-        tap.uv = glm::vec2(coord) + search[size_t(k)] * searchUv;
-        const float d = sampler.fetch(tap.uv);
-        const bool blocker = d < coord.z - searchRim * glm::length(search[size_t(k)]);
-        tap.lit = blocker ? 0.0f : 1.0f;
-        if (blocker) {
-            depthSum += lightLinearDepth(d, footprint.lightDepth);
-            ++probe.blockers;
-        }
-        probe.taps.push_back(tap);
-    }
-    probe.searchSamples = ns * ns;
-    probe.samplesTaken = ns * ns;
+    const float depthSum = blockerSearch(probe, footprint, sampler, pixel, coord, searchUv, slope, res, m);
     if (probe.blockers == 0) {
         probe.decision = "no blocker";
         probe.lit = 1.0f;
