@@ -418,119 +418,11 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
     }
 }
 
-void Ui::drawPanel(App& app, UiState& state) {
-    const PixelRect& panel = state.layout.panel;
-    ImGui::SetNextWindowPos(ImVec2(float(panel.origin.x), float(panel.origin.y)), ImGuiCond_Always);
-    ImGui::SetNextWindowSize(ImVec2(float(panel.size.x), float(panel.size.y)), ImGuiCond_Always);
-    ImGui::Begin("shadowlab", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-    drawStatusLine(app, state, false);
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("F1 or H hides this panel, F12 saves a screenshot, M measures accuracy, F5 saves the session");
-    ImGui::PopStyleColor();
-    ImGui::Separator();
-    drawTourPlayer(app, state);
-
-    // Technique picker, grouped by category.
-    const TechniqueInfo* info = app.techniques().find(state.technique);
-    fieldLabel(state.compareTechnique.empty() ? "technique" : "technique A (left)");
-    if (ImGui::BeginCombo("##technique", info ? info->displayName.c_str() : state.technique.c_str())) {
-        std::string category;
-        for (const auto& t : app.techniques().techniques()) {
-            if (t.category != category) {
-                category = t.category;
-                ImGui::TextDisabled("%s", category.c_str());
-            }
-            if (ImGui::Selectable(("  " + t.displayName + "##" + t.id).c_str(), t.id == state.technique)) {
-                state.technique = t.id;
-                state.view = {};
-            }
-        }
-        ImGui::EndCombo();
-    }
-    fieldLabel("compare with (B)",
-               "Side by side: the view split in two, both halves with the whole camera framing. Wipe: one framing, A left "
-               "of a divider you drag, B right of it. Difference: where the two shadow terms differ.");
-    const TechniqueInfo* compareInfo = app.techniques().find(state.compareTechnique);
-    if (ImGui::BeginCombo("##compare", compareInfo ? compareInfo->displayName.c_str() : "(nothing)")) {
-        if (ImGui::Selectable("(nothing)", state.compareTechnique.empty())) state.compareTechnique.clear();
-        for (const auto& t : app.techniques().techniques())
-            if (ImGui::Selectable((t.displayName + "##compare" + t.id).c_str(), t.id == state.compareTechnique))
-                state.compareTechnique = t.id;
-        ImGui::EndCombo();
-    }
-    if (!state.compareTechnique.empty()) {
-        int layout = int(state.compareLayout);
-        ImGui::RadioButton("side by side", &layout, int(CompareLayout::SideBySide));
-        ImGui::SameLine();
-        ImGui::RadioButton("wipe", &layout, int(CompareLayout::Wipe));
-        ImGui::SameLine();
-        ImGui::RadioButton("difference", &layout, int(CompareLayout::Difference));
-        state.compareLayout = CompareLayout(layout);
-    }
-    info = app.techniques().find(state.technique);
-    if (info) {
-        ImGui::TextDisabled("%s  |  %s", info->category.c_str(), info->id.c_str());
-        ImGui::PushTextWrapPos(0.0f);
-        ImGui::TextUnformatted(info->explanation.c_str());
-        // What it reported on its last frame decides which of the host's views show something.
-        const std::string views = app.debugViewsOf(state.technique);
-        ImGui::TextDisabled("Debug views here: %s", views.empty() ? "none (lit, visibility and error only)" : views.c_str());
-        if (info->debugViewsDeclared) {   // what the descriptor says applies (some only with a parameter set)
-            std::string declared;
-            for (const std::string& view : info->debugViews) declared += (declared.empty() ? "" : ", ") + view;
-            ImGui::TextDisabled("Declared: %s", declared.empty() ? "none" : declared.c_str());
-        }
-        ImGui::PopTextWrapPos();
-        if (!info->params.empty() && ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
-            auto& values = app.params().values(*info);
-            for (size_t i = 0; i < info->params.size(); ++i) parameterWidget(info->params[i], values[i]);
-            if (ImGui::Button("Reset to defaults")) app.params().resetToDefaults(*info);
-        }
-    }
-    // The host's own parameters (plugin/host_params.h: the eye-space blur and lighting rules of
-    // seed 002 ch. 6), with any technique.
-    if (ImGui::CollapsingHeader("Host passes")) {
-        const TechniqueInfo& host = hostParams();
-        ImGui::PushTextWrapPos(0.0f);
-        ImGui::TextUnformatted(host.explanation.c_str());
-        ImGui::PopTextWrapPos();
-        auto& values = app.params().values(host);
-        for (size_t i = 0; i < host.params.size(); ++i) parameterWidget(host.params[i], values[i]);
-    }
-    if (!state.frameError.empty()) {
-        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.4f, 1.0f));
-        ImGui::PushTextWrapPos(0.0f);
-        ImGui::TextUnformatted(state.frameError.c_str());
-        ImGui::PopTextWrapPos();
-        ImGui::PopStyleColor();
-    }
-
-    if (ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) {
-        LightInfo& light = app.light();
-        const glm::vec3 toLight = -glm::normalize(light.direction);
-        float azimuth = glm::degrees(std::atan2(toLight.z, toLight.x));
-        float elevation = glm::degrees(std::asin(std::clamp(toLight.y, -1.0f, 1.0f)));
-        fieldLabel("azimuth");
-        bool changed = ImGui::SliderFloat("##azimuth", &azimuth, -180.0f, 180.0f, "%.1f deg");
-        fieldLabel("elevation", "Direction the light comes from. Low elevations give long shadows and make acne and "
-                                "aliasing easy to see.");
-        changed |= ImGui::SliderFloat("##elevation", &elevation, 1.0f, 90.0f, "%.1f deg");
-        if (changed) {
-            const float a = glm::radians(azimuth), e = glm::radians(elevation);
-            light.direction = -glm::vec3(std::cos(e) * std::cos(a), std::sin(e), std::cos(e) * std::sin(a));
-        }
-        const std::string sizeHelp = "Size of the emitter: soft-shadow techniques widen their penumbrae with it; hard "
-                                     "techniques ignore it.";
-        if (light.type == LightType::Directional) {
-            fieldLabel("angular radius (degrees)", sizeHelp);
-            float size = glm::degrees(light.size);
-            if (ImGui::SliderFloat("##light-size", &size, 0.0f, 10.0f, "%.2f deg")) light.size = glm::radians(size);
-        } else {
-            fieldLabel("radius (scene units)", sizeHelp);
-            ImGui::SliderFloat("##light-size", &light.size, 0.0f, 2.0f, "%.3f");
-        }
-    }
-
+// The panel's "View" section.
+void Ui::drawViewSection(App& app, UiState& state, const TechniqueInfo* info) {
+    (void)app;
+    (void)state;
+    (void)info;
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
         static const char* const kFootprint = "texel footprint m (log2 heat map)";
         static const char* const kTexelGrid = "shadow-map texel grid";
@@ -609,27 +501,13 @@ void Ui::drawPanel(App& app, UiState& state) {
             ImGui::PopStyleColor();
         }
     }
+}
 
-    drawLessonSection(app, state);
-
-    if (ImGui::CollapsingHeader("Timing and memory", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::TextWrapped("%.1f FPS  (%.2f ms per frame, host CPU %.3f ms)", 1000.0f / std::max(smoothedFrameMs_, 1e-3f),
-                           smoothedFrameMs_, app.lastCpuFrameMs());
-        const bool comparing = !state.compareTechnique.empty();
-        const std::string sides[2] = {state.technique, state.compareTechnique};
-        for (int s = 0; s < (comparing ? 2 : 1); ++s) {
-            if (comparing) ImGui::TextWrapped("%s: %s", s == 0 ? "A" : "B", techniqueTitle(app, sides[s]).c_str());
-            timingsTable(s == 0 ? "passes-a" : "passes-b", state.sideTimings[s]);
-            std::string error;
-            if (LoadedTechnique* loaded = app.techniques().get(sides[s], error)) {
-                ImGui::Text("technique GPU memory: %.2f MiB", double(loaded->host().gpuBytes()) / (1024.0 * 1024.0));
-                for (const auto& [name, allocation] : loaded->host().textures())
-                    ImGui::TextDisabled("  %s: %.2f MiB", allocation.label.c_str(), double(allocation.bytes) / (1024.0 * 1024.0));
-                for (const auto& [name, value] : loaded->host().statistics()) ImGui::Text("%s: %.4g", name.c_str(), value);
-            }
-        }
-    }
-
+// The panel's "Accuracy" section.
+void Ui::drawAccuracySection(App& app, UiState& state, const TechniqueInfo* info) {
+    (void)app;
+    (void)state;
+    (void)info;
     if (ImGui::CollapsingHeader("Accuracy", ImGuiTreeNodeFlags_DefaultOpen)) {
         const char* modes[] = {"hard reference", "soft reference"};
         fieldLabel("against", "Traces the ray-traced reference (Embree, CPU) from the G-buffer of the frame on screen and "
@@ -680,7 +558,69 @@ void Ui::drawPanel(App& app, UiState& state) {
         if (!state.measurement.empty() && ImGui::Button("Show error heatmap")) state.view = {ViewSelection::Kind::ErrorHeatmap, ""};
         drawSpeedAccuracyPlot(state.measured);
     }
+}
 
+// The panel's "Light" section.
+void Ui::drawLightSection(App& app, UiState& state, const TechniqueInfo* info) {
+    (void)app;
+    (void)state;
+    (void)info;
+    if (ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) {
+        LightInfo& light = app.light();
+        const glm::vec3 toLight = -glm::normalize(light.direction);
+        float azimuth = glm::degrees(std::atan2(toLight.z, toLight.x));
+        float elevation = glm::degrees(std::asin(std::clamp(toLight.y, -1.0f, 1.0f)));
+        fieldLabel("azimuth");
+        bool changed = ImGui::SliderFloat("##azimuth", &azimuth, -180.0f, 180.0f, "%.1f deg");
+        fieldLabel("elevation", "Direction the light comes from. Low elevations give long shadows and make acne and "
+                                "aliasing easy to see.");
+        changed |= ImGui::SliderFloat("##elevation", &elevation, 1.0f, 90.0f, "%.1f deg");
+        if (changed) {
+            const float a = glm::radians(azimuth), e = glm::radians(elevation);
+            light.direction = -glm::vec3(std::cos(e) * std::cos(a), std::sin(e), std::cos(e) * std::sin(a));
+        }
+        const std::string sizeHelp = "Size of the emitter: soft-shadow techniques widen their penumbrae with it; hard "
+                                     "techniques ignore it.";
+        if (light.type == LightType::Directional) {
+            fieldLabel("angular radius (degrees)", sizeHelp);
+            float size = glm::degrees(light.size);
+            if (ImGui::SliderFloat("##light-size", &size, 0.0f, 10.0f, "%.2f deg")) light.size = glm::radians(size);
+        } else {
+            fieldLabel("radius (scene units)", sizeHelp);
+            ImGui::SliderFloat("##light-size", &light.size, 0.0f, 2.0f, "%.3f");
+        }
+    }
+}
+
+// The panel's "Timing and memory" section.
+void Ui::drawTimingSection(App& app, UiState& state, const TechniqueInfo* info) {
+    (void)app;
+    (void)state;
+    (void)info;
+    if (ImGui::CollapsingHeader("Timing and memory", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::TextWrapped("%.1f FPS  (%.2f ms per frame, host CPU %.3f ms)", 1000.0f / std::max(smoothedFrameMs_, 1e-3f),
+                           smoothedFrameMs_, app.lastCpuFrameMs());
+        const bool comparing = !state.compareTechnique.empty();
+        const std::string sides[2] = {state.technique, state.compareTechnique};
+        for (int s = 0; s < (comparing ? 2 : 1); ++s) {
+            if (comparing) ImGui::TextWrapped("%s: %s", s == 0 ? "A" : "B", techniqueTitle(app, sides[s]).c_str());
+            timingsTable(s == 0 ? "passes-a" : "passes-b", state.sideTimings[s]);
+            std::string error;
+            if (LoadedTechnique* loaded = app.techniques().get(sides[s], error)) {
+                ImGui::Text("technique GPU memory: %.2f MiB", double(loaded->host().gpuBytes()) / (1024.0 * 1024.0));
+                for (const auto& [name, allocation] : loaded->host().textures())
+                    ImGui::TextDisabled("  %s: %.2f MiB", allocation.label.c_str(), double(allocation.bytes) / (1024.0 * 1024.0));
+                for (const auto& [name, value] : loaded->host().statistics()) ImGui::Text("%s: %.4g", name.c_str(), value);
+            }
+        }
+    }
+}
+
+// The panel's "Hot reload and log" section.
+void Ui::drawReloadSection(App& app, UiState& state, const TechniqueInfo* info) {
+    (void)app;
+    (void)state;
+    (void)info;
     if (ImGui::CollapsingHeader("Hot reload and log")) {
         ImGui::TextWrapped("Rebuild a plugin (cmake --build build) or save a .glsl file: it is reloaded in place. "
                            "Failures keep the running version.");
@@ -708,6 +648,114 @@ void Ui::drawPanel(App& app, UiState& state) {
         newestLogLine_ = newest;
         ImGui::EndChild();
     }
+}
+
+// The panel's "Host passes" section.
+void Ui::drawHostSection(App& app, UiState& state, const TechniqueInfo* info) {
+    (void)app;
+    (void)state;
+    (void)info;
+    if (ImGui::CollapsingHeader("Host passes")) {
+        const TechniqueInfo& host = hostParams();
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextUnformatted(host.explanation.c_str());
+        ImGui::PopTextWrapPos();
+        auto& values = app.params().values(host);
+        for (size_t i = 0; i < host.params.size(); ++i) parameterWidget(host.params[i], values[i]);
+    }
+}
+
+void Ui::drawPanel(App& app, UiState& state) {
+    const PixelRect& panel = state.layout.panel;
+    ImGui::SetNextWindowPos(ImVec2(float(panel.origin.x), float(panel.origin.y)), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(float(panel.size.x), float(panel.size.y)), ImGuiCond_Always);
+    ImGui::Begin("shadowlab", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    drawStatusLine(app, state, false);
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("F1 or H hides this panel, F12 saves a screenshot, M measures accuracy, F5 saves the session");
+    ImGui::PopStyleColor();
+    ImGui::Separator();
+    drawTourPlayer(app, state);
+
+    // Technique picker, grouped by category.
+    const TechniqueInfo* info = app.techniques().find(state.technique);
+    fieldLabel(state.compareTechnique.empty() ? "technique" : "technique A (left)");
+    if (ImGui::BeginCombo("##technique", info ? info->displayName.c_str() : state.technique.c_str())) {
+        std::string category;
+        for (const auto& t : app.techniques().techniques()) {
+            if (t.category != category) {
+                category = t.category;
+                ImGui::TextDisabled("%s", category.c_str());
+            }
+            if (ImGui::Selectable(("  " + t.displayName + "##" + t.id).c_str(), t.id == state.technique)) {
+                state.technique = t.id;
+                state.view = {};
+            }
+        }
+        ImGui::EndCombo();
+    }
+    fieldLabel("compare with (B)",
+               "Side by side: the view split in two, both halves with the whole camera framing. Wipe: one framing, A left "
+               "of a divider you drag, B right of it. Difference: where the two shadow terms differ.");
+    const TechniqueInfo* compareInfo = app.techniques().find(state.compareTechnique);
+    if (ImGui::BeginCombo("##compare", compareInfo ? compareInfo->displayName.c_str() : "(nothing)")) {
+        if (ImGui::Selectable("(nothing)", state.compareTechnique.empty())) state.compareTechnique.clear();
+        for (const auto& t : app.techniques().techniques())
+            if (ImGui::Selectable((t.displayName + "##compare" + t.id).c_str(), t.id == state.compareTechnique))
+                state.compareTechnique = t.id;
+        ImGui::EndCombo();
+    }
+    if (!state.compareTechnique.empty()) {
+        int layout = int(state.compareLayout);
+        ImGui::RadioButton("side by side", &layout, int(CompareLayout::SideBySide));
+        ImGui::SameLine();
+        ImGui::RadioButton("wipe", &layout, int(CompareLayout::Wipe));
+        ImGui::SameLine();
+        ImGui::RadioButton("difference", &layout, int(CompareLayout::Difference));
+        state.compareLayout = CompareLayout(layout);
+    }
+    info = app.techniques().find(state.technique);
+    if (info) {
+        ImGui::TextDisabled("%s  |  %s", info->category.c_str(), info->id.c_str());
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextUnformatted(info->explanation.c_str());
+        // What it reported on its last frame decides which of the host's views show something.
+        const std::string views = app.debugViewsOf(state.technique);
+        ImGui::TextDisabled("Debug views here: %s", views.empty() ? "none (lit, visibility and error only)" : views.c_str());
+        if (info->debugViewsDeclared) {   // what the descriptor says applies (some only with a parameter set)
+            std::string declared;
+            for (const std::string& view : info->debugViews) declared += (declared.empty() ? "" : ", ") + view;
+            ImGui::TextDisabled("Declared: %s", declared.empty() ? "none" : declared.c_str());
+        }
+        ImGui::PopTextWrapPos();
+        if (!info->params.empty() && ImGui::CollapsingHeader("Parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
+            auto& values = app.params().values(*info);
+            for (size_t i = 0; i < info->params.size(); ++i) parameterWidget(info->params[i], values[i]);
+            if (ImGui::Button("Reset to defaults")) app.params().resetToDefaults(*info);
+        }
+    }
+    // The host's own parameters (plugin/host_params.h: the eye-space blur and lighting rules of
+    // seed 002 ch. 6), with any technique.
+    drawHostSection(app, state, info);
+    if (!state.frameError.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.4f, 1.0f));
+        ImGui::PushTextWrapPos(0.0f);
+        ImGui::TextUnformatted(state.frameError.c_str());
+        ImGui::PopTextWrapPos();
+        ImGui::PopStyleColor();
+    }
+
+    drawLightSection(app, state, info);
+
+    drawViewSection(app, state, info);
+
+    drawLessonSection(app, state);
+
+    drawTimingSection(app, state, info);
+
+    drawAccuracySection(app, state, info);
+
+    drawReloadSection(app, state, info);
 
     if (ImGui::CollapsingHeader("Display")) {
         fieldLabel("UI scale", "Fonts and spacing; 1.5 to 2 for a projector. Also --ui-scale.");

@@ -102,6 +102,13 @@ private:
     void applyScale(float scale);
     void drawViewOverlay(App& app, UiState& state);
     void drawPanel(App& app, UiState& state);
+    // Sections of the panel (ui.cpp).
+    void drawViewSection(App& app, UiState& state, const TechniqueInfo* info);
+    void drawAccuracySection(App& app, UiState& state, const TechniqueInfo* info);
+    void drawLightSection(App& app, UiState& state, const TechniqueInfo* info);
+    void drawTimingSection(App& app, UiState& state, const TechniqueInfo* info);
+    void drawReloadSection(App& app, UiState& state, const TechniqueInfo* info);
+    void drawHostSection(App& app, UiState& state, const TechniqueInfo* info);
     void drawStatusLine(App& app, const UiState& state, bool overlay);
     void drawTourPlayer(App& app, UiState& state);   // tour_panel.cpp
     void drawLessonSection(App& app, UiState& state); // tour_panel.cpp
