@@ -131,7 +131,7 @@ class ShadowVolumes final : public kit::TechniqueBase {
             const size_t slot = frameCount_ % samples_.size();
             glBeginQuery(GL_SAMPLES_PASSED, samples_[slot]);
             glBeginQuery(GL_PRIMITIVES_GENERATED, primitives_[slot]);
-            drawVolumes(volumes_, push, true);
+            drawVolumes(volumes_, push);
             glEndQuery(GL_PRIMITIVES_GENERATED);
             glEndQuery(GL_SAMPLES_PASSED);
             pending_[slot] = true;
@@ -157,10 +157,9 @@ class ShadowVolumes final : public kit::TechniqueBase {
         glBindSampler(kVolumeMaskUnit, host().sampler(SamplerKind::Nearest));
     }
 
-    void drawVolumes(const kit::Program& program, float push, bool caps) {
+    void drawVolumes(const kit::Program& program, float push) {
         glUseProgram(program.get());
         glUniform1f(kPushLocation, push);
-        glUniform1i(kCapsLocation, caps ? 1 : 0);
         DrawRequest request;
         request.set = DrawSet::Casters;
         request.primitive = DrawPrimitive::TrianglesAdjacency;
@@ -182,12 +181,12 @@ class ShadowVolumes final : public kit::TechniqueBase {
         glClearBufferfv(GL_COLOR, 0, &clear);
         glUseProgram(volumes_.get());
         glUniform1f(17, 1.0f / 16.0f);
-        drawVolumes(volumes_, push, true);
+        drawVolumes(volumes_, push);
         glNamedFramebufferTexture(debugFramebuffer_, GL_COLOR_ATTACHMENT0, edgeImage_, 0);
         glClearBufferfv(GL_COLOR, 0, &clear);
         glUseProgram(edges_.get());
         glUniform1f(17, 1.0f);
-        drawVolumes(edges_, push, false);
+        drawVolumes(edges_, push);
         glDisable(GL_BLEND);
     }
 

@@ -8,7 +8,5 @@ SHADOWLAB_TEXTURE_UNIT(kVolumeMaskUnit, 4)     // R8: 1 lit, 0 inside a volume (
 // The uniform location (an integer constant like a unit) of the world distance the volumes start
 // beyond each caster.
 SHADOWLAB_TEXTURE_UNIT(kPushLocation, 16)
-// The uniform location of the caps switch (1: draw near and far caps, depth-fail).
-SHADOWLAB_TEXTURE_UNIT(kCapsLocation, 18)
 SHADOWLAB_SHARED_END
 #endif

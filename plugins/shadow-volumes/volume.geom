@@ -34,10 +34,6 @@ in vec3 vWorld[];
 
 layout(location = 6) uniform int uClosedMesh;
 layout(location = kPushLocation) uniform float uPush;
-// 1: draw the caps. Depth-fail needs them; depth-pass too, in this implementation: a near cap is
-// pushed beyond its caster, so at a silhouette pixel it can cover background behind the caster
-// (skipping them left single wrong pixels there, tests/test_shadow_volumes.cpp).
-layout(location = kCapsLocation) uniform int uCaps;
 
 bool directional() { return lightType() == LIGHT_DIRECTIONAL; }
 
@@ -104,8 +100,9 @@ void main() {
         }
     }
 #ifndef SHADOW_VOLUME_EDGES
-    if (uCaps == 0) return;
     // Caps, turned to face the light: near cap counter-clockwise from the light, far cap reversed.
+    // Depth-pass needs them too: a near cap is pushed beyond its caster, so at a silhouette pixel
+    // it can cover background behind the caster (without them single pixels went wrong there).
     vec3 p0 = corner[0], p1 = lit ? corner[1] : corner[2], p2 = lit ? corner[2] : corner[1];
     gl_Position = nearPoint(p0);
     EmitVertex();

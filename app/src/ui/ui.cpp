@@ -419,10 +419,7 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
 }
 
 // The panel's "View" section.
-void Ui::drawViewSection(App& app, UiState& state, const TechniqueInfo* info) {
-    (void)app;
-    (void)state;
-    (void)info;
+void Ui::drawViewSection(App& app, UiState& state) {
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
         static const char* const kFootprint = "texel footprint m (log2 heat map)";
         static const char* const kTexelGrid = "shadow-map texel grid";
@@ -504,10 +501,7 @@ void Ui::drawViewSection(App& app, UiState& state, const TechniqueInfo* info) {
 }
 
 // The panel's "Accuracy" section.
-void Ui::drawAccuracySection(App& app, UiState& state, const TechniqueInfo* info) {
-    (void)app;
-    (void)state;
-    (void)info;
+void Ui::drawAccuracySection(App& app, UiState& state) {
     if (ImGui::CollapsingHeader("Accuracy", ImGuiTreeNodeFlags_DefaultOpen)) {
         const char* modes[] = {"hard reference", "soft reference"};
         fieldLabel("against", "Traces the ray-traced reference (Embree, CPU) from the G-buffer of the frame on screen and "
@@ -561,10 +555,7 @@ void Ui::drawAccuracySection(App& app, UiState& state, const TechniqueInfo* info
 }
 
 // The panel's "Light" section.
-void Ui::drawLightSection(App& app, UiState& state, const TechniqueInfo* info) {
-    (void)app;
-    (void)state;
-    (void)info;
+void Ui::drawLightSection(App& app) {
     if (ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) {
         LightInfo& light = app.light();
         const glm::vec3 toLight = -glm::normalize(light.direction);
@@ -593,10 +584,7 @@ void Ui::drawLightSection(App& app, UiState& state, const TechniqueInfo* info) {
 }
 
 // The panel's "Timing and memory" section.
-void Ui::drawTimingSection(App& app, UiState& state, const TechniqueInfo* info) {
-    (void)app;
-    (void)state;
-    (void)info;
+void Ui::drawTimingSection(App& app, UiState& state) {
     if (ImGui::CollapsingHeader("Timing and memory", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::TextWrapped("%.1f FPS  (%.2f ms per frame, host CPU %.3f ms)", 1000.0f / std::max(smoothedFrameMs_, 1e-3f),
                            smoothedFrameMs_, app.lastCpuFrameMs());
@@ -617,10 +605,7 @@ void Ui::drawTimingSection(App& app, UiState& state, const TechniqueInfo* info) 
 }
 
 // The panel's "Hot reload and log" section.
-void Ui::drawReloadSection(App& app, UiState& state, const TechniqueInfo* info) {
-    (void)app;
-    (void)state;
-    (void)info;
+void Ui::drawReloadSection(App& app) {
     if (ImGui::CollapsingHeader("Hot reload and log")) {
         ImGui::TextWrapped("Rebuild a plugin (cmake --build build) or save a .glsl file: it is reloaded in place. "
                            "Failures keep the running version.");
@@ -651,10 +636,7 @@ void Ui::drawReloadSection(App& app, UiState& state, const TechniqueInfo* info) 
 }
 
 // The panel's "Host passes" section.
-void Ui::drawHostSection(App& app, UiState& state, const TechniqueInfo* info) {
-    (void)app;
-    (void)state;
-    (void)info;
+void Ui::drawHostSection(App& app) {
     if (ImGui::CollapsingHeader("Host passes")) {
         const TechniqueInfo& host = hostParams();
         ImGui::PushTextWrapPos(0.0f);
@@ -736,7 +718,7 @@ void Ui::drawPanel(App& app, UiState& state) {
     }
     // The host's own parameters (plugin/host_params.h: the eye-space blur and lighting rules of
     // seed 002 ch. 6), with any technique.
-    drawHostSection(app, state, info);
+    drawHostSection(app);
     if (!state.frameError.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.4f, 1.0f));
         ImGui::PushTextWrapPos(0.0f);
@@ -745,17 +727,17 @@ void Ui::drawPanel(App& app, UiState& state) {
         ImGui::PopStyleColor();
     }
 
-    drawLightSection(app, state, info);
+    drawLightSection(app);
 
-    drawViewSection(app, state, info);
+    drawViewSection(app, state);
 
     drawLessonSection(app, state);
 
-    drawTimingSection(app, state, info);
+    drawTimingSection(app, state);
 
-    drawAccuracySection(app, state, info);
+    drawAccuracySection(app, state);
 
-    drawReloadSection(app, state, info);
+    drawReloadSection(app);
 
     if (ImGui::CollapsingHeader("Display")) {
         fieldLabel("UI scale", "Fonts and spacing; 1.5 to 2 for a projector. Also --ui-scale.");

@@ -103,12 +103,12 @@ private:
     void drawViewOverlay(App& app, UiState& state);
     void drawPanel(App& app, UiState& state);
     // Sections of the panel (ui.cpp).
-    void drawViewSection(App& app, UiState& state, const TechniqueInfo* info);
-    void drawAccuracySection(App& app, UiState& state, const TechniqueInfo* info);
-    void drawLightSection(App& app, UiState& state, const TechniqueInfo* info);
-    void drawTimingSection(App& app, UiState& state, const TechniqueInfo* info);
-    void drawReloadSection(App& app, UiState& state, const TechniqueInfo* info);
-    void drawHostSection(App& app, UiState& state, const TechniqueInfo* info);
+    void drawViewSection(App& app, UiState& state);
+    void drawAccuracySection(App& app, UiState& state);
+    void drawLightSection(App& app);
+    void drawTimingSection(App& app, UiState& state);
+    void drawReloadSection(App& app);
+    void drawHostSection(App& app);
     void drawStatusLine(App& app, const UiState& state, bool overlay);
     void drawTourPlayer(App& app, UiState& state);   // tour_panel.cpp
     void drawLessonSection(App& app, UiState& state); // tour_panel.cpp
