@@ -25,10 +25,6 @@ std::string columnName(std::string text) {
     return text;
 }
 
-std::string jsonValueText(const nlohmann::json& value) {
-    return value.is_string() ? value.get<std::string>() : value.dump();
-}
-
 // The technique's own passes: every pass but the host's frame, main pass, depth pre-pass and
 // eye-space blur (its term pass and the blur). The camera pre-pass counts: the technique asked for it.
 // "translucent draws" (SHADOWLAB_EXT_TRANSLUCENT_DRAWS) is inside "main" and holds the technique's
@@ -100,7 +96,7 @@ std::string rowSettings(const nlohmann::json& row) {
     for (const auto& [key, value] : row.items()) {
         if (key.rfind("param.", 0) != 0 && key.rfind("scene.", 0) != 0) continue;
         if (!text.empty()) text += ' ';
-        text += key.substr(key.find('.') + 1) + "=" + jsonValueText(value);
+        text += key.substr(key.find('.') + 1) + "=" + specValueText(value);
     }
     return text;
 }

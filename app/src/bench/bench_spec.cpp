@@ -28,7 +28,6 @@ std::string baseName(const BenchSpec& spec, const std::string& assignment) {
     return spec.fromCommandLine ? "--set " + assignment : "base." + assignment.substr(0, assignment.find('='));
 }
 
-std::string jsonValueText(const json& value) { return value.is_string() ? value.get<std::string>() : value.dump(); }
 
 std::string describe(const json& value) {
     if (value.is_string()) return "\"" + value.get<std::string>().substr(0, 60) + "\"";
@@ -97,6 +96,8 @@ bool parseSize(const std::string& text, glm::ivec2& size, std::string& error, co
     size = {w, h};
     return true;
 }
+
+std::string specValueText(const json& value) { return value.is_string() ? value.get<std::string>() : value.dump(); }
 
 std::optional<double> parseNumberText(const std::string& text) {
     const char* begin = text.data();
@@ -185,7 +186,7 @@ bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
                     error = "sweep." + key + ": expected numbers, strings or booleans, got " + describe(v);
                     return false;
                 }
-                list.push_back(jsonValueText(v));
+                list.push_back(specValueText(v));
             }
         }
     }
@@ -199,7 +200,7 @@ bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
                 error = "base." + key + ": expected a number, string or boolean, got " + describe(value);
                 return false;
             }
-            result.base.push_back(key + "=" + jsonValueText(value));
+            result.base.push_back(key + "=" + specValueText(value));
         }
     }
     if (const auto it = spec.find("frames"); it != spec.end() && !readWholeNumber(*it, "frames", 1, kMaxBenchFrames, result.frames, error))

@@ -55,6 +55,9 @@ bool parseSize(const std::string& text, glm::ivec2& size, std::string& error, co
 // A finite number and nothing else ("5abc", "nan" and "1e400" are errors).
 std::optional<double> parseNumberText(const std::string& text);
 
+// A spec value as a setting's text: strings as they are, numbers and the rest as JSON.
+std::string specValueText(const nlohmann::json& value);
+
 // "on" or "off" (also true/false, 1/0) for `option`; otherwise false and "OPTION 'TEXT': expected on or off".
 bool parseOnOff(const std::string& text, bool& value, std::string& error, const std::string& option);
 
