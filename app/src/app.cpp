@@ -594,6 +594,9 @@ bool App::traceReference(const GBufferView& gbuffer, const ReferenceOptions& opt
 }
 
 bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error) {
+    using Clock = std::chrono::steady_clock;
+    auto secondsSince = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+    const auto renderStart = Clock::now();
     if (!renderAccuracyTargets(error)) return false;
     const glm::ivec2 size = renderer_->size();
     const auto positions = renderer_->readTarget(MainTarget::Position);
@@ -604,10 +607,12 @@ bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string
     out.height = size.y;
     out.technique.resize(visibility.size());
     for (size_t i = 0; i < visibility.size(); ++i) out.technique[i] = glm::clamp(glm::vec3(visibility[i]), 0.0f, 1.0f);
+    out.renderSeconds = secondsSince(renderStart);
     out.mask = compareMask(gbuffer, light_);
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = Clock::now();
     if (!traceReference(gbuffer, options, out.reference, error, &out.referenceStats)) return false;
-    out.traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out.traceSeconds = secondsSince(start);
+    const auto metricsStart = Clock::now();
     out.metrics = compareVisibility(out.technique, out.reference, out.mask, size.x, size.y);
     const CameraInfo camera = camera_.info(size);
     addViewDepthThirds(out.metrics, out.technique, out.reference, out.mask, positions.data(), size.x, size.y, camera.view,
@@ -620,7 +625,11 @@ bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string
     out.referenceFloor = out.referenceStats.sampleError.empty()
                              ? 0.0
                              : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);
-    return evaluateTranslucentLayers(options, out, error);
+    out.metricsSeconds = secondsSince(metricsStart);
+    const auto layersStart = Clock::now();
+    const bool layers = evaluateTranslucentLayers(options, out, error);
+    out.layersSeconds = secondsSince(layersStart);
+    return layers;
 }
 
 bool App::evaluateTranslucentLayers(const ReferenceOptions& options, Evaluation& out, std::string& error) {

@@ -95,6 +95,12 @@ struct Evaluation {
     int width = 0;
     int height = 0;
     double traceSeconds = 0.0;
+    // Where an evaluation's wall time goes (bench rows' seconds_* columns): the untimed re-render
+    // with the accuracy targets and its readbacks, the reference (cached or traced), the metrics
+    // and the translucent layers.
+    double renderSeconds = 0.0;
+    double metricsSeconds = 0.0;
+    double layersSeconds = 0.0;
     ReferenceStats referenceStats;      // rays, refined pixels, per-pixel sampling error of the reference
     double referenceFloor = 0.0;        // soft: the reference's own penumbra MAE (penumbraMean of its sampleError)
     TexelFootprint footprint;           // m per pixel from the maps the technique reported (none: 0 maps)

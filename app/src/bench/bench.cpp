@@ -241,6 +241,10 @@ static bool addAccuracyColumns(App& app, const BenchSpec& spec, const TechniqueI
             options.model = model;
             Evaluation evaluation;
             if (!app.evaluate(options, evaluation, error)) return false;
+            row["seconds_accuracy_render"] = row.value("seconds_accuracy_render", 0.0) + evaluation.renderSeconds;
+            row["seconds_reference"] = row.value("seconds_reference", 0.0) + evaluation.traceSeconds;
+            row["seconds_metrics"] = row.value("seconds_metrics", 0.0) + evaluation.metricsSeconds;
+            row["seconds_translucent_layers"] = row.value("seconds_translucent_layers", 0.0) + evaluation.layersSeconds;
             const std::string prefix =
                 std::string(mode == ReferenceOptions::Mode::Hard ? "hard_" : "soft_") + (own ? "own_" : "");
             const AccuracyMetrics& a = evaluation.metrics;
@@ -296,6 +300,34 @@ static bool addAccuracyColumns(App& app, const BenchSpec& spec, const TechniqueI
     return true;
 }
 
+// A row's settings on top of the technique's defaults: the spec's base, then the row's sweep values
+// (light size, host passes, the technique's parameters).
+static bool applyRowSettings(App& app, const BenchSpec& spec, const BenchJob& job, const LightInfo& sceneLight,
+                             bool savedPrepass, std::string& error) {
+    const TechniqueInfo* info = job.technique;
+    app.params().resetToDefaults(*info);
+    app.light() = sceneLight;
+    app.setDepthPrepass(savedPrepass);
+    std::vector<std::string> assignments;
+    for (const auto& text : spec.base) {
+        const std::string param = benchParamFor(*info, text.substr(0, text.find('=')));
+        if (!param.empty()) assignments.push_back(param + text.substr(text.find('=')));
+    }
+    for (const auto& [key, value] : job.settings) {
+        if (isLightKey(key)) {
+            const float v = static_cast<float>(parseNumberText(value).value_or(0.0));
+            app.light().size = app.light().type == LightType::Directional ? glm::radians(v) : v;
+        } else if (key == "host.depth_prepass") {
+            app.setDepthPrepass(value == "1");
+        } else if (isHostKey(key)) {
+            assignments.push_back(key + "=" + value);   // host.shadow_blur, ... (plugin/host_params.h)
+        } else {
+            assignments.push_back(benchParamFor(*info, key) + "=" + value);
+        }
+    }
+    return app.applyAssignments(assignments, info->id, error);
+}
+
 bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows, std::string& error,
               const std::function<void(const nlohmann::json&)>& onRow) {
     // Every value checked before the first frame; below, conversions cannot fail.
@@ -305,7 +337,6 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
     }
     const auto measured = benchTechniques(spec, app.techniques().techniques(), error);
     if (!measured) return false;
-    auto number = [](const std::string& text) { return parseNumberText(text).value_or(0.0); };
     const TechniqueInfo* none = app.techniques().find("none");
 
     const std::vector<BenchJob> jobs = planBenchJobs(spec, *measured, none);
@@ -332,6 +363,9 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
         return true;
     };
 
+    auto secondsSince = [](std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    };
     for (size_t index = 0; index < jobs.size(); ++index) {
         const BenchJob& job = jobs[index];
         if (index == 0 || !sameGroup(job, jobs[index - 1])) {
@@ -340,36 +374,18 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
             depthFloor.clear();
         }
         nlohmann::json row = common;
+        const auto rowStart = std::chrono::steady_clock::now();
         if (!job.technique) {
             app.light() = sceneLight;
             if (!addDepthFloorRow(app, spec, job.depthFloorResolution, row, depthFloor, error)) return false;
         } else {
             const TechniqueInfo* info = job.technique;
-            app.params().resetToDefaults(*info);
-            app.light() = sceneLight;
-            app.setDepthPrepass(savedPrepass);
-            std::vector<std::string> assignments;
-            for (const auto& text : spec.base) {
-                const std::string param = benchParamFor(*info, text.substr(0, text.find('=')));
-                if (!param.empty()) assignments.push_back(param + text.substr(text.find('=')));
-            }
-            for (const auto& [key, value] : job.settings) {
-                if (isLightKey(key)) {
-                    const float v = static_cast<float>(number(value));
-                    app.light().size = app.light().type == LightType::Directional ? glm::radians(v) : v;
-                } else if (key == "host.depth_prepass") {
-                    app.setDepthPrepass(value == "1");
-                } else if (isHostKey(key)) {
-                    assignments.push_back(key + "=" + value);   // host.shadow_blur, ... (plugin/host_params.h)
-                } else {
-                    assignments.push_back(benchParamFor(*info, key) + "=" + value);
-                }
-            }
-            if (!app.applyAssignments(assignments, info->id, error)) return false;
+            if (!applyRowSettings(app, spec, job, sceneLight, savedPrepass, error)) return false;
             const LightInfo rowLight = app.light();
 
             // The main-pass floor: `none` in the same view, light and pre-pass setting, this run.
             const std::pair<int, bool> floorKey{int(std::lround(rowLight.size * 1e6f)), app.depthPrepass()};
+            const auto floorsStart = std::chrono::steady_clock::now();
             if (!mainFloor.count(floorKey) && none && info != none) {
                 Measurement floor;
                 app.params().resetToDefaults(*none);
@@ -377,7 +393,9 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                 mainFloor[floorKey] = floor.gpuMs["main"].median;
             }
             Measurement m;
+            const auto measureStart = std::chrono::steady_clock::now();
             if (!app.measure(info->id, spec.warmupFrames, spec.frames, m, error)) return false;
+            row["seconds_timed_frames"] = secondsSince(measureStart);
             if (info == none && !mainFloor.count(floorKey)) mainFloor[floorKey] = m.gpuMs["main"].median;
             row["technique"] = info->id;
             row["category"] = info->category;
@@ -398,12 +416,14 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                 if (!measureDepthFloor(static_cast<int>(values[size_t(p)]), floorMs)) return false;
                 row["floor_depth_ms"] = floorMs;
             }
+            row["seconds_floors"] = secondsSince(floorsStart) - row["seconds_timed_frames"].get<double>();
             row["gpu_bytes"] = m.gpuBytes;
             LoadedTechnique* loaded = app.techniques().get(info->id, error);
             if (loaded)
                 for (const auto& [name, value] : loaded->host().statistics()) row["stat." + columnName(name)] = value;
             if (spec.accuracy && !addAccuracyColumns(app, spec, info, rowLight, row, error)) return false;
         }
+        row["seconds_row"] = secondsSince(rowStart);
         rows.push_back(row);
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         const double left = elapsed / double(index + 1) * double(jobs.size() - index - 1);
