@@ -200,7 +200,8 @@ bool App::renderFrame(const std::string& technique, std::string& error, FrameOut
     timer_->endFrame();
     if (!passes) return false;
     lastTechnique_ = technique;
-    lastCpuFrameMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
+    lastFrameEnd_ = std::chrono::steady_clock::now();
+    lastCpuFrameMs_ = std::chrono::duration<double, std::milli>(lastFrameEnd_ - cpuStart).count();
     return true;
 }
 
@@ -457,16 +458,20 @@ namespace {
 // Warm-up lasts at least this long as well as the frames asked for: after a CPU-side step (a
 // reference trace between benchmark rows) an idle GPU has lowered its clocks, and ten 0.8 ms
 // frames do not bring them back (the H200 run of 2026-12-01 measured `none` at 4.6 ms instead of
-// 0.8 ms right after a trace). Capped so a broken timer cannot spin forever.
+// 0.8 ms right after a trace). After a short pause (the previous row's metrics, under half a
+// second) a shorter warm-up is enough: the clocks have not dropped yet, and a sweep of hundreds
+// of rows would otherwise spend a quarter second on each (issue 32). Capped so a broken timer
+// cannot spin forever.
 constexpr double kMinWarmupSeconds = 0.25;
+constexpr double kMinWarmupSecondsAfterShortPause = 0.05;
+constexpr double kLongPauseSeconds = 0.5;
 constexpr int kMaxWarmupFrames = 5000;
 
 template <typename RenderOne>
-bool warmUp(int warmupFrames, RenderOne&& renderOne) {
+bool warmUp(int warmupFrames, double minSeconds, RenderOne&& renderOne) {
     const auto start = std::chrono::steady_clock::now();
     for (int i = 0; i < kMaxWarmupFrames; ++i) {
-        const bool enoughTime =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= kMinWarmupSeconds;
+        const bool enoughTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= minSeconds;
         if (i >= warmupFrames && (enoughTime || warmupFrames == 0)) break;
         if (!renderOne()) return false;
     }
@@ -475,8 +480,13 @@ bool warmUp(int warmupFrames, RenderOne&& renderOne) {
 
 } // namespace
 
+double App::warmupSeconds() const {
+    const double pause = std::chrono::duration<double>(std::chrono::steady_clock::now() - lastFrameEnd_).count();
+    return pause >= kLongPauseSeconds ? kMinWarmupSeconds : kMinWarmupSecondsAfterShortPause;
+}
+
 bool App::measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error) {
-    if (!warmUp(warmupFrames, [&] { return renderFrame(technique, error); })) return false;
+    if (!warmUp(warmupFrames, warmupSeconds(), [&] { return renderFrame(technique, error); })) return false;
     timer_->drain();
     timer_->clearHistory();
     std::vector<double> cpu;
@@ -543,11 +553,12 @@ bool App::measureDepthFloor(int resolution, int warmupFrames, int frames, Measur
         timer_->endFrame();
         return true;
     };
-    warmUp(warmupFrames, depthFrame);
+    warmUp(warmupFrames, warmupSeconds(), depthFrame);
     timer_->drain();
     timer_->clearHistory();
     for (int i = 0; i < frames; ++i) depthFrame();
     timer_->drain();
+    lastFrameEnd_ = std::chrono::steady_clock::now();
     out = {};
     for (const auto& [pass, samples] : timer_->history()) out.gpuMs[pass] = summarize(samples);
     out.frames = frames;
@@ -599,7 +610,7 @@ bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string
     const auto renderStart = Clock::now();
     if (!renderAccuracyTargets(error)) return false;
     const glm::ivec2 size = renderer_->size();
-    const auto positions = renderer_->readTarget(MainTarget::Position);
+    auto positions = renderer_->readTarget(MainTarget::Position);   // moved into out.positions at the end
     const auto normals = renderer_->readTarget(MainTarget::Normal);
     const auto visibility = renderer_->readTarget(MainTarget::Visibility);
     const GBufferView gbuffer{size.x, size.y, positions.data(), normals.data()};
@@ -621,10 +632,10 @@ bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string
         out.footprint = measureTexelFootprint(gbuffer, out.mask, frame_.camera, frame_.light, loaded->host().shadowMaps());
     else
         return false;
-    out.positions = positions;
     out.referenceFloor = out.referenceStats.sampleError.empty()
                              ? 0.0
                              : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);
+    out.positions = std::move(positions);
     out.metricsSeconds = secondsSince(metricsStart);
     const auto layersStart = Clock::now();
     const bool layers = evaluateTranslucentLayers(options, out, error);

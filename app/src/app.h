@@ -204,6 +204,9 @@ public:
     const AppOptions& options() const { return options_; }
     std::string firstTechnique() const;
     double lastCpuFrameMs() const { return lastCpuFrameMs_; }
+    // The least warm-up time before timed frames: longer after a pause in which the GPU may have
+    // lowered its clocks (app.cpp, kLongPauseSeconds).
+    double warmupSeconds() const;
     const FrameContext& lastFrame() const { return frame_; }
 
 private:
@@ -238,6 +241,7 @@ private:
     bool windowed_ = false;
     std::chrono::steady_clock::time_point startTime_ = std::chrono::steady_clock::now();
     double lastCpuFrameMs_ = 0.0;
+    std::chrono::steady_clock::time_point lastFrameEnd_{};   // when the last frame was submitted (warm-up rule)
     std::vector<std::string> lastReloaded_;
     GroundTruthPtr groundTruth_;
     ReferenceDevice referenceDevice_ = ReferenceDevice::Cpu;

@@ -1,12 +1,17 @@
 // Per-pixel accuracy of a technique against the ray-traced reference (see metrics.h for every
-// definition). Sums are in double and in a fixed pixel order, so equal inputs give equal numbers.
+// definition). Sums are in double, per fixed band of pixels on every core, and the bands are added
+// in order, so equal inputs give equal numbers on any machine.
 #include "groundtruth/metrics.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include <nlohmann/json.hpp>
+
+#include "util/parallel.h"
 
 namespace shadowlab {
 
@@ -15,6 +20,8 @@ namespace {
 constexpr float kLitThreshold = 0.5f;   // reference >= 0.5: lit; technique < 0.5: shadowed
 constexpr float kPenumbraLow = 0.02f;   // reference strictly between these: partial visibility
 constexpr float kPenumbraHigh = 0.98f;
+
+constexpr size_t kPixelChunk = 16384;   // pixels a chunk of per-pixel work (util/parallel.h)
 
 float scalarVisibility(const glm::vec3& rgb) { return (rgb.r + rgb.g + rgb.b) / 3.0f; }
 
@@ -55,68 +62,59 @@ std::vector<uint8_t> compareMask(const GBufferView& gbuffer, const LightInfo& li
     std::vector<uint8_t> mask(pixels, 0);
     if (pixels > 0 && (!gbuffer.positions || !gbuffer.normals))
         throw std::invalid_argument("compareMask: G-buffer without positions or normals");
-    for (size_t i = 0; i < pixels; ++i)
-        mask[i] = facesLight(gbuffer.positions[i], gbuffer.normals[i], light) ? 1 : 0;
+    forEachChunk(pixels, kPixelChunk, [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) mask[i] = facesLight(gbuffer.positions[i], gbuffer.normals[i], light) ? 1 : 0;
+    });
     return mask;
 }
 
-AccuracyMetrics compareVisibility(const std::vector<glm::vec3>& technique, const std::vector<glm::vec3>& reference,
-                                  const std::vector<uint8_t>& mask, int width, int height) {
-    checkSizes(technique.size(), reference.size(), mask.size(), width, height, "compareVisibility");
-    AccuracyMetrics m;
-    const size_t pixels = reference.size();
-    if (pixels == 0) return m;
+namespace {
 
-    double sumAbs = 0.0, sumSquared = 0.0, sumPenumbra = 0.0, sumOutside = 0.0;
-    glm::dvec3 sumChannels(0.0);
-    size_t falseShadow = 0, falseLight = 0;
-    for (int y = 0; y < height; ++y) {
+// One band of rows' share of compareVisibility's sums, combined in band order (util/parallel.h).
+struct VisibilitySums {
+    double abs = 0.0, squared = 0.0, penumbra = 0.0, outside = 0.0, noise = 0.0;
+    glm::dvec3 channels{0.0};
+    size_t compared = 0, penumbraPixels = 0, falseShadow = 0, falseLight = 0, techniquePenumbra = 0, noiseSamples = 0;
+
+    void add(const VisibilitySums& o) {
+        abs += o.abs, squared += o.squared, penumbra += o.penumbra, outside += o.outside, noise += o.noise;
+        channels += o.channels;
+        compared += o.compared, penumbraPixels += o.penumbraPixels, falseShadow += o.falseShadow;
+        falseLight += o.falseLight, techniquePenumbra += o.techniquePenumbra, noiseSamples += o.noiseSamples;
+    }
+};
+
+constexpr size_t kRowChunk = 8;
+
+VisibilitySums visibilitySumsOfRows(const std::vector<glm::vec3>& technique, const std::vector<glm::vec3>& reference,
+                                    const std::vector<uint8_t>& mask, int width, int height, int rowBegin, int rowEnd) {
+    VisibilitySums s;
+    auto signedError = [&](size_t i) {
+        return static_cast<double>(scalarVisibility(technique[i])) - static_cast<double>(scalarVisibility(reference[i]));
+    };
+    for (int y = rowBegin; y < rowEnd; ++y) {
         for (int x = 0; x < width; ++x) {
             const size_t i = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
             if (!mask[i]) continue;
             const float ref = scalarVisibility(reference[i]);
             const float tech = scalarVisibility(technique[i]);
             const double error = std::abs(static_cast<double>(tech) - static_cast<double>(ref));
-            ++m.comparedPixels;
-            sumAbs += error;
-            sumSquared += error * error;
-            sumChannels += glm::abs(glm::dvec3(technique[i]) - glm::dvec3(reference[i]));
+            ++s.compared;
+            s.abs += error;
+            s.squared += error * error;
+            s.channels += glm::abs(glm::dvec3(technique[i]) - glm::dvec3(reference[i]));
             const bool refLit = ref >= kLitThreshold;
-            if (refLit && tech < kLitThreshold) ++falseShadow;
-            if (!refLit && tech > kLitThreshold) ++falseLight;
-
+            if (refLit && tech < kLitThreshold) ++s.falseShadow;
+            if (!refLit && tech > kLitThreshold) ++s.falseLight;
             if (inPenumbra(reference, mask, x, y, width, height)) {
-                ++m.penumbraPixels;
-                sumPenumbra += error;
+                ++s.penumbraPixels;
+                s.penumbra += error;
             } else {
-                sumOutside += error;
+                s.outside += error;
             }
-        }
-    }
-
-    m.comparedFraction = static_cast<double>(m.comparedPixels) / static_cast<double>(pixels);
-    if (m.comparedPixels == 0) return m;
-    const auto compared = static_cast<double>(m.comparedPixels);
-    m.mae = sumAbs / compared;
-    m.rmse = std::sqrt(sumSquared / compared);
-    m.maePerChannel = sumChannels / compared;
-    m.falseShadowRate = static_cast<double>(falseShadow) / compared;
-    m.falseLightRate = static_cast<double>(falseLight) / compared;
-    const size_t outside = m.comparedPixels - m.penumbraPixels;
-    m.maePenumbra = m.penumbraPixels ? sumPenumbra / static_cast<double>(m.penumbraPixels) : 0.0;
-    m.maeOutsidePenumbra = outside ? sumOutside / static_cast<double>(outside) : 0.0;
-
-    size_t techniquePenumbra = 0, noiseSamples = 0;
-    double noiseSum = 0.0;
-    auto signedError = [&](size_t i) {
-        return static_cast<double>(scalarVisibility(technique[i])) - static_cast<double>(scalarVisibility(reference[i]));
-    };
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const size_t i = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
-            if (!mask[i]) continue;
-            const float tech = scalarVisibility(technique[i]);
-            if (tech > kPenumbraLow && tech < kPenumbraHigh) ++techniquePenumbra;
+            if (tech > kPenumbraLow && tech < kPenumbraHigh) ++s.techniquePenumbra;
+            // Noise: the error against the mean of its four neighbours' errors, interior pixels
+            // whose neighbours are all compared.
             if (x == 0 || y == 0 || x + 1 == width || y + 1 == height) continue;
             const size_t neighbours[4] = {i - 1, i + 1, i - static_cast<size_t>(width), i + static_cast<size_t>(width)};
             double mean = 0.0;
@@ -126,12 +124,44 @@ AccuracyMetrics compareVisibility(const std::vector<glm::vec3>& technique, const
                 mean += signedError(j);
             }
             if (!all) continue;
-            noiseSum += std::abs(signedError(i) - 0.25 * mean);
-            ++noiseSamples;
+            s.noise += std::abs(signedError(i) - 0.25 * mean);
+            ++s.noiseSamples;
         }
     }
-    m.techniquePenumbraFraction = static_cast<double>(techniquePenumbra) / compared;
-    m.noiseEnergy = noiseSamples ? noiseSum / static_cast<double>(noiseSamples) : 0.0;
+    return s;
+}
+
+} // namespace
+
+AccuracyMetrics compareVisibility(const std::vector<glm::vec3>& technique, const std::vector<glm::vec3>& reference,
+                                  const std::vector<uint8_t>& mask, int width, int height) {
+    checkSizes(technique.size(), reference.size(), mask.size(), width, height, "compareVisibility");
+    AccuracyMetrics m;
+    const size_t pixels = reference.size();
+    if (pixels == 0) return m;
+
+    std::vector<VisibilitySums> bands(chunkCount(size_t(height), kRowChunk));
+    forEachChunk(size_t(height), kRowChunk, [&](size_t band, size_t begin, size_t end) {
+        bands[band] = visibilitySumsOfRows(technique, reference, mask, width, height, int(begin), int(end));
+    });
+    VisibilitySums s;
+    for (const VisibilitySums& band : bands) s.add(band);
+
+    m.comparedPixels = s.compared;
+    m.penumbraPixels = s.penumbraPixels;
+    m.comparedFraction = static_cast<double>(m.comparedPixels) / static_cast<double>(pixels);
+    if (m.comparedPixels == 0) return m;
+    const auto compared = static_cast<double>(m.comparedPixels);
+    m.mae = s.abs / compared;
+    m.rmse = std::sqrt(s.squared / compared);
+    m.maePerChannel = s.channels / compared;
+    m.falseShadowRate = static_cast<double>(s.falseShadow) / compared;
+    m.falseLightRate = static_cast<double>(s.falseLight) / compared;
+    const size_t outside = m.comparedPixels - m.penumbraPixels;
+    m.maePenumbra = m.penumbraPixels ? s.penumbra / static_cast<double>(m.penumbraPixels) : 0.0;
+    m.maeOutsidePenumbra = outside ? s.outside / static_cast<double>(outside) : 0.0;
+    m.techniquePenumbraFraction = static_cast<double>(s.techniquePenumbra) / compared;
+    m.noiseEnergy = s.noiseSamples ? s.noise / static_cast<double>(s.noiseSamples) : 0.0;
     return m;
 }
 
@@ -142,16 +172,26 @@ void addViewDepthThirds(AccuracyMetrics& metrics, const std::vector<glm::vec3>& 
     checkSizes(technique.size(), reference.size(), mask.size(), width, height, "addViewDepthThirds");
     if (!(farPlane > nearPlane)) throw std::invalid_argument("addViewDepthThirds: empty depth range");
     if (!positions && !mask.empty()) throw std::invalid_argument("addViewDepthThirds: no positions");
+    struct Thirds {
+        std::array<double, 3> sums{};
+        std::array<size_t, 3> pixels{};
+    };
+    std::vector<Thirds> chunks(chunkCount(mask.size(), kPixelChunk));
+    forEachChunk(mask.size(), kPixelChunk, [&](size_t chunk, size_t begin, size_t end) {
+        Thirds& t = chunks[chunk];
+        for (size_t i = begin; i < end; ++i) {
+            if (!mask[i]) continue;
+            const float depth = -(view * glm::vec4(glm::vec3(positions[i]), 1.0f)).z;
+            const int third = std::clamp(int(3.0f * (depth - nearPlane) / (farPlane - nearPlane)), 0, 2);
+            t.sums[size_t(third)] += std::abs(static_cast<double>(scalarVisibility(technique[i])) -
+                                              static_cast<double>(scalarVisibility(reference[i])));
+            ++t.pixels[size_t(third)];
+        }
+    });
     std::array<double, 3> sums{};
     metrics.pixelsByViewDepth = {};
-    for (size_t i = 0; i < mask.size(); ++i) {
-        if (!mask[i]) continue;
-        const float depth = -(view * glm::vec4(glm::vec3(positions[i]), 1.0f)).z;
-        const int third = std::clamp(int(3.0f * (depth - nearPlane) / (farPlane - nearPlane)), 0, 2);
-        sums[size_t(third)] +=
-            std::abs(static_cast<double>(scalarVisibility(technique[i])) - static_cast<double>(scalarVisibility(reference[i])));
-        ++metrics.pixelsByViewDepth[size_t(third)];
-    }
+    for (const Thirds& t : chunks)
+        for (size_t k = 0; k < 3; ++k) sums[k] += t.sums[k], metrics.pixelsByViewDepth[k] += t.pixels[k];
     for (size_t k = 0; k < 3; ++k)
         metrics.maeByViewDepth[k] = metrics.pixelsByViewDepth[k] ? sums[k] / double(metrics.pixelsByViewDepth[k]) : 0.0;
 }
@@ -159,16 +199,23 @@ void addViewDepthThirds(AccuracyMetrics& metrics, const std::vector<glm::vec3>& 
 double penumbraMean(const std::vector<float>& values, const std::vector<glm::vec3>& reference,
                     const std::vector<uint8_t>& mask, int width, int height) {
     checkSizes(values.size(), reference.size(), mask.size(), width, height, "penumbraMean");
+    std::vector<std::pair<double, size_t>> bands(chunkCount(size_t(height), kRowChunk));
+    forEachChunk(size_t(height), kRowChunk, [&](size_t band, size_t begin, size_t end) {
+        double sum = 0.0;
+        size_t count = 0;
+        for (int y = int(begin); y < int(end); ++y) {
+            for (int x = 0; x < width; ++x) {
+                const size_t i = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+                if (!mask[i] || !inPenumbra(reference, mask, x, y, width, height)) continue;
+                sum += static_cast<double>(values[i]);
+                ++count;
+            }
+        }
+        bands[band] = {sum, count};
+    });
     double sum = 0.0;
     size_t count = 0;
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const size_t i = static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
-            if (!mask[i] || !inPenumbra(reference, mask, x, y, width, height)) continue;
-            sum += static_cast<double>(values[i]);
-            ++count;
-        }
-    }
+    for (const auto& [bandSum, bandCount] : bands) sum += bandSum, count += bandCount;
     return count ? sum / static_cast<double>(count) : 0.0;
 }
 

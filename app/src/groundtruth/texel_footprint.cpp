@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "util/parallel.h"
 #include "util/stats.h"
 
 namespace shadowlab {
@@ -132,36 +133,51 @@ TexelFootprint measureTexelFootprint(const GBufferView& gbuffer, const std::vect
     CameraInfo view = camera;
     view.viewport = {gbuffer.width, gbuffer.height};
     const CameraMatrices matrices(view);
+    // Per pixel on every core (util/parallel.h): m, the projection term and the depth error;
+    // then, in pixel order, the lists the medians and bins are taken from.
+    const float depthRange = std::max(camera.farPlane - camera.nearPlane, 1e-6f);
+    enum : uint8_t { kNotMeasured = 0, kUncovered = 1, kMeasured = 2 };
+    std::vector<uint8_t> state(count, kNotMeasured);
+    std::vector<float> viewDistances(count, 0.0f);
+    forEachChunk(count, 8192, [&](size_t, size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            if (!mask[i]) continue;
+            const glm::vec3 p(gbuffer.positions[i]), n(gbuffer.normals[i]);
+            const float viewDistance = -(camera.view * glm::vec4(p, 1.0f)).z;
+            viewDistances[i] = viewDistance;
+            const int serving = servingShadowMap(maps, p, viewDistance);
+            if (serving < 0) {
+                state[i] = kUncovered;
+                continue;
+            }
+            float alongDepth = 0.0f;
+            const float m = footprint(matrices, maps[size_t(serving)], p, n, &alongDepth);
+            if (m <= 0.0f) continue;
+            state[i] = kMeasured;
+            out.m[i] = m;
+            // Eq. 6.1: alpha between the view vector and the normal, beta between the light vector
+            // and the normal (the mask keeps only pixels facing the light, so cos(beta) > 0).
+            const glm::vec3 toLight = light.type == LightType::Directional ? -light.direction : light.position - p;
+            const float cosAlpha = std::abs(glm::dot(glm::normalize(n), glm::normalize(camera.position - p)));
+            const float cosBeta = std::max(glm::dot(glm::normalize(n), glm::normalize(toLight)), 1e-6f);
+            out.projection[i] = cosAlpha / cosBeta;
+            if (alongDepth > 0.0f && out.projection[i] > 0.0f && viewDistance > 0.0f)
+                out.depthError[i] = alongDepth / out.projection[i];
+        }
+    });
     std::vector<double> all, projection;
     std::array<std::vector<double>, 3> thirds;
     size_t undersampled = 0;
-    const float depthRange = std::max(camera.farPlane - camera.nearPlane, 1e-6f);
     for (size_t i = 0; i < count; ++i) {
-        if (!mask[i]) continue;
-        const glm::vec3 p(gbuffer.positions[i]), n(gbuffer.normals[i]);
-        const float viewDistance = -(camera.view * glm::vec4(p, 1.0f)).z;
-        const int serving = servingShadowMap(maps, p, viewDistance);
-        if (serving < 0) {
-            ++out.uncoveredPixels;
-            continue;
-        }
-        float alongDepth = 0.0f;
-        const float m = footprint(matrices, maps[size_t(serving)], p, n, &alongDepth);
-        if (m <= 0.0f) continue;
-        out.m[i] = m;
+        if (state[i] == kUncovered) ++out.uncoveredPixels;
+        if (state[i] != kMeasured) continue;
+        const float m = out.m[i], viewDistance = viewDistances[i];
         all.push_back(m);
         undersampled += m > 1.0f ? 1 : 0;
         const int third = std::clamp(int(3.0f * (viewDistance - camera.nearPlane) / depthRange), 0, 2);
         thirds[size_t(third)].push_back(m);
-        // Eq. 6.1: alpha between the view vector and the normal, beta between the light vector and
-        // the normal (the mask keeps only pixels facing the light, so cos(beta) > 0).
-        const glm::vec3 toLight = light.type == LightType::Directional ? -light.direction : light.position - p;
-        const float cosAlpha = std::abs(glm::dot(glm::normalize(n), glm::normalize(camera.position - p)));
-        const float cosBeta = std::max(glm::dot(glm::normalize(n), glm::normalize(toLight)), 1e-6f);
-        out.projection[i] = cosAlpha / cosBeta;
         projection.push_back(out.projection[i]);
-        if (alongDepth > 0.0f && out.projection[i] > 0.0f && viewDistance > 0.0f) {
-            out.depthError[i] = alongDepth / out.projection[i];
+        if (out.depthError[i] > 0.0f) {
             const int bin = int(std::floor(double(kFootprintDepthBins) * std::log(viewDistance / camera.nearPlane) / logRange));
             if (bin >= 0 && bin < kFootprintDepthBins) binned[size_t(bin)].push_back(i);
         }
