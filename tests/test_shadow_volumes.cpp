@@ -65,13 +65,18 @@ Disagreement measure(App& app, const std::vector<std::string>& sets, Evaluation*
     return disagreement(e, app.renderer().readTarget(MainTarget::Normal), app.light());
 }
 
-// Pixels whose shadow term differs at all between two evaluations of the same view.
-size_t differingPixels(const Evaluation& a, const Evaluation& b) {
+// Pixels whose shadow term differs at all between two evaluations of the same view: those
+// compared with the reference, and the others (background, surfaces turned away from the light).
+struct Differences {
+    size_t compared = 0;
+    size_t uncompared = 0;
+};
+Differences differingPixels(const Evaluation& a, const Evaluation& b) {
     EXPECT_EQ(a.technique.size(), b.technique.size());
-    size_t differ = 0;
-    for (size_t i = 0; i < std::min(a.technique.size(), b.technique.size()); ++i) { differ += a.technique[i] != b.technique[i];
-        if (a.technique[i] != b.technique[i]) printf("DIFF %zu (%zu,%zu): %f vs %f ref %f mask %d\n", i, i % size_t(a.width), i / size_t(a.width), a.technique[i].r, b.technique[i].r, a.reference[i].r, int(a.mask[i])); }
-    return differ;
+    Differences d;
+    for (size_t i = 0; i < std::min(a.technique.size(), b.technique.size()); ++i)
+        if (a.technique[i] != b.technique[i]) ++(a.mask[i] ? d.compared : d.uncompared);
+    return d;
 }
 
 double statistic(App& app, const char* name) {
@@ -84,23 +89,65 @@ double statistic(App& app, const char* name) {
     return found == stats.end() ? -1.0 : found->second;
 }
 
+// The debug images of the last frame (debug_images on): every volume fragment with the depth test
+// off (overdraw), and the silhouette edges, as bytes.
+std::vector<std::vector<uint8_t>> volumeImages(App& app) {
+    std::string error;
+    LoadedTechnique* loaded = app.techniques().get("shadow-volumes", error);
+    EXPECT_TRUE(loaded) << error;
+    const glm::ivec2 size = app.renderer().size();
+    std::vector<std::vector<uint8_t>> images(2);
+    for (const auto& image : loaded ? loaded->host().debugImages() : std::vector<DebugImage>{}) {
+        const int k = image.name == "volume overdraw" ? 0 : image.name == "silhouette edges" ? 1 : -1;
+        if (k < 0) continue;
+        images[size_t(k)].resize(size_t(size.x) * size_t(size.y));
+        glGetTextureImage(image.texture, 0, GL_RED, GL_UNSIGNED_BYTE, GLsizei(images[size_t(k)].size()),
+                          images[size_t(k)].data());
+    }
+    return images;
+}
+
 // Both extractions with `counting`: each exact to the reference outside the one-pixel band along
-// its shadow edges, and the compute one's shadow term identical to the geometry stage's, pixel for
-// pixel (the same decisions and vertices through the same functions, rasterised as the same
-// triangles; a tolerance would hide a side drawn once where two cancel, which flips whole regions).
+// its shadow edges, and the compute one the geometry stage's volumes. Their triangles are the same
+// (same decisions and vertices through the same functions, in the same rasterisation order): the
+// overdraw and edge images (every volume fragment, depth ignored) and the triangle counts are
+// identical. The shadow terms are identical but for at most 0.01% of the pixels (4 at 240x160):
+// llvmpipe clips and maps the geometry stage's output to the viewport in other code than a vertex
+// stage's, so a volume face's window depth may differ in its last bits, and where such a face
+// meets the visible surface itself at a pixel centre (along the shadow terminator, at contact
+// lines) the depth test can go either way. Drawing the compute records through a pass-through
+// geometry stage made every scene identical (docs/shadow-volumes.md). Such a pixel lies where the
+// technique may disagree with the reference anyway: outsideBand stays 0 for both.
 void expectBothExtractionsExact(App& app, const std::string& counting, const std::string& what, bool checkTerminator) {
-    Evaluation geometry, compute;
-    for (const char* extract : {"extract=geometry", "extract=compute"}) {
-        const bool computed = std::string(extract) == "extract=compute";
-        const Disagreement d = measure(app, {counting, extract}, computed ? &compute : &geometry);
-        EXPECT_EQ(statistic(app, "extract compute"), computed ? 1.0 : 0.0) << extract;
+    Evaluation evaluations[2];
+    std::vector<std::vector<uint8_t>> images[2];
+    double triangles[2] = {0.0, 0.0};
+    for (int variant = 0; variant < 2; ++variant) {
+        const std::string extract = variant ? "extract=compute" : "extract=geometry";
+        const Disagreement d = measure(app, {counting, extract, "debug_images=1"}, &evaluations[variant]);
+        std::string error;
+        for (int frame = 0; frame < 3; ++frame) EXPECT_TRUE(app.renderFrame("shadow-volumes", error)) << error;   // counters
+        triangles[variant] = statistic(app, "volume triangles");
+        images[variant] = volumeImages(app);
+        EXPECT_EQ(statistic(app, "extract compute"), double(variant)) << extract;
         EXPECT_GT(d.compared, 5000u) << what << " " << counting << " " << extract;
         EXPECT_EQ(d.outsideBand, 0u) << what << " " << counting << " " << extract << ": " << d.wrong << " wrong of " << d.compared;
         if (!checkTerminator) continue;
         EXPECT_LT(double(d.terminator), 0.01 * double(d.compared)) << counting << " " << extract;
         EXPECT_LT(double(d.wrong), 0.01 * double(d.compared)) << counting << " " << extract;
     }
-    EXPECT_EQ(differingPixels(geometry, compute), 0u) << what << " " << counting << ": compute differs from geometry";
+    EXPECT_GT(triangles[0], 12.0) << what;
+    EXPECT_EQ(triangles[0], triangles[1]) << what << " " << counting << ": volume triangles";
+    for (size_t k = 0; k < 2; ++k) {
+        ASSERT_FALSE(images[0][k].empty()) << k;
+        EXPECT_GT(std::count_if(images[0][k].begin(), images[0][k].end(), [](uint8_t v) { return v > 0; }), 50) << k;
+        EXPECT_TRUE(images[0][k] == images[1][k]) << what << " " << counting << ": " << (k ? "silhouette edges" : "volume overdraw");
+    }
+    const Differences differ = differingPixels(evaluations[0], evaluations[1]);
+    const size_t tolerance = (evaluations[0].technique.size() + 9999) / 10000;
+    EXPECT_LE(differ.compared + differ.uncompared, tolerance) << what << " " << counting << ": compute differs from geometry";
+    std::printf("  %s %s: compute and geometry differ in %zu compared and %zu other pixels of %zu\n", what.c_str(),
+                counting.c_str(), differ.compared, differ.uncompared, evaluations[0].technique.size());
 }
 
 } // namespace
@@ -209,45 +256,6 @@ TEST(ShadowVolumes, ReportsItsCountersAndDebugImages) {
     for (const auto& image : loaded->host().debugImages()) images.push_back(image.name);
     for (const char* name : {"volume mask", "volume overdraw", "silhouette edges"})
         EXPECT_NE(std::find(images.begin(), images.end(), name), images.end()) << name;
-}
-
-// The compute extraction emits what the geometry stage does: as many volume triangles (counted by
-// GL_PRIMITIVES_GENERATED over the draws, read a few frames late) under a directional and a point
-// light, and the same debug images (overdraw and silhouette edges), texel for texel.
-TEST(ShadowVolumes, ComputeExtractionEmitsTheGeometryStagesTriangles) {
-    for (const char* sceneName : {"cube", "point-light"}) {
-        SCOPED_TRACE(sceneName);
-        auto app = test::makeHeadlessApp(sceneName, {160, 120});
-        ASSERT_TRUE(app);
-        double triangles[2] = {0.0, 0.0};
-        std::vector<uint8_t> images[2][2];
-        for (int variant = 0; variant < 2; ++variant) {
-            std::string error;
-            ASSERT_TRUE(app->applyAssignments({variant ? "extract=compute" : "extract=geometry", "debug_images=1"},
-                                              "shadow-volumes", error))
-                << error;
-            for (int i = 0; i < 6; ++i) ASSERT_TRUE(app->renderFrame("shadow-volumes", error)) << error;
-            triangles[variant] = statistic(*app, "volume triangles");
-            EXPECT_EQ(statistic(*app, "extract compute"), double(variant));
-            LoadedTechnique* loaded = app->techniques().get("shadow-volumes", error);
-            ASSERT_TRUE(loaded) << error;
-            for (const auto& image : loaded->host().debugImages()) {
-                const int k = image.name == "volume overdraw" ? 0 : image.name == "silhouette edges" ? 1 : -1;
-                if (k < 0) continue;
-                images[variant][k].resize(160 * 120);
-                glGetTextureImage(image.texture, 0, GL_RED, GL_UNSIGNED_BYTE, GLsizei(images[variant][k].size()),
-                                  images[variant][k].data());
-            }
-        }
-        EXPECT_GT(triangles[0], 12.0);   // a cube's caps and silhouette sides at least
-        EXPECT_EQ(triangles[0], triangles[1]);
-        for (int k = 0; k < 2; ++k) {
-            ASSERT_EQ(images[0][k].size(), size_t(160 * 120)) << k;
-            EXPECT_GT(std::count_if(images[0][k].begin(), images[0][k].end(), [](uint8_t v) { return v > 0; }), 100) << k;
-            EXPECT_EQ(images[0][k], images[1][k]) << (k ? "silhouette edges" : "volume overdraw");
-        }
-        EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
-    }
 }
 
 namespace {
