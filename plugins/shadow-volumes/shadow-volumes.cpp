@@ -142,7 +142,7 @@ class ShadowVolumes final : public kit::TechniqueBase {
         const Bounds scene = host().bounds(DrawSet::All);
         const float push = 1e-4f * std::max(glm::length(scene.max - scene.min),
                                             std::max(glm::length(scene.min), glm::length(scene.max)));
-        const AdjacencyScene* casters = values.extract == kCompute ? computeScene() : nullptr;
+        const AdjacencyScene* casters = values.extract == kCompute ? computeScene() : releaseRecords();
         host().reportStatistic("extract compute", casters ? 1.0 : 0.0);
         {
             GpuPass pass(host(), "shadow volumes");
@@ -273,6 +273,16 @@ class ShadowVolumes final : public kit::TechniqueBase {
         capCapacity_ = uint32_t(caps);
         warned_ = false;
         return scene;
+    }
+
+    // extract = geometry: the compute variant's buffers go (on the frame the parameter changes; a
+    // no-op after), so the technique's memory is the variant's own.
+    const AdjacencyScene* releaseRecords() {
+        sides_ = {};
+        caps_ = {};
+        commands_ = {};
+        sideCapacity_ = capCapacity_ = 0;
+        return nullptr;
     }
 
     // The sides and caps of every caster into the record buffers and the draw counts, one dispatch
