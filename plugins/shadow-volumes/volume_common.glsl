@@ -1,6 +1,6 @@
 // Shadow volumes: what the geometry stage (volume.geom), the compute extraction
 // (volume_extract.comp) and its draw (volume_indirect.vert) share, so that both variants make
-// every decision and every vertex with the same arithmetic (their images are then identical).
+// every decision and every vertex with the same arithmetic (and draw the same triangles).
 #ifndef SHADOW_VOLUME_COMMON_GLSL
 #define SHADOW_VOLUME_COMMON_GLSL
 #include "common.glsl"

@@ -1,8 +1,9 @@
 // Shadow volumes, extract = compute: the records volume_extract.comp wrote, drawn with
 // glDrawArraysIndirect (no vertex buffer; gl_VertexID picks the record and its corner). Each
 // primitive is the one volume.geom emits for the same triangle, from the same world points through
-// the same nearPoint()/farPoint(), in the order its strips are rasterised, so the two variants'
-// images are identical.
+// the same nearPoint()/farPoint(), in the order its strips are rasterised, so the two variants
+// draw the same triangles (their images differ at most where llvmpipe rounds a geometry stage's
+// output depth differently: docs/shadow-volumes.md).
 #include "volume_common.glsl"
 
 layout(std430, binding = kSidesBinding) readonly buffer Sides { float sides[]; };
