@@ -130,7 +130,7 @@ TEST(PluginLibrary, LoadsPluginsBuiltForAnyMinorVersionOfAbi3) {
         ASSERT_NE(technique, nullptr) << file;
         library->entry().destroy(technique);
     }
-    EXPECT_EQ(SHADOWLAB_ABI_ENTRY_VERSION, (1u << 16) | 3u);
+    EXPECT_EQ(SHADOWLAB_ABI_ENTRY_VERSION, (2u << 16) | 3u);   // 3.2: kTechniqueNeedsCameraDepth, the adjacency extension
     const shadowlab::PluginEntry current{SHADOWLAB_ABI_ENTRY_VERSION, nullptr, nullptr, nullptr};
     EXPECT_EQ(current.structSize, sizeof(shadowlab::PluginEntry));   // initialised by default
 }

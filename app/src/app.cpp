@@ -188,11 +188,7 @@ bool App::renderFrame(const std::string& technique, std::string& error, FrameOut
     // The flags this frame's parameter values allow (csm asks for the pre-pass only for sdsm).
     const uint32_t flags = loaded->info().flagsFor(values);
     loaded->host().setFrameFlags(flags);
-    if (flags & kTechniqueNeedsCameraPrepass) {
-        timer_->begin("camera pre-pass");
-        renderer_->cameraPrepass();
-        timer_->end();
-    }
+    cameraPrepassFor(flags);
     renderer_->applyDefaultState();
     loaded->host().beginFrame();
     loaded->technique().renderShadows(frame_, params);
@@ -203,6 +199,31 @@ bool App::renderFrame(const std::string& technique, std::string& error, FrameOut
     lastFrameEnd_ = std::chrono::steady_clock::now();
     lastCpuFrameMs_ = std::chrono::duration<double, std::milli>(lastFrameEnd_ - cpuStart).count();
     return true;
+}
+
+void App::beginSharedView(const std::vector<std::string>& techniques) {
+    sharedView_ = {};
+    sharedView_.active = true;
+    for (const std::string& id : techniques)
+        if (const TechniqueInfo* info = techniques_->find(id)) sharedView_.flags |= info->flagsFor(params_.values(*info));
+}
+
+void App::cameraPrepassFor(uint32_t flags) {
+    constexpr uint32_t kPrepassFlags = kTechniqueNeedsCameraPrepass | kTechniqueNeedsCameraDepth;
+    if (!(flags & kPrepassFlags)) return;
+    SharedPrepass& shared = sharedView_;
+    if (shared.active) {
+        const glm::mat4& viewProjection = frame_.camera.viewProjection;
+        if (shared.drawn && shared.viewProjection == viewProjection && shared.size == renderer_->size()) return;
+        flags |= shared.flags;   // the full pass when any technique of the view needs it
+        shared.drawn = true;
+        shared.viewProjection = viewProjection;
+        shared.size = renderer_->size();
+    }
+    timer_->begin("camera pre-pass");
+    renderer_->cameraPrepass((flags & kTechniqueNeedsCameraPrepass) ? Renderer::PrepassKind::Full
+                                                                    : Renderer::PrepassKind::Depth);
+    timer_->end();
 }
 
 bool App::renderAccuracyTargets(std::string& error) {

@@ -132,6 +132,13 @@ public:
     // One frame of `technique` into the main targets; timers advance. Timed frames write the
     // colour target only; FrameOutputs::Accuracy adds visibility, position and normal.
     bool renderFrame(const std::string& technique, std::string& error, FrameOutputs outputs = FrameOutputs::Colour);
+    // A side-by-side comparison: the frames rendered from beginSharedView(techniques) to
+    // endSharedView() show one camera and scene, so they share one camera pre-pass. The first of
+    // them that needs one draws the kind the union of their flags asks for (the full pass when any
+    // needs it, else depth only) and the later ones reuse it; each technique's extension still
+    // shows only what it asked for. SharedView (below) ends it at the end of a scope.
+    void beginSharedView(const std::vector<std::string>& techniques);
+    void endSharedView() { sharedView_ = {}; }
     // The last frame's main pass again, same frame context and shadow maps, writing the accuracy
     // targets; not timed. evaluate() and the visibility view call it when the frame had none.
     bool renderAccuracyTargets(std::string& error);
@@ -211,6 +218,15 @@ public:
 
 private:
     void applyLightOverrides();
+    // The camera pre-pass this frame's flags ask for, timed, or the shared view's (beginSharedView).
+    void cameraPrepassFor(uint32_t flags);
+    struct SharedPrepass {
+        bool active = false;
+        uint32_t flags = 0;                // the union of the shared techniques' flags
+        bool drawn = false;                // the pre-pass of the union is in the targets
+        glm::mat4 viewProjection{0.0f};    // of the frame that drew it (reused only for the same)
+        glm::ivec2 size{0};
+    } sharedView_;
 
     AppOptions options_;
     std::unique_ptr<GlBackend> backend_;

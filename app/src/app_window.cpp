@@ -197,6 +197,8 @@ private:
         const FrameOutputs outputs =
             difference || state_.view.needsAccuracyTargets() ? FrameOutputs::Accuracy : FrameOutputs::Colour;
         probeUnderMouse();
+        // One camera and scene: both sides share one camera pre-pass (the full one if either needs it).
+        if (comparing) app_.beginSharedView({sides[0], sides[1]});
         for (int s = 0; s < (comparing ? 2 : 1); ++s) {
             if (!app_.renderFrame(sides[s], error, outputs)) {
                 state_.frameError = error;
@@ -216,6 +218,7 @@ private:
             const int sourceX = comparing && state_.compareLayout == CompareLayout::Wipe ? rect.origin.x - layout.view.origin.x : 0;
             ViewCompositor::blitDisplay(renderer, surface_, surfaceSize_, rect.origin, rect.size, sourceX);
         }
+        app_.endSharedView();
         if (!comparing) state_.sideTimings[1].clear();
     }
 

@@ -21,8 +21,7 @@
 // scene's size off the surface, so lit faces do not shadow themselves. Far points are at
 // infinity (w = 0) and the pass runs with GL_DEPTH_CLAMP: nothing is clipped by the far plane
 // (Everitt and Kilgard 2002).
-#include "common.glsl"
-#include "shadow_volumes_shared.h"
+#include "volume_common.glsl"
 
 layout(triangles_adjacency) in;
 #ifdef SHADOW_VOLUME_EDGES
@@ -33,32 +32,6 @@ layout(triangle_strip, max_vertices = 18) out;   // three sides of 4 and two cap
 in vec3 vWorld[];
 
 layout(location = 6) uniform int uClosedMesh;
-layout(location = kPushLocation) uniform float uPush;
-
-bool directional() { return lightType() == LIGHT_DIRECTIONAL; }
-
-vec3 awayFromLight(vec3 p) { return directional() ? uLightDirection.xyz : normalize(p - uLightPosition.xyz); }
-
-bool lessThanLexical(vec3 a, vec3 b) {
-    return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
-}
-
-// Whether the triangle (a, b, c), counter-clockwise, faces the light: computed from its corners in
-// lexical order (with the sign of the permutation), so every invocation that looks at the same
-// triangle, whichever corner it starts from, decides alike.
-bool facesLight(vec3 a, vec3 b, vec3 c) {
-    bool flipped = false;
-    vec3 t;
-    if (lessThanLexical(b, a)) { t = a; a = b; b = t; flipped = !flipped; }
-    if (lessThanLexical(c, b)) { t = b; b = c; c = t; flipped = !flipped; }
-    if (lessThanLexical(b, a)) { t = a; a = b; b = t; flipped = !flipped; }
-    vec3 toLight = directional() ? -uLightDirection.xyz : uLightPosition.xyz - a;
-    float side = dot(cross(b - a, c - a), toLight);
-    return flipped ? side < 0.0 : side > 0.0;
-}
-
-vec4 nearPoint(vec3 p) { return uViewProjection * vec4(p + uPush * awayFromLight(p), 1.0); }
-vec4 farPoint(vec3 p) { return uViewProjection * vec4(awayFromLight(p), 0.0); }
 
 #ifdef SHADOW_VOLUME_EDGES
 void side(vec3 from, vec3 to) {
@@ -85,19 +58,15 @@ void side(vec3 from, vec3 to) {
 
 void main() {
     vec3 corner[3] = vec3[3](vWorld[0], vWorld[2], vWorld[4]);
-    vec3 n = cross(corner[1] - corner[0], corner[2] - corner[0]);
-    if (dot(n, n) == 0.0) return;   // no area, no shadow
-    bool lit = facesLight(corner[0], corner[1], corner[2]);
-    if (uClosedMesh != 0 && !lit) return;
+    vec3 neighbour[3] = vec3[3](vWorld[1], vWorld[3], vWorld[5]);
+    bool lit;
+    int sides;
+    if (!volumeOf(corner, neighbour, uClosedMesh != 0, lit, sides)) return;
     for (int e = 0; e < 3; ++e) {
+        if ((sides & (1 << e)) == 0) continue;
         vec3 a = corner[e], b = corner[(e + 1) % 3];
-        vec3 neighbour = vWorld[2 * e + 1];
-        bool open = neighbour == corner[(e + 2) % 3];   // the host's mark: no neighbour
-        // The neighbour is (b, a, neighbour) in its own winding.
-        if (open || facesLight(b, a, neighbour) != lit) {
-            if (lit) side(a, b);
-            else side(b, a);
-        }
+        if (lit) side(a, b);
+        else side(b, a);
     }
 #ifndef SHADOW_VOLUME_EDGES
     // Caps, turned to face the light: near cap counter-clockwise from the light, far cap reversed.

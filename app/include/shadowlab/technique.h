@@ -9,7 +9,8 @@
 //
 // A frame, as the host drives it:
 //   host: hot reload, camera and light -> FrameContext, frame uniform block
-//   host: camera pre-pass (depth, world position, normal, object id), if the descriptor asks
+//   host: camera pre-pass (depth, world position, normal, object id; or depth alone), if the
+//         descriptor asks
 //   host: default GL state (see "GL state contract" below)
 //   technique.renderShadows(frame, params)  shadow maps, filtering passes (in GpuPass scopes)
 //   host: default GL state, main program bound
@@ -50,6 +51,8 @@
 //   3.0  the interface below without PluginEntry::structSize;
 //   3.1  PluginEntry::structSize; every extension struct initialises its structSize;
 //        DrawRequest::primitive (triangles with adjacency); TechniqueDesc::debugViews.
+//   3.2  kTechniqueNeedsCameraDepth (a depth-only camera pre-pass); extension
+//        "shadowlab.adjacency/1" (the casters' triangles with adjacency in storage buffers).
 //
 // Growing without breaking plugins: structs that cross the boundary and may grow start with
 // structSize (the host reads only what the plugin's size covers, and fills only what the plugin's
@@ -74,7 +77,7 @@
 #include <glm/glm.hpp>
 
 #define SHADOWLAB_ABI_VERSION 3u
-#define SHADOWLAB_ABI_MINOR 1u
+#define SHADOWLAB_ABI_MINOR 2u
 // PluginEntry::abiVersion of a plugin built against this header.
 #define SHADOWLAB_ABI_ENTRY_VERSION ((SHADOWLAB_ABI_MINOR << 16) | SHADOWLAB_ABI_VERSION)
 
@@ -118,6 +121,15 @@ enum TechniqueFlag : uint32_t {
     // surfaces before renderShadows (extension kExtCameraPrepass), once for every technique asking;
     // on the frames its flagConditions allow, when it has any (csm: only for fit = sdsm).
     kTechniqueNeedsCameraPrepass = 1u << 0,
+    // ABI 3.2: the camera pre-pass's depth alone (a technique that needs no position, normal or
+    // id: shadow volumes). The host then draws depth only, which costs a fraction of the full
+    // pass (no RGBA32F, RGBA16F and R32UI writes), and the extension's CameraPrepass has position,
+    // normal and objectId 0. The depth is bit for bit the full pass's (the same vertex stage).
+    // With both bits, or when another technique of the same view asks for the full pass (a
+    // side-by-side comparison), the full pass is drawn once and serves both; this technique still
+    // sees only the depth. Hosts before 3.2 ignore the bit (no pre-pass, the extension null), and
+    // plugins before 3.2 never set it, so they are unaffected.
+    kTechniqueNeedsCameraDepth = 1u << 1,
 };
 
 // How a technique means translucent casters to shadow (seed 001): the factor each translucent
@@ -322,18 +334,19 @@ using GlLoader = GlProc (*)(const char* name);
 using ProgramId = uint32_t;                  // host handle; stays valid across shader hot reloads
 
 // Extension "shadowlab.camera-prepass/1": the host's camera pre-pass of this frame, for
-// techniques whose descriptor has kTechniqueNeedsCameraPrepass and whose flagConditions allow it
-// this frame (null otherwise: no pre-pass was rendered for it). Textures are
-// host-owned and read-only for techniques: sample them, or attach `depth` to a framebuffer with
-// depth writes off. Same size as the main target, single-sample, opaque objects only, the same
-// vertex transform as the main pass (so depths match it exactly).
+// techniques whose descriptor has kTechniqueNeedsCameraPrepass or kTechniqueNeedsCameraDepth and
+// whose flagConditions allow it this frame (null otherwise: no pre-pass was rendered for it). With
+// kTechniqueNeedsCameraDepth alone only `depth` is set (position, normal and objectId are 0).
+// Textures are host-owned and read-only for techniques: sample them, or attach `depth` to a
+// framebuffer with depth writes off. Same size as the main target, single-sample, opaque objects
+// only, the same vertex transform as the main pass (so depths match it exactly).
 #define SHADOWLAB_EXT_CAMERA_PREPASS "shadowlab.camera-prepass/1"
 struct CameraPrepass {
     uint32_t structSize = sizeof(CameraPrepass);
     uint32_t depth;                          // GL_DEPTH24_STENCIL8
-    uint32_t position;                       // GL_RGBA32F: xyz world, w = 1 where geometry was drawn
-    uint32_t normal;                         // GL_RGBA16F: xyz unit world normal facing the viewer
-    uint32_t objectId;                       // GL_R32UI: object index + 1, 0 = background
+    uint32_t position;                       // GL_RGBA32F: xyz world, w = 1 where geometry was drawn (0: depth only)
+    uint32_t normal;                         // GL_RGBA16F: xyz unit world normal facing the viewer (0: depth only)
+    uint32_t objectId;                       // GL_R32UI: object index + 1, 0 = background (0: depth only)
     glm::ivec2 size;
 };
 
@@ -464,6 +477,49 @@ struct RayTracing {
     uint32_t structSize = sizeof(RayTracing);
     void* context;
     const RayTracingScene* (*scene)(void* context);
+};
+
+// Extension "shadowlab.adjacency/1" (ABI 3.2): the shadow casters' triangles with adjacency in
+// storage buffers, for techniques that find silhouette edges in a compute pass (shadow volumes'
+// extract = compute). The same data DrawPrimitive::TrianglesAdjacency draws (render/mesh_adjacency.h:
+// vertices welded by position, the rules for open, non-manifold and inconsistently wound edges),
+// built once per scene load by the first scene() call or adjacency draw, released by the next
+// scene load: call scene() every frame, never keep the names or the pointer. Host-owned,
+// read-only buffers (GL_SHADER_STORAGE_BUFFER, std430):
+//   vertices:   every mesh's vertices, 8 floats each (position xyz, normal xyz, uv);
+//   indices:    6 uints a triangle (a, n_ab, b, n_bc, c, n_ca), relative to the batch's
+//               baseVertex; n_xy is the triangle's own opposite corner where the edge has no
+//               neighbour;
+//   transforms: the objects' transforms (common.glsl's ObjectTransforms: model, normal matrix),
+//               which the host also keeps on storage binding 0.
+// `batches`: the objects that cast shadows (DrawSet::Casters) as runs of consecutive objects
+// sharing a mesh, in scene order: objects firstObject .. firstObject + objectCount - 1, each with
+// the mesh's triangleCount triangles from indices[6 * firstTriangle]; `closed` is 1 where every
+// edge of the mesh has its neighbour (uClosedMesh). Call scene() only from the render thread with
+// the host's GL context current. The memory is the host's (not in the technique's GPU bytes).
+#define SHADOWLAB_EXT_ADJACENCY "shadowlab.adjacency/1"
+struct AdjacencyBatch {
+    uint32_t firstObject = 0;
+    uint32_t objectCount = 0;
+    uint32_t firstTriangle = 0;
+    uint32_t triangleCount = 0;
+    int32_t baseVertex = 0;
+    uint32_t closed = 0;
+};
+struct AdjacencyScene {
+    uint32_t structSize = sizeof(AdjacencyScene);
+    uint32_t vertices = 0;                   // GL buffer
+    uint32_t indices = 0;                    // GL buffer
+    uint32_t transforms = 0;                 // GL buffer
+    const AdjacencyBatch* batches = nullptr;
+    uint32_t batchCount = 0;
+    uint64_t triangles = 0;                  // sum of objectCount * triangleCount over the batches
+    uint64_t closedTriangles = 0;            // of those, in closed meshes
+};
+struct Adjacency {
+    uint32_t structSize = sizeof(Adjacency);
+    void* context;
+    const AdjacencyScene* (*scene)(void* context);
 };
 
 // Host services, one table per loaded technique (so the host can account for its GPU memory and

@@ -87,9 +87,10 @@ bool measurePath(App& app, const std::string& technique, const CameraPath& path,
     TemporalChanges changes;
     const TechniqueInfo* techniqueInfo = app.techniques().find(technique);
     // Exact: the previous frame's maps and light at the current pixels. Techniques with the camera
-    // pre-pass hold a per-pixel term of their own view, so they are reprojected as images instead.
-    const bool samePoints =
-        techniqueInfo && !(techniqueInfo->flagsFor(app.params().values(*techniqueInfo)) & kTechniqueNeedsCameraPrepass);
+    // pre-pass (full or depth only) hold a per-pixel term of their own view, so they are
+    // reprojected as images instead.
+    const bool samePoints = techniqueInfo && !(techniqueInfo->flagsFor(app.params().values(*techniqueInfo)) &
+                                               (kTechniqueNeedsCameraPrepass | kTechniqueNeedsCameraDepth));
     std::vector<glm::vec3> previousTechnique, previousReference;
     for (int frame = 0; frame < path.frames; ++frame) {
         if (frame > 0 && samePoints) {

@@ -47,6 +47,11 @@ PluginHost::PluginHost(HostContext context, const TechniqueInfo& info)
     filterFootprintReport_ = {sizeof(FilterFootprintReport), this, &PluginHost::receiveFilterFootprint};
     translucentDraws_ = {sizeof(TranslucentDraws), this, &PluginHost::installTranslucentHook};
     rayTracing_ = {sizeof(RayTracing), this, &PluginHost::rayTracingScene};
+    adjacency_ = {sizeof(Adjacency), this, &PluginHost::adjacencyScene};
+}
+
+const AdjacencyScene* PluginHost::adjacencyScene(void* context) {
+    return &static_cast<PluginHost*>(context)->context_.renderer.adjacencyScene();
 }
 
 const RayTracingScene* PluginHost::rayTracingScene(void* context) {
@@ -134,14 +139,19 @@ void PluginHost::log(LogLevel level, const char* message) { logMessage(level, te
 const void* PluginHost::extension(const char* id) const {
     if (!id) return nullptr;
     const std::string_view name(id);
-    if (name == SHADOWLAB_EXT_CAMERA_PREPASS)
-        return (flags_ & kTechniqueNeedsCameraPrepass) && context_.renderer.prepassTargets().depth
-                   ? &context_.renderer.prepassTargets()
-                   : nullptr;
+    if (name == SHADOWLAB_EXT_CAMERA_PREPASS) {
+        // The full targets for a technique that asked for them, the depth alone otherwise.
+        const CameraPrepass& full = context_.renderer.prepassTargets();
+        const CameraPrepass& depth = context_.renderer.prepassDepthTargets();
+        if (flags_ & kTechniqueNeedsCameraPrepass) return full.depth ? &full : nullptr;
+        if (flags_ & kTechniqueNeedsCameraDepth) return depth.depth ? &depth : nullptr;
+        return nullptr;
+    }
     if (name == SHADOWLAB_EXT_SHADOW_MAPS) return &shadowMapReport_;
     if (name == SHADOWLAB_EXT_FILTER_FOOTPRINT) return &filterFootprintReport_;
     if (name == SHADOWLAB_EXT_TRANSLUCENT_DRAWS) return &translucentDraws_;
     if (name == SHADOWLAB_EXT_RAY_TRACING) return &rayTracing_;
+    if (name == SHADOWLAB_EXT_ADJACENCY) return &adjacency_;
     return nullptr;
 }
 

@@ -125,6 +125,8 @@ private:
     TranslucentDraws translucentDraws_{};
     RayTracing rayTracing_{};
     static const RayTracingScene* rayTracingScene(void* context);
+    Adjacency adjacency_{};
+    static const AdjacencyScene* adjacencyScene(void* context);
     TranslucentDrawHook translucentHook_{};
     bool muteGpuPasses_ = false;
     static void installTranslucentHook(void* context, const TranslucentDrawHook* hook);

@@ -135,6 +135,10 @@ void Renderer::setScene(const Scene& scene) {
     scene_ = &scene;
     adjacencyRanges_.clear();   // rebuilt on the first adjacency draw of this scene
     meshClosed_.clear();
+    adjacencyReady_ = false;
+    adjacencySceneReady_ = false;
+    adjacencyBatches_.clear();
+    adjacencyScene_ = {};
     for (GlBuffer& buffer : rayTracingBuffers_) buffer.reset();
     rayTracing_ = {};
     rayTracingBuilt_ = false;
@@ -276,7 +280,7 @@ bool Renderer::resize(glm::ivec2 size, int msaaSamples, std::string& error) {
                 return false;
         }
     }
-    if (prepassFbo_) allocatePrepassTargets();
+    if (prepassDepthFbo_) allocatePrepassTargets(prepassFull_);
     if (eyeBlurTermFbo_) allocateEyeBlurTargets();
     if (layerFbo_[0]) allocateLayerTargets();
     displayColor_ = makeTexture(GL_RGBA8, size, 0, "display");
@@ -340,7 +344,8 @@ void Renderer::drawBatch(uint32_t firstObject, uint32_t count, uint32_t mesh, ui
 }
 
 void Renderer::prepareAdjacency() {
-    if (!scene_ || !adjacencyRanges_.empty()) return;
+    if (!scene_ || adjacencyReady_) return;
+    adjacencyReady_ = true;
     std::vector<uint32_t> indices;
     for (size_t m = 0; m < scene_->meshes.size(); ++m) {
         MeshAdjacency adjacency = buildMeshAdjacency(scene_->meshes[m]);
@@ -366,6 +371,36 @@ void Renderer::prepareAdjacency() {
     glVertexArrayAttribFormat(name, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, position));
     glVertexArrayAttribFormat(name, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, normal));
     glVertexArrayAttribFormat(name, 2, 2, GL_FLOAT, GL_FALSE, offsetof(Vertex, uv));
+}
+
+const AdjacencyScene& Renderer::adjacencyScene() {
+    if (!scene_ || adjacencySceneReady_) return adjacencyScene_;
+    prepareAdjacency();
+    adjacencySceneReady_ = true;
+    AdjacencyScene& a = adjacencyScene_;
+    a = {};
+    // Consecutive caster batches of one mesh merge into one run (batches also split by material,
+    // which the silhouettes do not care about).
+    for (const Batch& batch : batches_) {
+        if (!scene_->inSet(scene_->objects[batch.firstObject], DrawSet::Casters)) continue;
+        const MeshRange& range = adjacencyRanges_[batch.mesh];
+        const AdjacencyBatch run{batch.firstObject, batch.count, range.firstIndex / 6, range.indexCount / 6,
+                                 range.baseVertex, meshClosed_[batch.mesh]};
+        AdjacencyBatch* last = adjacencyBatches_.empty() ? nullptr : &adjacencyBatches_.back();
+        if (last && last->firstObject + last->objectCount == run.firstObject && last->firstTriangle == run.firstTriangle &&
+            last->triangleCount == run.triangleCount && last->baseVertex == run.baseVertex)
+            last->objectCount += run.objectCount;
+        else
+            adjacencyBatches_.push_back(run);
+        a.triangles += uint64_t(run.objectCount) * run.triangleCount;
+        if (run.closed) a.closedTriangles += uint64_t(run.objectCount) * run.triangleCount;
+    }
+    a.vertices = vertexBuffer_.get();
+    a.indices = adjacencyIndices_.get();
+    a.transforms = objectTransforms_.get();
+    a.batches = adjacencyBatches_.data();
+    a.batchCount = uint32_t(adjacencyBatches_.size());
+    return a;
 }
 
 void Renderer::bindSceneGeometry(GLuint program) {
@@ -723,12 +758,23 @@ void Renderer::resetPipelineState() {
     glDisable(GL_FRAMEBUFFER_SRGB);
 }
 
-void Renderer::allocatePrepassTargets() {
+void Renderer::allocatePrepassTargets(bool full) {
     prepassDepth_ = makeTexture(GL_DEPTH24_STENCIL8, size_, 0, "camera pre-pass depth");
+    GLuint name = 0;
+    glCreateFramebuffers(1, &name);
+    prepassDepthFbo_.reset(name);
+    glObjectLabel(GL_FRAMEBUFFER, name, -1, "camera pre-pass (depth only)");
+    glNamedFramebufferTexture(name, GL_DEPTH_STENCIL_ATTACHMENT, prepassDepth_.get(), 0);
+    glNamedFramebufferDrawBuffer(name, GL_NONE);
+    glNamedFramebufferReadBuffer(name, GL_NONE);
+    GLenum status = glCheckNamedFramebufferStatus(name, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) logError("camera pre-pass framebuffer (depth only) is " + framebufferStatusName(status));
+    prepassDepthOnly_ = {sizeof(CameraPrepass), prepassDepth_.get(), 0, 0, 0, size_};
+    prepassFull_ = full;
+    if (!full) return;   // the colour targets (20 bytes a pixel) only when a technique needs them
     prepassPosition_ = makeTexture(GL_RGBA32F, size_, 0, "camera pre-pass world position");
     prepassNormal_ = makeTexture(GL_RGBA16F, size_, 0, "camera pre-pass world normal");
     prepassObjectId_ = makeTexture(GL_R32UI, size_, 0, "camera pre-pass object id");
-    GLuint name = 0;
     glCreateFramebuffers(1, &name);
     prepassFbo_.reset(name);
     glObjectLabel(GL_FRAMEBUFFER, name, -1, "camera pre-pass");
@@ -738,7 +784,7 @@ void Renderer::allocatePrepassTargets() {
     glNamedFramebufferTexture(name, GL_DEPTH_STENCIL_ATTACHMENT, prepassDepth_.get(), 0);
     const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     glNamedFramebufferDrawBuffers(name, 3, buffers);
-    const GLenum status = glCheckNamedFramebufferStatus(name, GL_FRAMEBUFFER);
+    status = glCheckNamedFramebufferStatus(name, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) logError("camera pre-pass framebuffer is " + framebufferStatusName(status));
     prepass_ = {sizeof(CameraPrepass), prepassDepth_.get(), prepassPosition_.get(), prepassNormal_.get(),
                 prepassObjectId_.get(), size_};
@@ -773,18 +819,22 @@ const RayTracingScene& Renderer::rayTracing() {
     return r;
 }
 
-void Renderer::cameraPrepass() {
-    if (!prepassFbo_) allocatePrepassTargets();
-    const GLuint fbo = prepassFbo_.get();
+void Renderer::cameraPrepass(PrepassKind kind) {
+    const bool full = kind == PrepassKind::Full;
+    if (!prepassDepthFbo_ || (full && !prepassFull_)) allocatePrepassTargets(full || prepassFull_);
+    const GLuint fbo = full ? prepassFbo_.get() : prepassDepthFbo_.get();
     applyDefaultState();
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    const GLuint noObject[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(fbo, GL_COLOR, 1, zero);
-    glClearNamedFramebufferuiv(fbo, GL_COLOR, 2, noObject);
+    if (full) {
+        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        const GLuint noObject[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero);
+        glClearNamedFramebufferfv(fbo, GL_COLOR, 1, zero);
+        glClearNamedFramebufferuiv(fbo, GL_COLOR, 2, noObject);
+    }
     glClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, 1.0f, 0);
-    const GLuint program = shaders_.program(prepassProgram_);
+    // Depth only: main.vert without a fragment stage (invariant gl_Position: the same depths).
+    const GLuint program = shaders_.program(full ? prepassProgram_ : depthOnlyProgram_);
     bindSceneGeometry(program);
     for (uint32_t index : opaqueBatches_) {
         const Batch& batch = batches_[index];

@@ -62,9 +62,21 @@ public:
     void resetPipelineState();
 
     // Camera pre-pass into its own targets (allocated on first use): depth, world position,
-    // normal and object id of the opaque surfaces, rasterised exactly as the main pass does.
-    void cameraPrepass();
+    // normal and object id of the opaque surfaces, rasterised exactly as the main pass does; or
+    // (Depth, kTechniqueNeedsCameraDepth) the depth alone, into the same depth texture with the
+    // main pass's vertex stage and no fragment stage, so it is bit for bit the full pass's depth.
+    // The colour targets are allocated only once a full pre-pass is asked for.
+    enum class PrepassKind { Full, Depth };
+    void cameraPrepass(PrepassKind kind = PrepassKind::Full);
+    // The full pre-pass's targets (depth 0 before the first full pre-pass) and the depth-only
+    // view of the same depth texture (position, normal and objectId 0).
     const CameraPrepass& prepassTargets() const { return prepass_; }
+    const CameraPrepass& prepassDepthTargets() const { return prepassDepthOnly_; }
+
+    // SHADOWLAB_EXT_ADJACENCY: the casters' triangles with adjacency (the buffers of
+    // DrawPrimitive::TrianglesAdjacency) and their batches, built on the first call or adjacency
+    // draw after setScene() and kept until the next setScene().
+    const AdjacencyScene& adjacencyScene();
 
     // SHADOWLAB_EXT_RAY_TRACING: the shadow casters' BVH (render/bvh.h) in storage buffers, built
     // on the first call after setScene() and kept (with its buffers) until the next setScene().
@@ -200,7 +212,7 @@ private:
     // first draw that asks after a scene load.
     void prepareAdjacency();
     void bindSceneGeometry(GLuint program);
-    void allocatePrepassTargets();
+    void allocatePrepassTargets(bool full);
 
     ShaderLibrary& shaders_;
     const Scene* scene_ = nullptr;
@@ -216,6 +228,10 @@ private:
     GlVertexArray adjacencyVao_;
     std::vector<MeshRange> adjacencyRanges_;     // empty until prepareAdjacency()
     std::vector<uint8_t> meshClosed_;
+    bool adjacencyReady_ = false;                // prepareAdjacency() ran for this scene
+    std::vector<AdjacencyBatch> adjacencyBatches_;   // the casters' runs (adjacencyScene())
+    AdjacencyScene adjacencyScene_{};
+    bool adjacencySceneReady_ = false;
     std::vector<Batch> batches_;                 // every object, in scene order
     std::vector<uint32_t> batchOfObject_;        // object index -> its batch
     std::vector<uint32_t> opaqueBatches_;        // indices into batches_
@@ -240,8 +256,9 @@ private:
     ProgramId prepassProgram_ = 0;
     ProgramId depthOnlyProgram_ = 0;
     GlTexture prepassDepth_, prepassPosition_, prepassNormal_, prepassObjectId_;
-    GlFramebuffer prepassFbo_;
-    CameraPrepass prepass_{};
+    GlFramebuffer prepassFbo_, prepassDepthFbo_;  // all four targets; the depth alone
+    bool prepassFull_ = false;                   // the colour targets exist
+    CameraPrepass prepass_{}, prepassDepthOnly_{};
     GlBuffer rayTracingBuffers_[5];              // nodes, triangles, uvs, materials, texels
     RayTracingScene rayTracing_{};
     bool rayTracingBuilt_ = false;
