@@ -33,17 +33,9 @@ constexpr ParamDesc kGrid{"grid", "samples n", ParamType::Int, 2, 16, 8, "",
      "Each set is an n x n jittered grid mapped to a disc (n^2 taps in the penumbra, n in the outer "
      "ring tested first). Small n gives coarse, noisy penumbrae and an unreliable early out; large n is "
      "smooth but penumbra pixels cost n^2 lookups and the offset texture grows with n^2.", nullptr};
-constexpr ParamDesc kSets{"sets", "sets m", ParamType::Int, 1, 32, 16, "",
-     "m x m different sample sets tiled over the screen (pixel mod m). 1 brings PCF's banding back; "
-     "below about 14 the noise repeats visibly in motion; memory grows with m^2 (m x m x n^2/2 texels).",
-     nullptr};
 constexpr ParamDesc kRadius{"radius", "offset scale (radius)", ParamType::Float, 0.5, 32, 4, "texels",
      "Filter radius: the unit-disc offsets are scaled by it. Small radii leave hard, aliased edges; large "
      "ones give wide penumbrae, more noise, more bias needed and fewer early outs (slower).", nullptr};
-constexpr ParamDesc kHardwareFilter{"hardware_filter", "bilinear taps", ParamType::Bool, 0, 1, 0, "",
-     "Each tap is the texture unit's 2x2 bilinear comparison: smoother penumbrae at small radii for "
-     "almost no cost, but fractional taps rarely agree exactly, so the early out is taken less often.",
-     nullptr};
 constexpr ParamDesc kCoherent{"coherent", "early out per 2x2 quad", ParamType::Bool, 0, 1, 1, "",
      "Take the early-out decision per 2x2 pixel quad: the quad stops only when all four rings agree. A GPU "
      "shades quads (and warps) together, so a pixel that stops alone next to one that continues should save "
@@ -63,15 +55,15 @@ constexpr ParamDesc kCountEarlyOuts{"count_early_outs", "count early outs", Para
      "Every fragment increments the same counters, which costs GPU time: leave it off when timing.",
      nullptr};
 
-#define ADAPTIVE_PCF_PARAMS(X)                 \
-    X(int, resolution, kit::resolutionParam()) \
-    X(int, grid, kGrid)                        \
-    X(int, sets, kSets)                        \
-    X(float, radius, kRadius)                  \
-    X(bool, hardware_filter, kHardwareFilter)  \
-    X(bool, coherent, kCoherent)               \
-    X(int, classify, kClassify)                \
-    X(bool, count_early_outs, kCountEarlyOuts) \
+#define ADAPTIVE_PCF_PARAMS(X)                         \
+    X(int, resolution, kit::resolutionParam())         \
+    X(int, grid, kGrid)                                \
+    X(int, sets, kit::discSetsParam())                 \
+    X(float, radius, kRadius)                          \
+    X(bool, hardware_filter, kit::bilinearTapsParam()) \
+    X(bool, coherent, kCoherent)                       \
+    X(int, classify, kClassify)                        \
+    X(bool, count_early_outs, kCountEarlyOuts)         \
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, ADAPTIVE_PCF_PARAMS);
 

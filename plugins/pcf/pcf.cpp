@@ -40,10 +40,6 @@ constexpr ParamDesc kOffsetScale{"offset_scale", "offset scale", ParamType::Floa
      "Spacing between neighbouring taps. Below 1 the taps overlap and the ramp is narrow but smooth; "
      "above 1 the penumbra widens without extra cost but breaks into visible bands and copies of the edge.",
      nullptr};
-constexpr ParamDesc kHardwareFilter{"hardware_filter", "bilinear taps", ParamType::Bool, 0, 1, 0, "",
-     "Each tap is the texture unit's 2x2 bilinear comparison, which removes the banding of the plain box "
-     "at almost no cost (seed 000 figure 3.11c against 3.11b). Off shows the n^2 + 1 discrete shades and "
-     "the texel steps.", nullptr};
 constexpr ParamDesc kSampling{"sampling", "sampling", ParamType::Enum, 0, 2, 0, "",
      "How the n x n taps are evaluated. taps: n^2 texture lookups. gather: the texels the taps read, "
      "fetched and compared four at a time with textureGather and weighted in the shader as the taps weight "
@@ -68,13 +64,13 @@ constexpr ParamDesc kClassify{"classify", "decide lit and shadowed by", ParamTyp
      "lights ignore it.",
      "none|depth-range"};
 
-#define PCF_PARAMS(X)                          \
-    X(int, resolution, kit::resolutionParam()) \
-    X(int, kernel, kKernel)                    \
-    X(float, offset_scale, kOffsetScale)       \
-    X(bool, hardware_filter, kHardwareFilter)  \
-    X(int, sampling, kSampling)                \
-    X(int, classify, kClassify)                \
+#define PCF_PARAMS(X)                                  \
+    X(int, resolution, kit::resolutionParam())         \
+    X(int, kernel, kKernel)                            \
+    X(float, offset_scale, kOffsetScale)               \
+    X(bool, hardware_filter, kit::bilinearTapsParam()) \
+    X(int, sampling, kSampling)                        \
+    X(int, classify, kClassify)                        \
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, PCF_PARAMS);
 

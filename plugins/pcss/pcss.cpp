@@ -53,9 +53,6 @@ constexpr ParamDesc kFilterGrid{"filter_grid", "filter samples n_f", ParamType::
      "Filtering: n_f x n_f jittered disc samples scaled to the estimated penumbra. Few samples give "
      "coarse, noisy penumbrae; many cost n_f^2 lookups in penumbra pixels (the outer ring decides elsewhere).",
      nullptr};
-constexpr ParamDesc kSets{"sets", "sets m", ParamType::Int, 1, 32, 16, "",
-     "m x m different sample sets tiled over the screen (pixel mod m). 1 shows banding; small values a "
-     "repeating noise pattern; memory grows with m^2.", nullptr};
 constexpr ParamDesc kBilinear{"bilinear", "bilinear taps", ParamType::Bool, 0, 1, 1, "",
      "Each filter tap compares the 2x2 nearest texels and blends them (what the texture unit's GL_LINEAR "
      "comparison does). Off: narrow penumbrae near contacts alias and the noise is coarser.", nullptr};
@@ -69,13 +66,13 @@ constexpr ParamDesc kSearchBound{"search_bound", "blocker search bound", ParamTy
      "same image as 'min-depth', fewer lookups).",
      "near plane|min-depth|depth-range"};
 
-#define PCSS_PARAMS(X)                          \
-    X(int, resolution, kit::resolutionParam())  \
-    X(int, search_grid, kSearchGrid)            \
-    X(int, filter_grid, kFilterGrid)            \
-    X(int, sets, kSets)                         \
-    X(bool, bilinear, kBilinear)                \
-    X(int, search_bound, kSearchBound)          \
+#define PCSS_PARAMS(X)                         \
+    X(int, resolution, kit::resolutionParam()) \
+    X(int, search_grid, kSearchGrid)           \
+    X(int, filter_grid, kFilterGrid)           \
+    X(int, sets, kit::discSetsParam())         \
+    X(bool, bilinear, kBilinear)               \
+    X(int, search_bound, kSearchBound)         \
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, PCSS_PARAMS);
 constexpr TechniqueDesc kDescriptor = kit::describe(
