@@ -16,10 +16,8 @@
 // the light with the radius as an angle (radius texels of a face at its centre; adaptive-pcf.glsl).
 #include <array>
 
-#include <shadowlab/kit/cube_depth_map.h>
-#include <shadowlab/kit/depth_map.h>
-#include <shadowlab/kit/depth_range_mips.h>
 #include <shadowlab/kit/disc_offset_texture.h>
+#include <shadowlab/kit/filtered_depth_maps.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
@@ -33,17 +31,9 @@ constexpr ParamDesc kGrid{"grid", "samples n", ParamType::Int, 2, 16, 8, "",
      "Each set is an n x n jittered grid mapped to a disc (n^2 taps in the penumbra, n in the outer "
      "ring tested first). Small n gives coarse, noisy penumbrae and an unreliable early out; large n is "
      "smooth but penumbra pixels cost n^2 lookups and the offset texture grows with n^2.", nullptr};
-constexpr ParamDesc kSets{"sets", "sets m", ParamType::Int, 1, 32, 16, "",
-     "m x m different sample sets tiled over the screen (pixel mod m). 1 brings PCF's banding back; "
-     "below about 14 the noise repeats visibly in motion; memory grows with m^2 (m x m x n^2/2 texels).",
-     nullptr};
 constexpr ParamDesc kRadius{"radius", "offset scale (radius)", ParamType::Float, 0.5, 32, 4, "texels",
      "Filter radius: the unit-disc offsets are scaled by it. Small radii leave hard, aliased edges; large "
      "ones give wide penumbrae, more noise, more bias needed and fewer early outs (slower).", nullptr};
-constexpr ParamDesc kHardwareFilter{"hardware_filter", "bilinear taps", ParamType::Bool, 0, 1, 0, "",
-     "Each tap is the texture unit's 2x2 bilinear comparison: smoother penumbrae at small radii for "
-     "almost no cost, but fractional taps rarely agree exactly, so the early out is taken less often.",
-     nullptr};
 constexpr ParamDesc kCoherent{"coherent", "early out per 2x2 quad", ParamType::Bool, 0, 1, 1, "",
      "Take the early-out decision per 2x2 pixel quad: the quad stops only when all four rings agree. A GPU "
      "shades quads (and warps) together, so a pixel that stops alone next to one that continues should save "
@@ -63,15 +53,15 @@ constexpr ParamDesc kCountEarlyOuts{"count_early_outs", "count early outs", Para
      "Every fragment increments the same counters, which costs GPU time: leave it off when timing.",
      nullptr};
 
-#define ADAPTIVE_PCF_PARAMS(X)                 \
-    X(int, resolution, kit::resolutionParam()) \
-    X(int, grid, kGrid)                        \
-    X(int, sets, kSets)                        \
-    X(float, radius, kRadius)                  \
-    X(bool, hardware_filter, kHardwareFilter)  \
-    X(bool, coherent, kCoherent)               \
-    X(int, classify, kClassify)                \
-    X(bool, count_early_outs, kCountEarlyOuts) \
+#define ADAPTIVE_PCF_PARAMS(X)                         \
+    X(int, resolution, kit::resolutionParam())         \
+    X(int, grid, kGrid)                                \
+    X(int, sets, kit::discSetsParam())                 \
+    X(float, radius, kRadius)                          \
+    X(bool, hardware_filter, kit::bilinearTapsParam()) \
+    X(bool, coherent, kCoherent)                       \
+    X(int, classify, kClassify)                        \
+    X(bool, count_early_outs, kCountEarlyOuts)         \
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, ADAPTIVE_PCF_PARAMS);
 
@@ -164,52 +154,39 @@ class AdaptivePcf final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         counters_.init(host());
         uniforms_.create(host(), "adaptive-pcf uniforms");
-        return map_.create(host(), error) && cube_.create(host(), error) && depthRange_.create(host(), error);
+        return maps_.create(host(), error);
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
         offsets_.ensure(host(), p.grid, p.sets, "disc offsets (m x m x n^2/2)");
         counters_.beginFrame();
-        const kit::DepthMapConfig config = kit::depthMapConfig(p);
-        if (frame.light.type == LightType::Point) return cube_.render(frame, config);
-        map_.render(frame, config);
+        if (!maps_.render(frame, kit::depthMapConfig(p))) return;   // the cube: no kernel report, no mips
         // The disc adaptive-pcf.glsl filters over (seed 000 eq. 3.11-3.12), for the host's kernel view.
-        FilterFootprint footprint = map_.filterFootprint();
-        footprint.kernel = FilterKernel::Disc;
-        footprint.taps = offsets_.n();
-        footprint.spacing = p.radius;
-        footprint.bilinear = p.hardware_filter ? 1 : 0;
-        footprint.sets = p.sets;
-        footprint.discSeed = 1;   // offsets_.ensure's default
-        footprint.coneBias = p.cone_bias ? 1.0f : 0.0f;
-        footprint.coherent = p.coherent ? 1 : 0;
-        kit::reportFilterFootprint(host(), footprint);
+        maps_.map().reportFilter({.kernel = FilterKernel::Disc,
+                                  .taps = offsets_.n(),
+                                  .spacing = p.radius,
+                                  .bilinear = p.hardware_filter ? 1u : 0u,
+                                  .sets = p.sets,
+                                  .discSeed = 1,   // offsets_.ensure's default
+                                  .coneBias = p.cone_bias ? 1.0f : 0.0f,
+                                  .coherent = p.coherent ? 1u : 0u});
         // classify = depth-range reads mips of the 2D map (the cube path takes the ring test).
-        if (p.classify == 1)
-            depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
-        else
-            depthRange_.reset();
+        maps_.updateDepthRange(p.classify == 1);
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
         const SamplerKind sampling = p.hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
-        if (frame.light.type == LightType::Point)
-            cube_.bindMainPass(sampling);
-        else
-            map_.bindMainPass(sampling);
+        maps_.bindMainPass(frame, sampling, sampling);
         glBindTextureUnit(shared::adaptive_pcf::kDiscOffsetsUnit, offsets_.texture());
-        depthRange_.bindMainPass();
         uniforms_.set({{}, offsets_.n(), p.radius, p.cone_bias ? 1.0f : 0.0f,
                        p.coherent ? 1 : 0, p.count_early_outs ? 1 : 0,
                        frame.light.type == LightType::Point ? 0 : p.classify, 0, 0});
         counters_.bindMainPass();
     }
 
-    kit::DepthMap map_;
-    kit::CubeDepthMap cube_;
-    kit::DepthRangeMips depthRange_;
+    kit::FilteredDepthMaps maps_;
     jittered_disk::DiscOffsetTexture offsets_;
     EarlyOutCounters counters_;
     kit::UniformBlock<shared::adaptive_pcf::AdaptivePcfUniforms> uniforms_;

@@ -16,11 +16,9 @@
 // Format and clear value are not stated in seed 001: the map must hold depths, so 32F and 1.
 // Known artefacts: noise, worst where much light gets through with little saturation (sec.
 // 5.3.2); blurred edges from the wide kernels the noise needs; kernel cost without hardware PCF.
-#include <shadowlab/kit/focus.h>
 #include <shadowlab/kit/handles.h>
-#include <shadowlab/kit/light_target.h>
 #include <shadowlab/kit/params.h>
-#include <shadowlab/kit/stochastic_shared.h>
+#include <shadowlab/kit/stochastic_light_pass.h>
 #include <shadowlab/kit/technique_base.h>
 
 #include "cssm2_shared.h"
@@ -59,7 +57,6 @@ constexpr ParamDesc kSlopeBias{"slope_bias", "slope-scaled bias", ParamType::Flo
     X(float, slope_bias, kSlopeBias)         \
     SHADOWLAB_FIT_PARAMS(X)
 SHADOWLAB_PARAMS(Params, CSSM2_PARAMS);
-using Id = Params::Id;
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "cssm2",
@@ -89,49 +86,42 @@ class ColouredStochasticShadowMaps final : public kit::TechniqueBase {
         if (!translucentProgram_.build(host(), {.vertexFile = "translucent_caster.vert", .fragmentFile = "cssm2_caster.frag"},
                                        error))
             return false;
-        target_.create(host(), "cssm2 map");
-        mapUniforms_.create(host(), "cssm2 light space");
-        passUniforms_.create(host(), "cssm2 light pass uniforms");
+        lightPass_.create(host(), "cssm2 map");
         uniforms_.create(host(), "cssm2 uniforms");
         return true;
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const int resolution = params.asInt(Id::resolution);
-        if (target_.ensure({.resolution = resolution, .colourFormat = GL_RGBA32F})) {
-            host().registerDebugImage("cssm2 opaque depth", target_.depth(), DebugImageKind::Depth);
-            host().registerDebugImage("cssm2 colour map", target_.colour(), DebugImageKind::Color);
+        const Params p = Params::read(params);
+        if (lightPass_.ensure({.resolution = p.resolution, .colourFormat = GL_RGBA32F})) {
+            host().registerDebugImage("cssm2 opaque depth", lightPass_.target().depth(), DebugImageKind::Depth);
+            host().registerDebugImage("cssm2 colour map", lightPass_.target().colour(), DebugImageKind::Color);
         }
         GpuPass pass(host(), "shadow map");
-        const kit::FocusedLightSpace focused = kit::focusLightSpace(host(), frame, kit::readFit(params, Id::fit, Id::snap), resolution);
-        const LightSpace& lightSpace = focused.light;
-        mapUniforms_.set(kit::lightSpaceUniforms(lightSpace, resolution));
-        kit::reportShadowMap(host(), lightSpace.viewProjection, {resolution, resolution});
-        passUniforms_.set({{}, frame.randomSeed, params.asInt(Id::noise), params.asFloat(Id::slope_bias), params.asFloat(Id::constant_bias)});
-        target_.bind();
+        // The colour map gets no polygon offset: the caster shader adds the bias.
+        lightPass_.begin(frame, kit::fitConfig(p), {{}, 0u, p.noise, p.slope_bias, p.constant_bias});
         const float far[4] = {1.0f, 1.0f, 1.0f, 1.0f};
         glClearBufferfv(GL_COLOR, 0, far);
         glClearBufferfv(GL_DEPTH, 0, far);
-        host().drawScene(kit::culledDraw(DrawSet::OpaqueCasters, focused.cullPlanes), opaqueProgram_.use());
+        lightPass_.draw(DrawSet::OpaqueCasters, opaqueProgram_);
         glDepthMask(GL_FALSE);
         glEnable(GL_BLEND);
         glBlendEquation(GL_MIN);   // factors are ignored by MIN (seed 001: ONE, ONE)
         glBlendFunc(GL_ONE, GL_ONE);
-        host().drawScene(kit::culledDraw(DrawSet::TranslucentCasters, focused.cullPlanes), translucentProgram_.use());
+        lightPass_.draw(DrawSet::TranslucentCasters, translucentProgram_);
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
-        glBindTextureUnit(shared::cssm2::kColourMapUnit, target_.colour());
+        const Params p = Params::read(params);
+        glBindTextureUnit(shared::cssm2::kColourMapUnit, lightPass_.target().colour());
         glBindSampler(shared::cssm2::kColourMapUnit, host().sampler(SamplerKind::Nearest));
-        mapUniforms_.bind();
-        uniforms_.set({{}, params.asInt(Id::kernel), params.asBool(Id::cone_bias) ? 1.0f : 0.0f, 0.0f, 0.0f});
+        lightPass_.bindMainPass();
+        uniforms_.set({{}, p.kernel, p.cone_bias ? 1.0f : 0.0f, 0.0f, 0.0f});
     }
 
     kit::Program opaqueProgram_;
     kit::Program translucentProgram_;
-    kit::LightTarget target_;
-    kit::UniformBlock<kit::DepthMapUniforms> mapUniforms_;
-    kit::UniformBlock<shared::stochastic::StochasticPassUniforms> passUniforms_;
+    kit::StochasticLightPass lightPass_;
     kit::UniformBlock<shared::cssm2::Cssm2Uniforms> uniforms_;
 };
 

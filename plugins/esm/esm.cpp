@@ -44,17 +44,15 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .debugViews = "footprint|texel-grid|coverage|focus-body"},
     Params::table);
 
-class ExponentialShadowMaps final : public kit::MomentTechnique<shared::esm::EsmUniforms> {
+class ExponentialShadowMaps final : public kit::MomentTechnique<Params, shared::esm::EsmUniforms> {
 public:
     ExponentialShadowMaps() : MomentTechnique("esm_moments.glsl") {}
 
 private:
-    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const Params p = Params::read(params);
-        kit::MomentMapConfig config = kit::readCommonParams(params);
+    shared::esm::EsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
         config.format = GL_R32F;
         config.clearValue = glm::vec4(1.0f);   // exp(c (1 - 1)): depth 1, nothing occludes
-        render(frame, config, {{}, p.exponent, 0.0f, 0.0f, 0.0f});
+        return {{}, p.exponent, 0.0f, 0.0f, 0.0f};
     }
 };
 

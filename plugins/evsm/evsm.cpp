@@ -27,22 +27,14 @@ constexpr ParamDesc kNegativeExponent{"negative_exponent", "negative exponent c-
      "Steepness of the second warp -exp(-c- x), the bound that stays tight where the receiver lies close "
      "in front of the filtered depths. Small values waste it; large ones amplify the rounding of depths "
      "near the light (Lauritzen's usual choice is 5 with c+ = 40).", nullptr};
-constexpr ParamDesc kMinVariance{"min_variance", "minimum variance", ParamType::Float, 0, 0.001, 0.00002, "depth^2",
-     "Lower clamp of the variance in squared depth (depth normalised to [0, 1] over the casters), scaled to "
-     "each warped depth by the square of the warp's slope. Zero lets float rounding speckle lit surfaces "
-     "with shadow; large values lighten contact shadows.", nullptr};
-constexpr ParamDesc kLightBleeding{"light_bleeding", "light-bleeding reduction", ParamType::Float, 0, 0.95, 0.0, "",
-     "Remaps the visibility from [a, 1] to [0, 1], so bounds below a become full shadow; 0 is off. As in "
-     "VSM (seed 000 section 3.2.5), but EVSM needs far less; large values shrink and darken penumbrae.", nullptr};
 
-#define EVSM_PARAMS(X)                             \
-    SHADOWLAB_MOMENT_MAP_PARAMS(X, 1024)           \
-    X(float, positive_exponent, kPositiveExponent) \
-    X(float, negative_exponent, kNegativeExponent) \
-    X(float, min_variance, kMinVariance)           \
-    X(float, light_bleeding, kLightBleeding)
+#define EVSM_PARAMS(X)                              \
+    SHADOWLAB_MOMENT_MAP_PARAMS(X, 1024)            \
+    X(float, positive_exponent, kPositiveExponent)  \
+    X(float, negative_exponent, kNegativeExponent)  \
+    X(float, min_variance, kit::minVarianceParam()) \
+    X(float, light_bleeding, kit::lightBleedingParam())
 SHADOWLAB_PARAMS(Params, EVSM_PARAMS);
-using Id = Params::Id;
 
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -59,20 +51,18 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .debugViews = "footprint|texel-grid|coverage|focus-body"},
     Params::table);
 
-class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<shared::evsm::EvsmUniforms> {
+class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<Params, shared::evsm::EvsmUniforms> {
 public:
     ExponentialVarianceShadowMaps() : MomentTechnique("evsm_moments.glsl") {}
 
 private:
-    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        kit::MomentMapConfig config = kit::readCommonParams(params);
+    shared::evsm::EvsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
         config.format = GL_RGBA32F;
-        // Depth 1 (x = 1): p = exp(c+), n = -exp(-c-), and their squares.
-        const float p = std::exp(params.asFloat(Id::positive_exponent));
-        const float n = -std::exp(-params.asFloat(Id::negative_exponent));
-        config.clearValue = glm::vec4(p, p * p, n, n * n);
-        render(frame, config, {{}, {params.asFloat(Id::positive_exponent), params.asFloat(Id::negative_exponent), 0.0f, 0.0f},
-                       params.asFloat(Id::min_variance), params.asFloat(Id::light_bleeding), 0.0f, 0.0f});
+        // Depth 1 (x = 1): exp(c+), -exp(-c-), and their squares.
+        const float positive = std::exp(p.positive_exponent);
+        const float negative = -std::exp(-p.negative_exponent);
+        config.clearValue = glm::vec4(positive, positive * positive, negative, negative * negative);
+        return {{}, {p.positive_exponent, p.negative_exponent, 0.0f, 0.0f}, p.min_variance, p.light_bleeding, 0.0f, 0.0f};
     }
 };
 

@@ -33,16 +33,13 @@ constexpr ParamDesc kDepthBias{"depth_bias", "depth bias", ParamType::Float, 0, 
      "Receiver depth moved towards the light before the reconstruction (depth normalised to [0, 1] over the "
      "casters). Zero lets sloped or blurred surfaces shadow themselves (acne, surface darkening); too much "
      "detaches shadows from their casters (peter panning).", nullptr};
-constexpr ParamDesc kLightBleeding{"light_bleeding", "light-bleeding reduction", ParamType::Float, 0, 0.95, 0.0, "",
-     "Remaps the visibility from [a, 1] to [0, 1], so values below a become full shadow; 0 is off. As in VSM "
-     "(seed 000 section 3.2.5), but MSM needs much less; large values shrink and darken penumbrae.", nullptr};
 
-#define MSM_PARAMS(X)                        \
-    SHADOWLAB_MOMENT_MAP_PARAMS(X, 1024)     \
-    X(int, storage, kStorage)                \
-    X(float, moment_bias, kMomentBias)       \
-    X(float, depth_bias, kDepthBias)         \
-    X(float, light_bleeding, kLightBleeding)
+#define MSM_PARAMS(X)                    \
+    SHADOWLAB_MOMENT_MAP_PARAMS(X, 1024) \
+    X(int, storage, kStorage)            \
+    X(float, moment_bias, kMomentBias)   \
+    X(float, depth_bias, kDepthBias)     \
+    X(float, light_bleeding, kit::lightBleedingParam())
 SHADOWLAB_PARAMS(Params, MSM_PARAMS);
 
 
@@ -60,21 +57,18 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .debugViews = "footprint|texel-grid|coverage|focus-body"},
     Params::table);
 
-class MomentShadowMapping final : public kit::MomentTechnique<shared::msm::MsmUniforms> {
+class MomentShadowMapping final : public kit::MomentTechnique<Params, shared::msm::MsmUniforms> {
 public:
     MomentShadowMapping() : MomentTechnique("msm_moments.glsl") {}
 
 private:
-    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const Params p = Params::read(params);
-        kit::MomentMapConfig config = kit::readCommonParams(params);
+    shared::msm::MsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
         const bool quantized = p.storage == 1;
         config.format = quantized ? GL_RGBA16 : GL_RGBA32F;
         // Depth 1: nothing occludes there.
         const glm::vec4 farMoments = msm::momentsOfDepth(1.0f);
         config.clearValue = quantized ? glm::clamp(msm::quantizeMoments(farMoments), 0.0f, 1.0f) : farMoments;
-        render(frame, config, {{}, quantized ? 1 : 0, p.moment_bias, p.depth_bias,
-                       p.light_bleeding});
+        return {{}, quantized ? 1 : 0, p.moment_bias, p.depth_bias, p.light_bleeding};
     }
 };
 

@@ -19,9 +19,7 @@
 // mips built after the shadow pass, as pcss and adaptive-pcf use them) bound every depth the
 // kernel can read, and a pixel whose every comparison they decide skips the kernel, with the same
 // image (pcf.glsl, classifyByDepthRange). 2D maps only: point lights always run the kernel.
-#include <shadowlab/kit/cube_depth_map.h>
-#include <shadowlab/kit/depth_map.h>
-#include <shadowlab/kit/depth_range_mips.h>
+#include <shadowlab/kit/filtered_depth_maps.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
@@ -40,10 +38,6 @@ constexpr ParamDesc kOffsetScale{"offset_scale", "offset scale", ParamType::Floa
      "Spacing between neighbouring taps. Below 1 the taps overlap and the ramp is narrow but smooth; "
      "above 1 the penumbra widens without extra cost but breaks into visible bands and copies of the edge.",
      nullptr};
-constexpr ParamDesc kHardwareFilter{"hardware_filter", "bilinear taps", ParamType::Bool, 0, 1, 0, "",
-     "Each tap is the texture unit's 2x2 bilinear comparison, which removes the banding of the plain box "
-     "at almost no cost (seed 000 figure 3.11c against 3.11b). Off shows the n^2 + 1 discrete shades and "
-     "the texel steps.", nullptr};
 constexpr ParamDesc kSampling{"sampling", "sampling", ParamType::Enum, 0, 2, 0, "",
      "How the n x n taps are evaluated. taps: n^2 texture lookups. gather: the texels the taps read, "
      "fetched and compared four at a time with textureGather and weighted in the shader as the taps weight "
@@ -68,13 +62,13 @@ constexpr ParamDesc kClassify{"classify", "decide lit and shadowed by", ParamTyp
      "lights ignore it.",
      "none|depth-range"};
 
-#define PCF_PARAMS(X)                          \
-    X(int, resolution, kit::resolutionParam()) \
-    X(int, kernel, kKernel)                    \
-    X(float, offset_scale, kOffsetScale)       \
-    X(bool, hardware_filter, kHardwareFilter)  \
-    X(int, sampling, kSampling)                \
-    X(int, classify, kClassify)                \
+#define PCF_PARAMS(X)                                  \
+    X(int, resolution, kit::resolutionParam())         \
+    X(int, kernel, kKernel)                            \
+    X(float, offset_scale, kOffsetScale)               \
+    X(bool, hardware_filter, kit::bilinearTapsParam()) \
+    X(int, sampling, kSampling)                        \
+    X(int, classify, kClassify)                        \
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, PCF_PARAMS);
 
@@ -96,28 +90,20 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
 class PercentageCloserFiltering final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         uniforms_.create(host(), "pcf uniforms");
-        return map_.create(host(), error) && cube_.create(host(), error) && depthRange_.create(host(), error);
+        return maps_.create(host(), error);
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
-        const kit::DepthMapConfig config = kit::depthMapConfig(p);
-        if (frame.light.type == LightType::Point) return cube_.render(frame, config);
-        map_.render(frame, config);
+        if (!maps_.render(frame, kit::depthMapConfig(p))) return;   // the cube: no kernel report, no mips
         // The n x n box pcf.glsl filters over, for the host's kernel view (--probe).
-        FilterFootprint footprint = map_.filterFootprint();
-        footprint.kernel = FilterKernel::Box;
-        footprint.taps = p.kernel;
-        footprint.spacing = p.offset_scale;
-        footprint.bilinear = p.hardware_filter ? 1 : 0;
-        footprint.coneBias = p.cone_bias ? 1.0f : 0.0f;
-        kit::reportFilterFootprint(host(), footprint);
-        // classify = depth-range bounds the kernel with mips of the 2D map (allocated on first use
-        // and when the resolution changes; freed when classify goes back to none).
-        if (p.classify == 1)
-            depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
-        else
-            depthRange_.reset();
+        maps_.map().reportFilter({.kernel = FilterKernel::Box,
+                                  .taps = p.kernel,
+                                  .spacing = p.offset_scale,
+                                  .bilinear = p.hardware_filter ? 1u : 0u,
+                                  .coneBias = p.cone_bias ? 1.0f : 0.0f});
+        // classify = depth-range bounds the kernel with mips of the 2D map.
+        maps_.updateDepthRange(p.classify == 1);
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
@@ -127,21 +113,15 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
         const int sampling = p.offset_scale == 1.0f ? p.sampling : 0;
         // Folded lookups are bilinear comparisons whatever the taps are (nearest taps: on texel corners).
         const bool linearSampler = bilinear || sampling == 2;
-        const SamplerKind sampler = linearSampler ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
-        if (frame.light.type == LightType::Point)
-            cube_.bindMainPass(bilinear ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
-        else
-            map_.bindMainPass(sampler);
-        depthRange_.bindMainPass();
+        maps_.bindMainPass(frame, linearSampler ? SamplerKind::CompareLinear : SamplerKind::CompareNearest,
+                           bilinear ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
         const bool coneBias = p.cone_bias;
         const int classify = frame.light.type == LightType::Point ? 0 : p.classify;
         uniforms_.set({{}, p.kernel, p.offset_scale, coneBias ? 1.0f : 0.0f, sampling,
                        bilinear ? 1 : 0, classify, 0, 0});
     }
 
-    kit::DepthMap map_;
-    kit::CubeDepthMap cube_;
-    kit::DepthRangeMips depthRange_;
+    kit::FilteredDepthMaps maps_;
     kit::UniformBlock<shared::pcf::PcfUniforms> uniforms_;
 };
 

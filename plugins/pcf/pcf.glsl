@@ -4,16 +4,16 @@
 // each tap is itself the texture unit's 2x2 bilinear comparison (Fig. 3.11c).
 //
 // Three ways to evaluate the filter (the `sampling` parameter; the same filter without the cone
-// bias, and with it the same up to a cone at most one texel diagonal wider, see pcfGather):
+// bias, and with it the same up to a cone at most one texel diagonal wider, see the gather variant):
 //   taps    the loop of n^2 lookups (boxPcfDepth, shaders/box_pcf.glsl), one texture() per tap;
-//   gather  the texels the taps read, four at a time with textureGather (pcfGather), each weighted
-//           by how much of it the taps take. The idea is Castano's ("Shadow Mapping Summary -
+//   gather  the texels the taps read, four at a time with textureGather (gatheredBlock), each
+//           weighted by how much of it the taps take. The idea is Castano's ("Shadow Mapping Summary -
 //           Part 1", 2013: the optimised PCF of The Witness, also in MJP's Shadows sample), which
 //           folds the bilinear taps of a kernel onto its texels and fetches them with the fewest
 //           lookups; here the weights are chosen to reproduce this box of taps exactly rather than
 //           a wider tent, and the comparisons stay in the texture unit.
 //   folded  the same 2 x 2 blocks, each one bilinear comparison the texture unit weights
-//           (pcfFolded: Castano's own form).
+//           (foldedBlock: Castano's own form).
 //
 // classify = depth-range (uClassify 1, 2D maps only): before any of the above, the nearest and
 // farthest depth of every texel the kernel can read, from the kit's depth-range mips (min/max
@@ -49,7 +49,7 @@ layout(binding = kDepthRangeMipsUnit) uniform sampler2D uDepthRange;  // classif
 // The m = n (nearest) or n + 1 (bilinear) texels per axis are fetched in 2 x 2 blocks, one
 // textureGather at the corner the block's four texels share: ceil(m / 2)^2 lookups instead of n^2
 // (36 instead of 121 at 11 x 11). textureGather returns the block's texels in the order (0, 1),
-// (1, 1), (1, 0), (0, 0) (x right, y up) and clamps to the edge as the taps do.
+// (1, 1), (1, 0), (0, 0) (x right, y up) and clamps to the edge as the taps do (gatheredBlock).
 // Every block is one comparing gather (textureGather on the sampler2DShadow: four `ref <= depth`
 // tests in the texture unit) against one reference depth. Without the cone bias that reference is
 // every tap's, and the gather is the taps' filter exactly. With it each tap has its own reference,
@@ -85,43 +85,35 @@ float pairReach(int k0, bool bilinear, float centre) {
     return max(abs(first - centre), abs(last - centre)) * uOffsetScale;
 }
 
-// The kernel's texels t0 + k, 0 <= k < m, per axis (see above): t0 (origin), f, m.
+// The kernel's texels t0 + k, 0 <= k < m, per axis (see above): t0 (origin), f, m; and the
+// ceil(m / 2) blocks of 2 x 2 texels per axis that gather and folded read.
 struct KernelTexels {
     vec2 origin;
     vec2 f;
     int texels;
+    int blocks;
+    float centre;     // c = (n - 1) / 2
+    bool bilinear;
 };
 
-KernelTexels kernelTexels(vec3 coord, bool bilinear) {
-    float centre = 0.5 * float(uKernel - 1);
-    vec2 start = coord.xy * uLightDepth.w - centre - (bilinear ? 0.5 : 0.0);
+KernelTexels kernelTexels(vec3 coord) {
     KernelTexels k;
+    k.bilinear = uBilinear != 0;
+    k.centre = 0.5 * float(uKernel - 1);
+    vec2 start = coord.xy * uLightDepth.w - k.centre - (k.bilinear ? 0.5 : 0.0);
     k.origin = floor(start);
-    k.f = bilinear ? start - k.origin : vec2(0.0);
-    k.texels = uKernel + (bilinear ? 1 : 0);
+    k.f = k.bilinear ? start - k.origin : vec2(0.0);
+    k.texels = uKernel + (k.bilinear ? 1 : 0);
+    k.blocks = (k.texels + 1) / 2;
     return k;
 }
 
-float pcfGather(vec3 coord, float slope) {
-    float resolution = uLightDepth.w;
-    float centre = 0.5 * float(uKernel - 1);
-    bool bilinear = uBilinear != 0;
-    KernelTexels kernel = kernelTexels(coord, bilinear);
-    int blocks = (kernel.texels + 1) / 2;
-    float lit = 0.0;
-    for (int b = 0; b < blocks; ++b) {
-        vec2 wy = pairWeights(2 * b, kernel.f.y, kernel.texels);
-        float reachY = pairReach(2 * b, bilinear, centre);
-        float cornerY = (kernel.origin.y + float(2 * b + 1)) / resolution;
-        for (int a = 0; a < blocks; ++a) {
-            vec2 wx = pairWeights(2 * a, kernel.f.x, kernel.texels);
-            vec2 corner = vec2((kernel.origin.x + float(2 * a + 1)) / resolution, cornerY);   // shared by the block's four texels
-            float reference = coord.z - slope * length(vec2(pairReach(2 * a, bilinear, centre), reachY));
-            vec4 visible = textureGather(uShadowMap, corner, reference);
-            lit += dot(visible, vec4(wx.x * wy.y, wx.y * wy.y, wx.y * wy.x, wx.x * wy.x));
-        }
-    }
-    return lit;
+// The gather variant's block (a, b): one comparing textureGather at the corner its four texels
+// share, weighted per texel (wx, wy: the pairs' weights along x and y).
+float gatheredBlock(KernelTexels k, int a, int b, vec2 wx, vec2 wy, float reference) {
+    vec2 corner = (k.origin + vec2(float(2 * a + 1), float(2 * b + 1))) / uLightDepth.w;
+    vec4 visible = textureGather(uShadowMap, corner, reference);
+    return dot(visible, vec4(wx.x * wy.y, wx.y * wy.y, wx.y * wy.x, wx.x * wy.x));
 }
 
 // The folded variant: the same 2 x 2 blocks of texels, each read by one bilinear comparison
@@ -133,25 +125,27 @@ float pcfGather(vec3 coord, float slope) {
 // pair of an odd m, on a texel centre (1, 0); bilinear taps move the two end pairs by f. The
 // texture unit holds a weight with 8 fractional bits, so off-centre end pairs may differ from the
 // taps (which are quantised the same way) by about 1/512 of their weight. Same references per
-// block as pcfGather; one lookup and two weights per block instead of four weights and a dot.
-float pcfFolded(vec3 coord, float slope) {
-    float resolution = uLightDepth.w;
-    float centre = 0.5 * float(uKernel - 1);
-    bool bilinear = uBilinear != 0;
-    KernelTexels kernel = kernelTexels(coord, bilinear);
-    int blocks = (kernel.texels + 1) / 2;
+// block as gatheredBlock; one lookup and two weights per block instead of four weights and a dot.
+float foldedBlock(KernelTexels k, int a, int b, vec2 wx, vec2 wy, float reference) {
+    vec2 s = vec2(wx.x + wx.y, wy.x + wy.y);
+    vec2 along = vec2(s.x > 0.0 ? wx.y / s.x : 0.0, s.y > 0.0 ? wy.y / s.y : 0.0);
+    vec2 position = (k.origin + vec2(float(2 * a), float(2 * b)) + 0.5 + along) / uLightDepth.w;
+    return s.x * s.y * texture(uShadowMap, vec3(position, reference));
+}
+
+// Gather (folded false) and folded: the kernel's blocks, each compared against the reference of
+// its farthest tap (see above), summed with their weights.
+float pcfBlocks(vec3 coord, float slope, bool folded) {
+    KernelTexels k = kernelTexels(coord);
     float lit = 0.0;
-    for (int b = 0; b < blocks; ++b) {
-        vec2 wy = pairWeights(2 * b, kernel.f.y, kernel.texels);
-        float sy = wy.x + wy.y;
-        float y = (kernel.origin.y + float(2 * b) + 0.5 + (sy > 0.0 ? wy.y / sy : 0.0)) / resolution;
-        float reachY = pairReach(2 * b, bilinear, centre);
-        for (int a = 0; a < blocks; ++a) {
-            vec2 wx = pairWeights(2 * a, kernel.f.x, kernel.texels);
-            float sx = wx.x + wx.y;
-            float x = (kernel.origin.x + float(2 * a) + 0.5 + (sx > 0.0 ? wx.y / sx : 0.0)) / resolution;
-            float reference = coord.z - slope * length(vec2(pairReach(2 * a, bilinear, centre), reachY));
-            lit += sx * sy * texture(uShadowMap, vec3(x, y, reference));
+    for (int b = 0; b < k.blocks; ++b) {
+        vec2 wy = pairWeights(2 * b, k.f.y, k.texels);
+        float reachY = pairReach(2 * b, k.bilinear, k.centre);
+        for (int a = 0; a < k.blocks; ++a) {
+            vec2 wx = pairWeights(2 * a, k.f.x, k.texels);
+            float reference = coord.z - slope * length(vec2(pairReach(2 * a, k.bilinear, k.centre), reachY));
+            lit += folded ? foldedBlock(k, a, b, wx, wy, reference)
+                          : gatheredBlock(k, a, b, wx, wy, reference);
         }
     }
     return lit;
@@ -204,8 +198,7 @@ vec3 shadowTerm(ShadowInput s) {
         float decided = classifyByDepthRange(coord, slope);
         if (decided >= 0.0) return vec3(decided);
     }
-    if (uSampling == 1) return vec3(pcfGather(coord, slope) / float(uKernel * uKernel));
-    if (uSampling == 2) return vec3(pcfFolded(coord, slope) / float(uKernel * uKernel));
+    if (uSampling != 0) return vec3(pcfBlocks(coord, slope, uSampling == 2) / float(uKernel * uKernel));
     // The smallest kernels with the size a constant (the call is inlined, so its loops have fixed
     // bounds). On an H200 (docs/results/h200-2026-12-03-issue10) the shadow term fell 46% at 3 x 3
     // and 6-21% at 5 x 5 (forest the most), with the same image; from 7 x 7 up, and for gather and

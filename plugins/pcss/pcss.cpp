@@ -32,10 +32,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <shadowlab/kit/cube_depth_map.h>
-#include <shadowlab/kit/depth_map.h>
-#include <shadowlab/kit/depth_range_mips.h>
 #include <shadowlab/kit/disc_offset_texture.h>
+#include <shadowlab/kit/filtered_depth_maps.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
@@ -53,9 +51,6 @@ constexpr ParamDesc kFilterGrid{"filter_grid", "filter samples n_f", ParamType::
      "Filtering: n_f x n_f jittered disc samples scaled to the estimated penumbra. Few samples give "
      "coarse, noisy penumbrae; many cost n_f^2 lookups in penumbra pixels (the outer ring decides elsewhere).",
      nullptr};
-constexpr ParamDesc kSets{"sets", "sets m", ParamType::Int, 1, 32, 16, "",
-     "m x m different sample sets tiled over the screen (pixel mod m). 1 shows banding; small values a "
-     "repeating noise pattern; memory grows with m^2.", nullptr};
 constexpr ParamDesc kBilinear{"bilinear", "bilinear taps", ParamType::Bool, 0, 1, 1, "",
      "Each filter tap compares the 2x2 nearest texels and blends them (what the texture unit's GL_LINEAR "
      "comparison does). Off: narrow penumbrae near contacts alias and the noise is coarser.", nullptr};
@@ -69,13 +64,13 @@ constexpr ParamDesc kSearchBound{"search_bound", "blocker search bound", ParamTy
      "same image as 'min-depth', fewer lookups).",
      "near plane|min-depth|depth-range"};
 
-#define PCSS_PARAMS(X)                          \
-    X(int, resolution, kit::resolutionParam())  \
-    X(int, search_grid, kSearchGrid)            \
-    X(int, filter_grid, kFilterGrid)            \
-    X(int, sets, kSets)                         \
-    X(bool, bilinear, kBilinear)                \
-    X(int, search_bound, kSearchBound)          \
+#define PCSS_PARAMS(X)                         \
+    X(int, resolution, kit::resolutionParam()) \
+    X(int, search_grid, kSearchGrid)           \
+    X(int, filter_grid, kFilterGrid)           \
+    X(int, sets, kit::discSetsParam())         \
+    X(bool, bilinear, kBilinear)               \
+    X(int, search_bound, kSearchBound)         \
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, PCSS_PARAMS);
 constexpr TechniqueDesc kDescriptor = kit::describe(
@@ -97,7 +92,7 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
         uniforms_.create(host(), "pcss uniforms");
         cubeMinDepthUniforms_.create(host(), "pcss cube min-depth uniforms");
         minDepthFbo_ = kit::makeFramebuffer(host(), "cube min-depth mips");
-        return map_.create(host(), error) && cube_.create(host(), error) && depthRange_.create(host(), error) &&
+        return maps_.create(host(), error) &&
                cubeMinDepthProgram_.build(host(), {.vertexFile = "fullscreen.vert", .fragmentFile = "pcss_cube_min_depth.frag"},
                                           error);
     }
@@ -108,12 +103,10 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
         searchOffsets_.ensure(host(), p.search_grid, sets, "search disc offsets (m x m x n_s^2/2)", 2);
         filterOffsets_.ensure(host(), p.filter_grid, sets, "filter disc offsets (m x m x n_f^2/2)");
         // Raw depths: the blocker search reads them (sampled without comparison).
-        const kit::DepthMapConfig config = kit::depthMapConfig(p);
-        if (frame.light.type == LightType::Point) {
-            cube_.render(frame, config);
+        if (!maps_.render(frame, kit::depthMapConfig(p))) {
             // The cube path bounds its search with min-depth mips per face (search_bound >= 1).
             if (p.search_bound >= 1) {
-                ensureCubeMinDepth(cube_.resolution());
+                ensureCubeMinDepth(maps_.cube().resolution());
                 buildCubeMinDepthMips();
             } else {
                 cubeMinDepth_.reset();
@@ -121,41 +114,33 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
             }
             return;
         }
-        map_.render(frame, config);
         // The blocker search and filter discs pcss.glsl uses (eq. 3.17-3.20), for the host's kernel view.
-        FilterFootprint footprint = map_.filterFootprint();
-        footprint.kernel = FilterKernel::Pcss;
-        footprint.taps = filterOffsets_.n();
-        footprint.bilinear = p.bilinear ? 1 : 0;
-        footprint.sets = sets;
-        footprint.discSeed = 1;     // filterOffsets_.ensure's default
-        footprint.searchTaps = searchOffsets_.n();
-        footprint.searchSeed = 2;   // as searchOffsets_.ensure above
-        footprint.searchBound = uint32_t(p.search_bound);
-        footprint.lightSize = lightSizeInLightSpace(frame.light);
-        footprint.coneBias = p.cone_bias ? 1.0f : 0.0f;
-        kit::reportFilterFootprint(host(), footprint);
-        if (p.search_bound >= 1)
-            depthRange_.build(map_.texture(), map_.resolution(), "depth-range mips");
-        else
-            depthRange_.reset();   // eq. 3.18 as printed needs no mips
+        maps_.map().reportFilter({.kernel = FilterKernel::Pcss,
+                                  .taps = filterOffsets_.n(),
+                                  .bilinear = p.bilinear ? 1u : 0u,
+                                  .sets = sets,
+                                  .discSeed = 1,     // filterOffsets_.ensure's default
+                                  .searchTaps = searchOffsets_.n(),
+                                  .searchSeed = 2,   // as searchOffsets_.ensure above
+                                  .searchBound = uint32_t(p.search_bound),
+                                  .lightSize = lightSizeInLightSpace(frame.light),
+                                  .coneBias = p.cone_bias ? 1.0f : 0.0f});
+        maps_.updateDepthRange(p.search_bound >= 1);   // eq. 3.18 as printed needs no mips
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
         using namespace shared::pcss;
         const Params p = Params::read(params);
+        // The 2D map raw (the search reads depths); the cube compares (the bilinear taps).
+        maps_.bindMainPass(frame, SamplerKind::Nearest, SamplerKind::CompareLinear);
         if (frame.light.type == LightType::Point) {
-            cube_.bindMainPass(SamplerKind::CompareLinear);   // the bilinear taps
-            glBindTextureUnit(kCubeRawUnit, cube_.texture());
+            glBindTextureUnit(kCubeRawUnit, maps_.cube().texture());
             glBindSampler(kCubeRawUnit, host().sampler(SamplerKind::Nearest));
             glBindTextureUnit(kCubeMinDepthUnit, cubeMinDepth_);
-        } else {
-            map_.bindMainPass(SamplerKind::Nearest);
         }
         glBindTextureUnit(kSearchOffsetsUnit, searchOffsets_.texture());
         glBindTextureUnit(kFilterOffsetsUnit, filterOffsets_.texture());
-        depthRange_.bindMainPass();
-        glBindTextureUnit(kCompareUnit, map_.texture());
+        glBindTextureUnit(kCompareUnit, maps_.map().texture());
         glBindSampler(kCompareUnit, host().sampler(SamplerKind::CompareLinear));
         uniforms_.set({{}, searchOffsets_.n(), filterOffsets_.n(), p.cone_bias ? 1.0f : 0.0f,
                        lightSizeInLightSpace(frame.light), p.bilinear ? 1 : 0, p.search_bound, 0, 0});
@@ -165,7 +150,7 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     // an orthographic map (directional light) tan(angular radius), the light's width per unit of
     // depth in the limit described at the top of this file. Capped below 90 degrees.
     float lightSizeInLightSpace(const LightInfo& light) const {
-        if (light.type == LightType::Point || map_.lightSpace().perspective) return light.size;
+        if (light.type == LightType::Point || maps_.map().lightSpace().perspective) return light.size;
         return std::tan(std::min(light.size, 1.4f));
     }
 
@@ -192,7 +177,7 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
         glDisable(GL_DEPTH_TEST);
         cubeMinDepthProgram_.use();
         cubeMinDepthUniforms_.bind();
-        glBindTextureUnit(shared::pcss::kCubeMinDepthSourceUnit, cube_.texture());
+        glBindTextureUnit(shared::pcss::kCubeMinDepthSourceUnit, maps_.cube().texture());
         glBindSampler(shared::pcss::kCubeMinDepthSourceUnit, host().sampler(SamplerKind::Nearest));
         glBindTextureUnit(shared::pcss::kMinDepthSourceUnit, cubeMinDepth_);
         glBindSampler(shared::pcss::kMinDepthSourceUnit, 0);
@@ -205,7 +190,7 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
             for (int face = 0; face < 6; ++face) {
                 glNamedFramebufferTextureLayer(minDepthFbo_, GL_COLOR_ATTACHMENT0, cubeMinDepth_, level, face);
                 glNamedFramebufferDrawBuffer(minDepthFbo_, GL_COLOR_ATTACHMENT0);
-                cubeMinDepthUniforms_.update({{}, level - 1, face, cube_.resolution(), 0});
+                cubeMinDepthUniforms_.update({{}, level - 1, face, maps_.cube().resolution(), 0});
                 host().drawFullscreenTriangle();
             }
         }
@@ -214,9 +199,7 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
         glBindTextureUnit(shared::pcss::kMinDepthSourceUnit, 0);
     }
 
-    kit::DepthMap map_;
-    kit::DepthRangeMips depthRange_;
-    kit::CubeDepthMap cube_;
+    kit::FilteredDepthMaps maps_;
     kit::Program cubeMinDepthProgram_;
     kit::Texture cubeMinDepth_;
     int cubeMinDepthSize_ = 0;

@@ -20,11 +20,9 @@
 #include <string>
 #include <vector>
 
-#include <shadowlab/kit/focus.h>
 #include <shadowlab/kit/handles.h>
-#include <shadowlab/kit/light_target.h>
 #include <shadowlab/kit/params.h>
-#include <shadowlab/kit/stochastic_shared.h>
+#include <shadowlab/kit/stochastic_light_pass.h>
 #include <shadowlab/kit/technique_base.h>
 
 #include "stochastic_sm_shared.h"
@@ -65,7 +63,6 @@ constexpr ParamDesc kMsaa{"msaa", "MSAA samples", ParamType::Enum, 0, 3, 0, "",
     X(float, slope_bias, kit::slopeBiasParam())       \
     SHADOWLAB_FIT_PARAMS(X)
 SHADOWLAB_PARAMS(Params, STOCHASTIC_SM_PARAMS);
-using Id = Params::Id;
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "stochastic-sm",
@@ -105,9 +102,7 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
         sampleCounts_.assign(size_t(std::max(counts, 0)), 0);
         if (counts > 0)
             glGetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, GL_DEPTH_COMPONENT32F, GL_SAMPLES, counts, sampleCounts_.data());
-        target_.create(host(), "stochastic shadow map");
-        mapUniforms_.create(host(), "stochastic shadow map uniforms");
-        passUniforms_.create(host(), "stochastic light pass uniforms");
+        lightPass_.create(host(), "stochastic shadow map");
         uniforms_.create(host(), "stochastic-sm uniforms");
         return true;
     }
@@ -129,27 +124,20 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
-        const int resolution = p.resolution;
         const int samples = mapSamples(p.msaa);
         // The host's image viewer reads single-sample textures only: no debug image of a
         // multisampled map (registered anyway, so the entry never names a deleted texture).
-        if (target_.ensure({.resolution = resolution, .samples = samples}))
-            host().registerDebugImage("stochastic shadow map", samples ? 0u : target_.depth(), DebugImageKind::Depth);
+        if (lightPass_.ensure({.resolution = p.resolution, .samples = samples}))
+            host().registerDebugImage("stochastic shadow map", samples ? 0u : lightPass_.target().depth(), DebugImageKind::Depth);
         host().reportStatistic("map samples per texel", samples ? samples : 1);
         GpuPass pass(host(), "shadow map");
-        const kit::FocusedLightSpace focused = kit::focusLightSpace(host(), frame, kit::readFit(params, Id::fit, Id::snap), resolution);
-        const LightSpace& lightSpace = focused.light;
-        mapUniforms_.set(kit::lightSpaceUniforms(lightSpace, resolution));
-        kit::reportShadowMap(host(), lightSpace.viewProjection, {resolution, resolution});
-        passUniforms_.set({{}, frame.randomSeed, p.noise, 0.0f, 0.0f});
-        target_.bind();
+        lightPass_.begin(frame, kit::fitConfig(p), {{}, 0u, p.noise, 0.0f, 0.0f});   // bias: polygon offset
         glClear(GL_DEPTH_BUFFER_BIT);
         glEnable(GL_POLYGON_OFFSET_FILL);
         glPolygonOffset(p.slope_bias, p.constant_bias);
-        host().drawScene(kit::culledDraw(DrawSet::OpaqueCasters, focused.cullPlanes), opaqueProgram_.use());
+        lightPass_.draw(DrawSet::OpaqueCasters, opaqueProgram_);
         // The same depth test and writes: a kept translucent fragment (or sample) is an opaque one.
-        const kit::Program& translucent = samples ? translucentMsProgram_ : translucentProgram_;
-        host().drawScene(kit::culledDraw(DrawSet::TranslucentCasters, focused.cullPlanes), translucent.use());
+        lightPass_.draw(DrawSet::TranslucentCasters, samples ? translucentMsProgram_ : translucentProgram_);
         samples_ = samples;
     }
 
@@ -158,10 +146,10 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
         const bool bilinear = p.hardware_filter;
         // One map is bound, on its own unit by type (sampler2DShadow or sampler2DMS); the other unit
         // gets no texture, so it never holds one of the wrong type.
-        glBindTextureUnit(kit::kDepthMapUnit, samples_ ? 0u : target_.depth());
+        glBindTextureUnit(kit::kDepthMapUnit, samples_ ? 0u : lightPass_.target().depth());
         glBindSampler(kit::kDepthMapUnit, host().sampler(bilinear ? SamplerKind::CompareLinear : SamplerKind::CompareNearest));
-        glBindTextureUnit(shared::stochastic_sm::kMultisampleMapUnit, samples_ ? target_.depth() : 0u);
-        mapUniforms_.bind();
+        glBindTextureUnit(shared::stochastic_sm::kMultisampleMapUnit, samples_ ? lightPass_.target().depth() : 0u);
+        lightPass_.bindMainPass();
         uniforms_.set({{}, p.kernel, bilinear ? 1 : 0, p.cone_bias ? 1.0f : 0.0f, samples_});
     }
 
@@ -170,9 +158,7 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
     kit::Program translucentMsProgram_;   // STOCHASTIC_SM_MSAA: per-sample coin flips
     std::vector<GLint> sampleCounts_;      // offered for multisample 32F depth, from setup()
     int samples_ = 0;                      // of the map rendered this frame; 0 single-sample
-    kit::LightTarget target_;
-    kit::UniformBlock<kit::DepthMapUniforms> mapUniforms_;
-    kit::UniformBlock<shared::stochastic::StochasticPassUniforms> passUniforms_;
+    kit::StochasticLightPass lightPass_;
     kit::UniformBlock<shared::stochastic_sm::StochasticSmUniforms> uniforms_;
 };
 

@@ -18,25 +18,16 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kMinVariance{"min_variance", "minimum variance", ParamType::Float, 0, 0.001, 0.00002, "depth^2",
-     "Lower clamp of the variance sigma^2, in squared depth normalised to [0, 1] over the casters (seed 000 "
-     "suggests 2e-5). It guards eq. 3.14 against rounding: at 0, M2 - M1^2 speckles lit surfaces with "
-     "shadow (acne) unless blur or the derivative-based M2 add variance; large values lighten contact "
-     "shadows and the inner penumbra.", nullptr};
-constexpr ParamDesc kLightBleeding{"light_bleeding", "light-bleeding reduction", ParamType::Float, 0, 0.95, 0.0, "",
-     "Remaps p_max from [a, 1] to [0, 1], so bounds below a become full shadow; 0 is off. Seed 000 section "
-     "3.2.5: small values leave the halo of light behind overlapping occluders (Fig. 4.12c), large ones "
-     "remove it but shrink and darken penumbrae until the shadow looks hard again.", nullptr};
 constexpr ParamDesc kDerivativeMoment{"derivative_moment", "derivative-based M2", ParamType::Bool, 0, 1, 0, "",
      "Add 1/4 (dd/dx^2 + dd/dy^2) to the second moment as it is rendered, a slope-scaled bias that stops "
      "tilted surfaces from shadowing themselves without hand-tuned offsets. This is seed 000 eq. 3.16; off, "
      "only the minimum variance and the blur fight acne; on, shadows lighten a little where casters touch "
      "steeply tilted receivers.", nullptr};
 
-#define VSM_PARAMS(X)                             \
-    SHADOWLAB_MOMENT_MAP_PARAMS(X, 1024)          \
-    X(float, min_variance, kMinVariance)          \
-    X(float, light_bleeding, kLightBleeding)      \
+#define VSM_PARAMS(X)                                   \
+    SHADOWLAB_MOMENT_MAP_PARAMS(X, 1024)                \
+    X(float, min_variance, kit::minVarianceParam())     \
+    X(float, light_bleeding, kit::lightBleedingParam()) \
     X(bool, derivative_moment, kDerivativeMoment)
 SHADOWLAB_PARAMS(Params, VSM_PARAMS);
 
@@ -55,19 +46,16 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .debugViews = "footprint|texel-grid|coverage|focus-body"},
     Params::table);
 
-class VarianceShadowMaps final : public kit::MomentTechnique<shared::vsm::VsmUniforms> {
+class VarianceShadowMaps final : public kit::MomentTechnique<Params, shared::vsm::VsmUniforms> {
 public:
     VarianceShadowMaps() : MomentTechnique("vsm_moments.glsl") {}
 
 private:
-    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const Params p = Params::read(params);
-        kit::MomentMapConfig config = kit::readCommonParams(params);
+    shared::vsm::VsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
         config.format = GL_RG32F;   // 32 bits per moment: M2 - M1^2 cancels badly in 16 bits
         config.clearValue = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);   // d = 1: M1 = 1, M2 = 1
         config.momentsNeedDerivatives = p.derivative_moment;   // eq. 3.16 takes dFdx, dFdy
-        render(frame, config, {{}, p.derivative_moment ? 1 : 0, p.min_variance,
-                       p.light_bleeding, 0.0f});
+        return {{}, p.derivative_moment ? 1 : 0, p.min_variance, p.light_bleeding, 0.0f};
     }
 };
 

@@ -112,16 +112,16 @@ public:
     // The focus body B (seed 002 eq. 4.2) the next reportToHost() gives the host; empty: none.
     void setFocusBody(const ConvexBody& body) { bodyEdges_ = bodyEdges(body); }
 
-    // The map's part of what the host needs to probe a filter kernel (FilterFootprint): the raw
-    // depth texture and the block's depth conventions. The technique fills in its kernel.
-    FilterFootprint filterFootprint() const {
+    // Tells the host the filter a technique applies to this frame's map (SHADOWLAB_EXT_FILTER_FOOTPRINT,
+    // for its kernel view and --probe): `kernel` holds the technique's fields (kernel, taps, spacing,
+    // ...), the map adds its own (the raw depth texture and the block's depth conventions).
+    void reportFilter(FilterFootprint kernel) const {
         const DepthMapUniforms u = mainPassUniforms();
-        FilterFootprint footprint;
-        footprint.depthTexture = texture_;
-        footprint.lightDepth = u.uLightDepth;
-        footprint.lightWorldSize = u.uLightWorldSize4;
-        footprint.lightAxis = u.uLightAxis4;
-        return footprint;
+        kernel.depthTexture = texture_;
+        kernel.lightDepth = u.uLightDepth;
+        kernel.lightWorldSize = u.uLightWorldSize4;
+        kernel.lightAxis = u.uLightAxis4;
+        reportFilterFootprint(*host_, kernel);
     }
 
     // The depth pass alone, from any light space and without a timer scope (area-reference draws

@@ -46,3 +46,16 @@ private:
 };
 
 } // namespace shadowlab::jittered_disk
+
+namespace shadowlab::kit {
+
+// The `sets` parameter of the techniques that tile the screen with these sets (adaptive-pcf, pcss).
+constexpr ParamDesc discSetsParam() {
+    return {"sets", "sets m", ParamType::Int, 1, 32, 16, "",
+            "m x m different sample sets tiled over the screen (pixel mod m). 1 brings back the banding of a "
+            "single set; below about 14 the noise repeats visibly in motion; memory grows with m^2 (m x m x "
+            "n^2/2 texels).",
+            nullptr};
+}
+
+} // namespace shadowlab::kit

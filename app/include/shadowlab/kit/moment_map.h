@@ -54,34 +54,65 @@ enum CommonParam : uint32_t { kResolution, kKernel, kFilter, kMipmaps, kBlur, kF
 // Their descriptors (the X-macro group SHADOWLAB_MOMENT_MAP_PARAMS below lists them, kit/params.h).
 constexpr ParamDesc momentResolutionParam(double defaultValue) {
     return {"resolution", "resolution", ParamType::Int, 128, 4096, defaultValue, "texels",
-     "Width and height of the moment map. Low values blur the shadow and lose small occluders; memory, shadow "
-     "pass and blur time grow with the square.", nullptr};
+            "Width and height of the moment map. Low values blur the shadow and lose small occluders; memory, "
+            "shadow pass and blur time grow with the square.",
+            nullptr};
 }
-constexpr ParamDesc kMomentKernelParam{"kernel", "blur kernel", ParamType::Int, 1, 31, 5, "texels",
-     "Taps of the separable blur per direction (1 = no blur, only bilinear filtering). Wider kernels give "
-     "softer, better antialiased edges at a constant width (not physically based) and leak more light where "
-     "occluders overlap; the blur costs two passes of N taps per texel.", nullptr};
-constexpr ParamDesc kMomentFilterParam{"filter", "blur filter", ParamType::Enum, 0, 1, 0, "",
-     "Weights of the blur: box (seed 000's choice, flat and cheapest) or Gaussian (sigma = kernel / 6: a "
-     "smoother penumbra, narrower for the same kernel).", "box|gaussian"};
-constexpr ParamDesc kMomentMipmapsParam{"mipmaps", "mipmaps", ParamType::Bool, 0, 1, 0, "",
-     "Build mipmaps after the blur and sample trilinearly, so distant or grazing receivers average the map "
-     "instead of aliasing. Off, minified shadows shimmer; on, they widen and leak more where the footprint is "
-     "large, and memory grows by a third.", nullptr};
-constexpr ParamDesc kMomentBlurParam{"blur", "blur pass", ParamType::Enum, 0, 1, 1, "",
-     "How the moments are made and blurred; both give the same map. fragment: the light renders the moments "
-     "into a colour target (16 bytes a texel for evsm and msm) and two full-screen passes blur it, a texture "
-     "lookup per tap. compute: the light renders depth only, one compute pass turns it into moments and blurs "
-     "them along x in shared memory, a second blurs along y (vsm's derivative-based M2 still renders its "
-     "moments, then blurs in compute). Compare the passes' times in the timing panel or with --sweep.",
-     "fragment|compute"};
+constexpr ParamDesc momentKernelParam() {
+    return {"kernel", "blur kernel", ParamType::Int, 1, 31, 5, "texels",
+            "Taps of the separable blur per direction (1 = no blur, only bilinear filtering). Wider kernels give "
+            "softer, better antialiased edges at a constant width (not physically based) and leak more light "
+            "where occluders overlap; the blur costs two passes of N taps per texel.",
+            nullptr};
+}
+constexpr ParamDesc momentFilterParam() {
+    return {"filter", "blur filter", ParamType::Enum, 0, 1, 0, "",
+            "Weights of the blur: box (seed 000's choice, flat and cheapest) or Gaussian (sigma = kernel / 6: a "
+            "smoother penumbra, narrower for the same kernel).",
+            "box|gaussian"};
+}
+constexpr ParamDesc momentMipmapsParam() {
+    return {"mipmaps", "mipmaps", ParamType::Bool, 0, 1, 0, "",
+            "Build mipmaps after the blur and sample trilinearly, so distant or grazing receivers average the "
+            "map instead of aliasing. Off, minified shadows shimmer; on, they widen and leak more where the "
+            "footprint is large, and memory grows by a third.",
+            nullptr};
+}
+constexpr ParamDesc momentBlurParam() {
+    return {"blur", "blur pass", ParamType::Enum, 0, 1, 1, "",
+            "How the moments are made and blurred; both give the same map. fragment: the light renders the "
+            "moments into a colour target (16 bytes a texel for evsm and msm) and two full-screen passes blur "
+            "it, a texture lookup per tap. compute: the light renders depth only, one compute pass turns it into "
+            "moments and blurs them along x in shared memory, a second blurs along y (vsm's derivative-based M2 "
+            "still renders its moments, then blurs in compute). Compare the passes' times in the timing panel or "
+            "with --sweep.",
+            "fragment|compute"};
+}
+
+// Two that vsm, evsm and msm share, with one meaning (esm has neither): listed by each of them.
+constexpr ParamDesc minVarianceParam() {
+    return {"min_variance", "minimum variance", ParamType::Float, 0, 0.001, 0.00002, "depth^2",
+            "Lower clamp of the variance sigma^2, in squared depth normalised to [0, 1] over the casters (seed 000 "
+            "suggests 2e-5; evsm scales it to each warped depth by the square of the warp's slope). It guards "
+            "eq. 3.14 against rounding: at 0, M2 - M1^2 speckles lit surfaces with shadow (acne) unless blur or "
+            "vsm's derivative-based M2 add variance; large values lighten contact shadows and the inner penumbra.",
+            nullptr};
+}
+constexpr ParamDesc lightBleedingParam() {
+    return {"light_bleeding", "light-bleeding reduction", ParamType::Float, 0, 0.95, 0.0, "",
+            "Remaps the visibility from [a, 1] to [0, 1], so bounds below a become full shadow; 0 is off. Seed 000 "
+            "section 3.2.5: small values leave the halo of light behind overlapping occluders (Fig. 4.12c), large "
+            "ones remove it but shrink and darken penumbrae until the shadow looks hard again. vsm needs it most; "
+            "evsm and msm leave far less of the halo and need far less.",
+            nullptr};
+}
 
 #define SHADOWLAB_MOMENT_MAP_PARAMS(X, defaultResolution)                                  \
     X(int, resolution, ::shadowlab::kit::momentResolutionParam(defaultResolution))         \
-    X(int, kernel, ::shadowlab::kit::kMomentKernelParam)                                   \
-    X(int, filter, ::shadowlab::kit::kMomentFilterParam)                                   \
-    X(bool, mipmaps, ::shadowlab::kit::kMomentMipmapsParam)                                \
-    X(int, blur, ::shadowlab::kit::kMomentBlurParam)                                       \
+    X(int, kernel, ::shadowlab::kit::momentKernelParam())                                  \
+    X(int, filter, ::shadowlab::kit::momentFilterParam())                                  \
+    X(bool, mipmaps, ::shadowlab::kit::momentMipmapsParam())                               \
+    X(int, blur, ::shadowlab::kit::momentBlurParam())                                      \
     SHADOWLAB_FIT_PARAMS(X)
 
 inline MomentMapConfig readCommonParams(const ParamValues& params) {
@@ -285,22 +316,29 @@ private:
     MomentLightSpace space_{};
 };
 
-// A technique built on one filtered moment map and its own block `Block` (binding 2, read by its
-// moment file and its main-pass GLSL): setup and bindMainPass are done here; the plugin writes
-// renderShadows() (its format, clear value and block values) and calls render().
-template <class Block>
+// A technique built on one filtered moment map, its parameters `Params` (a SHADOWLAB_PARAMS struct
+// whose list starts with SHADOWLAB_MOMENT_MAP_PARAMS) and its own block `Block` (binding 2, read by
+// its moment file and its main-pass GLSL): setup, the frame's passes and bindMainPass are done here;
+// the plugin states only what is its own in configure().
+template <class Params, class Block>
 class MomentTechnique : public TechniqueBase {
 public:
     explicit MomentTechnique(const char* momentFile) : momentFile_(momentFile) {}
 
 protected:
+    // The map's format and empty texel (clearValue, = momentsFromDepth(1)) and whether its moments
+    // need derivatives, set in `config` (the shared parameters already read into it); returns the
+    // values of the technique's block for this frame.
+    virtual Block configure(const Params& p, MomentMapConfig& config) const = 0;
+
     bool setup(std::string& error) override {
         uniforms_.create(host(), "technique uniforms");
         return map_.create(host(), momentFile_, error) && cube_.create(host(), momentFile_, error);
     }
     // Point lights: the cube moment map (kit/cube_moment_map.h), the 2D map otherwise.
-    void render(const FrameContext& frame, const MomentMapConfig& config, const Block& block) {
-        uniforms_.set(block);
+    void renderShadows(const FrameContext& frame, const ParamValues& params) final {
+        MomentMapConfig config = readCommonParams(params);
+        uniforms_.set(configure(Params::read(params), config));
         if (frame.light.type == LightType::Point)
             cube_.render(frame, config);
         else

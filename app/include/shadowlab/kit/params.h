@@ -141,6 +141,15 @@ constexpr ParamDesc hardwareFilterParam(const char* label = "hardware 2x2 filter
             "staircase over one texel at almost no cost (seed 000 Fig. 3.11c against 3.11b).",
             nullptr};
 }
+// `hardware_filter` of the kernels that take it per tap (pcf, adaptive-pcf).
+constexpr ParamDesc bilinearTapsParam() {
+    return {"hardware_filter", "bilinear taps", ParamType::Bool, 0, 1, 0, "",
+            "Each tap is the texture unit's 2x2 bilinear comparison, which removes the banding of plain taps "
+            "and smooths penumbrae at small kernels for almost no cost (seed 000 Fig. 3.11c against 3.11b); off "
+            "shows the n^2 + 1 discrete shades and the texel steps. Fractional taps rarely agree exactly, so "
+            "adaptive-pcf's early out is taken less often.",
+            nullptr};
+}
 constexpr ParamDesc coneBiasParam() {
     return {"cone_bias", "cone bias", ParamType::Bool, 0, 1, 1, "",
             "Receiver bias growing with each sample's distance from the kernel centre, scaled by the "
