@@ -123,6 +123,7 @@ bool Renderer::init(std::string& error) {
     depthOnlyProgram_ = shaders_.build(hostShaderRequest("main.vert", "", "host depth pre-pass"), error);
     if (!depthOnlyProgram_) return false;
     eyeBlurProgram_ = shaders_.build(hostShaderRequest("fullscreen.vert", "eye_blur.frag", "host eye-space blur"), error);
+    overdraw_.create();
     return eyeBlurProgram_ != 0;
 }
 
@@ -133,6 +134,7 @@ GLuint Renderer::sampler(SamplerKind kind) const {
 
 void Renderer::setScene(const Scene& scene) {
     scene_ = &scene;
+    overdraw_.discardPending();   // counts of the previous scene
     adjacencyRanges_.clear();   // rebuilt on the first adjacency draw of this scene
     meshClosed_.clear();
     for (GlBuffer& buffer : rayTracingBuffers_) buffer.reset();
@@ -462,10 +464,12 @@ void Renderer::mainDepthPrepass(FrameOutputs outputs) {
     const GLuint program = shaders_.program(depthOnlyProgram_);
     glUseProgram(program);
     bindSceneGeometry(program);
+    const bool counting = beginOverdrawCount();
     for (uint32_t index : opaqueBatches_) {
         const Batch& batch = batches_[index];
         drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
     }
+    if (counting) overdraw_.end();
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     depthPrepassed_ = true;
 }
@@ -562,9 +566,19 @@ void Renderer::eyeBlur(float width, float referenceDepth) {
     resetPipelineState();
 }
 
+bool Renderer::beginOverdrawCount() {
+    if (!overdrawArmed_) return false;
+    overdrawArmed_ = false;
+    const uint64_t samples = uint64_t(size_.x) * uint64_t(size_.y) * uint64_t(std::max(msaaSamples_, 1));
+    return overdraw_.begin(samples);
+}
+
 void Renderer::drawMainPassObjects(GLuint program, FrameOutputs outputs) {
     if (!scene_) return;
+    // After a pre-pass (EQUAL) only the visible surfaces pass: the pre-pass counted already.
+    const bool counting = !depthPrepassed_ && beginOverdrawCount();
     drawOpaque(program);
+    if (counting) overdraw_.end();
     if (opaqueBatches_.size() == batches_.size()) return;
     // Translucent surfaces: blended colour, back to front from the camera by their bounds'
     // centres, without touching the G-buffer or depth, so the accuracy targets hold the opaque
