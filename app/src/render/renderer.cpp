@@ -485,6 +485,17 @@ void Renderer::beginMainPass(GLuint program, FrameOutputs outputs) {
     glDepthMask(depthPrepassed_ ? GL_FALSE : GL_TRUE);
     glDisable(GL_BLEND);
     glDisable(GL_STENCIL_TEST);
+    if (depthPrepassed_) {
+        // Surfaces whose depths tie (coplanar, or a huge depth range's quantised far end) all pass
+        // EQUAL, where LESS kept the first drawn: a stencil count lets only the first fragment of
+        // a sample through, the same one LESS keeps (the same draw order), so the image is that of
+        // the main pass without the pre-pass, and no sample is shaded twice. The pre-pass cleared
+        // the stencil to 0.
+        glEnable(GL_STENCIL_TEST);
+        glStencilMask(0xFF);
+        glStencilFunc(GL_EQUAL, 0, 0xFF);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    }
     glDisable(GL_POLYGON_OFFSET_FILL);
     glDisable(GL_CULL_FACE);          // planes are single-sided quads seen from both sides
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -579,6 +590,7 @@ void Renderer::drawMainPassObjects(GLuint program, FrameOutputs outputs) {
     const bool counting = !depthPrepassed_ && beginOverdrawCount();
     drawOpaque(program);
     if (counting) overdraw_.end();
+    glDisable(GL_STENCIL_TEST);   // the pre-pass's shade-once count is for the opaque surfaces only
     if (opaqueBatches_.size() == batches_.size()) return;
     // Translucent surfaces: blended colour, back to front from the camera by their bounds'
     // centres, without touching the G-buffer or depth, so the accuracy targets hold the opaque
