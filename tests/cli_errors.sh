@@ -35,6 +35,19 @@ expect 2 "has no parameter 'kernel'" -- render --backend osmesa -t shadowmap --s
 expect 2 "parameter 'shadow_blur': 99 is out of range" -- render --backend osmesa -t shadowmap --set host.shadow_blur=99 --out "$tmp/a.png"
 expect 2 "'flat' is not one of phong, none" -- render --backend osmesa -t shadowmap --set host.lighting=flat --out "$tmp/a.png"
 expect 2 "host.shadow_blur=...: parameter 'shadow_blur': 40 is out of range" -- bench --backend osmesa --techniques shadowmap --sweep host.shadow_blur=0,40 --out "$tmp/b.json"
+# The depth pre-pass (issue 32): auto | on | off, 0/1 and the bare flag of older command lines.
+expect 2 "--depth-prepass 'sometimes': expected auto, on or off" -- render --backend osmesa -t shadowmap --depth-prepass sometimes --out "$tmp/a.png"
+expect 2 "host.depth_prepass=...: parameter 'depth_prepass': 'maybe' is not one of off, on, auto" -- bench --backend osmesa --techniques shadowmap --sweep host.depth_prepass=auto,maybe --out "$tmp/b.json"
+for form in "--depth-prepass" "--depth-prepass=on" "--depth-prepass 1" "--sweep host.depth_prepass=on"; do
+    # shellcheck disable=SC2086
+    expect 0 "wrote" -- bench --backend osmesa --size 64x48 --techniques shadowmap --frames 2 --warmup 1 $form --out "$tmp/prepass.json"
+    if ! grep -q '"depth_prepass_mode": "on"' "$tmp/prepass.json" || ! grep -q '"depth_prepass": 1' "$tmp/prepass.json"; then
+        echo "FAIL: bench $form: the row does not say the pre-pass was on"; failures=$((failures + 1))
+    fi
+done
+expect 0 "wrote" -- bench --backend osmesa --size 64x48 --techniques shadowmap --frames 2 --warmup 1 --out "$tmp/prepass.json"
+grep -q '"depth_prepass_mode": "auto"' "$tmp/prepass.json" && grep -q '"depth_prepass": 0' "$tmp/prepass.json" ||
+    { echo "FAIL: bench on cube by default: not auto, or auto chose the pre-pass"; failures=$((failures + 1)); }
 expect 2 "no such technique" -- render --backend osmesa -t nonexistent --out "$tmp/a.png"
 expect 2 "expected glfw, egl or osmesa" -- render --backend vulkan --out "$tmp/a.png"
 expect 2 "WIDTHxHEIGHT" -- render --backend osmesa --size 12by3 --out "$tmp/a.png"

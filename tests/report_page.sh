@@ -9,11 +9,8 @@ shadowlab=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 unset DISPLAY WAYLAND_DISPLAY
-cat >"$tmp/spec.json" <<'JSON'
-{"techniques": ["shadowmap", "pcf"], "scenes": ["cube"], "sizes": ["96x54"], "sweep": {"resolution": [512, 1024]},
- "frames": 2, "warmup": 1, "accuracy": true, "reference": "auto", "referenceSamples": 8}
-JSON
-"$shadowlab" report --backend osmesa --spec "$tmp/spec.json" --out "$tmp/out" --quiet >"$tmp/report.log"
+spec=$(cd "$(dirname "$0")" && pwd)/report_quick.json
+"$shadowlab" report --backend osmesa --spec "$spec" --out "$tmp/out" --quiet >"$tmp/report.log"
 /usr/bin/python3 - "$tmp/out" "$tmp/report.log" <<'PY'
 import os, re, sys
 out, log = sys.argv[1], open(sys.argv[2]).read()

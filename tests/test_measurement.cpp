@@ -125,13 +125,15 @@ TEST(HonestMeasurement, DepthPrepassLeavesTheImageAndTheAccuracyUnchanged) {
     ASSERT_TRUE(app);
     std::string error;
     for (const char* technique : {"shadowmap", "pcss"}) {
-        app->setDepthPrepass(false);
+        app->setDepthPrepassMode(DepthPrepassMode::Off);
         ASSERT_TRUE(app->renderFrame(technique, error)) << error;
+        ASSERT_FALSE(app->depthPrepassActive());
         const auto colour = test::readTarget(*app, MainTarget::Color);
         const AccuracyMetrics without = hardAccuracy(*app);
-        app->setDepthPrepass(true);
+        app->setDepthPrepassMode(DepthPrepassMode::On);
         Measurement m;
         ASSERT_TRUE(app->measure(technique, 1, 2, m, error)) << error;
+        EXPECT_EQ(m.depthPrepassFrames, 2);
         EXPECT_TRUE(m.gpuMs.count("depth pre-pass")) << "the pre-pass is timed as its own pass";
         const auto prepassColour = test::readTarget(*app, MainTarget::Color);
         ASSERT_EQ(colour.size(), prepassColour.size());
@@ -142,7 +144,7 @@ TEST(HonestMeasurement, DepthPrepassLeavesTheImageAndTheAccuracyUnchanged) {
         EXPECT_EQ(with.comparedPixels, without.comparedPixels) << technique;
         EXPECT_EQ(with.mae, without.mae) << technique;
     }
-    app->setDepthPrepass(false);
+    app->setDepthPrepassMode(DepthPrepassMode::Auto);
 }
 
 TEST(HonestMeasurement, TheCpuWaitForTheGpuIsRecordedPerFrame) {
@@ -190,9 +192,12 @@ TEST(HonestMeasurement, BenchRowsCarryTheDefinedColumnsAndFloors) {
         EXPECT_LE(row["technique_passes_ms"].get<double>(), row["frame_ms"].get<double>() + 1e-6);
         prepassRows += row["depth_prepass"].get<int>();
         EXPECT_EQ(row.contains("depth_prepass_ms"), row["depth_prepass"].get<int>() == 1) << row.dump();
+        // 0 and 1, as sweeps wrote them before `auto`, are off and on.
+        EXPECT_EQ(row["depth_prepass_mode"], row["depth_prepass"].get<int>() == 1 ? "on" : "off") << row.dump();
+        EXPECT_GT(row["depth_complexity"].get<double>(), 0.0) << row.dump();
     }
     EXPECT_EQ(prepassRows, 4);
-    EXPECT_FALSE(app->depthPrepass()) << "the sweep restores the host setting";
+    EXPECT_EQ(app->depthPrepassMode(), DepthPrepassMode::Auto) << "the sweep restores the host setting";
 
     // `none` itself, when measured, is its own floor: a shadow term of exactly zero.
     spec.techniques = {"none"};
@@ -206,7 +211,7 @@ TEST(HonestMeasurement, BenchRowsCarryTheDefinedColumnsAndFloors) {
     EXPECT_FALSE(rows[0].contains("floor_depth_ms")) << "none has no shadow map";
 }
 
-TEST(HonestMeasurement, AHostSweepValueOtherThanZeroOrOneIsRefused) {
+TEST(HonestMeasurement, AHostSweepValueOtherThanAutoOnOffIsRefused) {
     auto app = test::makeHeadlessApp("cube", {64, 48});
     ASSERT_TRUE(app);
     BenchSpec spec;
@@ -215,6 +220,7 @@ TEST(HonestMeasurement, AHostSweepValueOtherThanZeroOrOneIsRefused) {
     ASSERT_TRUE(addSweep(spec, "host.depth_prepass=0,yes", error)) << error;
     std::vector<nlohmann::json> rows;
     EXPECT_FALSE(runBench(*app, spec, rows, error));
-    EXPECT_NE(error.find("'yes' is not 0 (off) or 1 (on)"), std::string::npos) << error;
+    EXPECT_NE(error.find("host.depth_prepass"), std::string::npos) << error;
+    EXPECT_NE(error.find("'yes' is not one of off, on, auto"), std::string::npos) << error;
     EXPECT_TRUE(rows.empty());
 }

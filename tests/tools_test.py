@@ -469,6 +469,14 @@ class Fixture(unittest.TestCase):
                      "triangles-dense-default.png", "triangles-dense-default-before-instancing.png"):
             self.assertIn(name, names)
         self.assertFalse([n for n in names if n.startswith("triangles-") and "dense" not in n], names)
+        # Every chart (at 40 dpi here) keeps its legend and labels off the points.
+        labelled = 0
+        for p in charts_made:
+            with open(os.path.splitext(p)[0] + ".boxes.json") as f:
+                boxes = json.load(f)
+            self.assertEqual(charts.box_problems(boxes), [], p)
+            labelled += len(boxes["labels"])
+        self.assertGreater(labelled, 50)
         with open(os.path.join(out, "ratios.md")) as f:
             text = f.read()
         for heading in ("## Shadow pass against the depth-only floor", "## Frame-time overhead of shadowmap",
@@ -499,6 +507,67 @@ class Fixture(unittest.TestCase):
         self.assertIn("| cube | 11 | false | true | 6.421 | 4.154 | 0.65x | 4.134 | 0.64x |", text)  # gather, folded against taps
         with open(os.path.join(H200, "ratios.md")) as f:
             self.assertEqual(f.read(), text)
+
+
+class ChartBoxes(unittest.TestCase):
+    """Issue 32: legends beside the axes, Pareto labels off every marker and each other, checked
+    from the <chart>.boxes.json that charts.py writes beside each PNG (pixels of that PNG)."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory(prefix="shadowlab-chart-boxes-")
+        # The H200 run whose contact soft chart had its legend over the worst cluster and
+        # overlapping labels: 16 front points, seven of them within 0.5 ms and 10% of each other.
+        inputs = [os.path.join(H200, "default.json"), os.path.join(H200, "fast-passes.json")]
+        cls.made = run_tool("charts.py", *inputs, "--out", cls.tmp.name, "--dpi", "120")
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def boxes(self, name):
+        with open(os.path.join(self.tmp.name, name + ".boxes.json")) as f:
+            return json.load(f)
+
+    def test_every_chart_keeps_its_legend_and_labels_off_the_points(self):
+        self.assertEqual(self.made.returncode, 0, self.made.stderr)
+        pngs = self.made.stdout.split()
+        self.assertGreater(len(pngs), 10)
+        for png in pngs:
+            boxes = self.boxes(os.path.splitext(os.path.basename(png))[0])
+            self.assertEqual(charts.box_problems(boxes), [], png)
+            self.assertIsNotNone(boxes["legend"], png)
+            self.assertGreaterEqual(boxes["legend"][0], boxes["axes"][2], f"{png}: the legend is not right of the axes")
+            self.assertGreater(len(boxes["markers"]), 3, png)
+        contact = self.boxes("pareto-contact-1920x1080-soft")
+        self.assertGreaterEqual(len(contact["labels"]), 12)
+        # The boxes are those of the PNG: its size in pixels.
+        from PIL import Image
+        with Image.open(os.path.join(self.tmp.name, "pareto-contact-1920x1080-soft.png")) as image:
+            self.assertEqual(list(image.size), [round(v) for v in contact["figure"]])
+
+    def test_the_check_sees_overlaps(self):
+        # The placement before issue 32 (labels at a fixed offset, the legend inside the axes) on
+        # the same chart: the check must find both, or it could not tell a good chart from a bad one.
+        rows = results.load([os.path.join(H200, "default.json"), os.path.join(H200, "fast-passes.json")])
+        contact = results.by_scene_size(results.techniques(rows, ("depth-floor",)))[("contact", (1920, 1080))]
+        fig, info = charts.pareto_figure(contact, "contact", (1920, 1080), "soft")
+        ax = fig.axes[0]
+        self.assertEqual(charts.box_problems(charts.chart_boxes(fig)), [])
+        for text in list(ax.texts):
+            text.remove()
+        keys = results.label_keys(contact)
+        for i, row in enumerate(info["front"]):
+            ax.annotate(results.label(row, keys), (row["frame_ms"], row[info["y"]]), fontsize=6,
+                        xytext=(4, 4 if i % 2 == 0 else -9), textcoords="offset points")
+        for legend in list(fig.legends):
+            legend.remove()
+        ax.legend(fontsize=7, ncol=2)
+        problems = charts.box_problems(charts.chart_boxes(fig))
+        matplotlib.pyplot.close(fig)
+        self.assertTrue(any("covers a marker" in p for p in problems), problems)
+        self.assertTrue(any(p.startswith("labels '") and p.endswith("overlap") for p in problems), problems)
+        self.assertIn("the legend overlaps the axes", problems)
 
 
 def seed001_row(spec, technique, quads, frame, passes, main, **extra):

@@ -37,9 +37,20 @@ lines (its time and its error), not a point; the Pareto front is a dashed line a
 points is labelled with its technique and the parameters that vary on the chart. Charts of rows
 measured with the accuracy G-buffer written on every frame (files from before `frame_ms`) say so
 in their title, and so do charts whose rows come from more than one file. The `depth-floor` rows
-appear only on the triangles charts (dashed, the depth-only pass). Needs python3-matplotlib.
+appear only on the triangles charts (dashed, the depth-only pass).
+
+Legends sit in the right margin, outside the axes (the axes narrowed to make room), so they never
+cover a point. The labels of the Pareto front are placed by place_labels(): each at the first of a
+ring of positions around its point, nearest first, whose box overlaps no marker of the chart, no
+label already placed and stays inside the axes; a label moved away from its point gets a thin
+leader line. Beside each PNG, <name>.boxes.json records in pixels of that PNG (origin at the lower
+left) the axes, the legend, every label with its anchor and every marker's box; box_problems()
+checks them (no label over a marker or another label, the legend off the axes), as the tests do.
+Needs python3-matplotlib.
 """
 import argparse
+import json
+import math
 import os
 import sys
 
@@ -51,6 +62,7 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import ticker  # noqa: E402
+from matplotlib.text import Text  # noqa: E402
 
 X = "frame_ms"
 LINESTYLES = ("-", "--", ":", "-.")
@@ -76,9 +88,170 @@ def set_scale(ax, axis, values, base=10):
     return "log"
 
 
+FIGSIZE = (11, 6)   # wide enough for the axes and the legend beside them
+RIGHT_EDGE = 0.995  # the legend's right edge, in figure fractions
+GAP = 0.012         # between the axes and the legend
+
+
 def layout(fig):
     """Fixed margins: tight_layout() measured every tick label and took half the run."""
-    fig.subplots_adjust(left=0.085, right=0.985, bottom=0.085, top=0.91)
+    fig.subplots_adjust(left=0.07, right=0.985, bottom=0.085, top=0.91)
+
+
+def legend_outside(fig, ax, fontsize=7):
+    """The legend in the right margin beside the axes, its top level with theirs, never over a
+    point: the axes are narrowed to end left of it. More columns when one would be taller than the
+    axes. Returns the legend (None when nothing is labelled)."""
+    layout(fig)
+    handles, labels = ax.get_legend_handles_labels()
+    if not handles:
+        return None
+    renderer = fig.canvas.get_renderer()
+    top = ax.get_position().y1
+    axes_height = ax.get_window_extent(renderer).height
+    for ncol in (1, 2, 3):
+        legend = fig.legend(handles, labels, fontsize=fontsize, ncol=ncol, loc="upper right",
+                            bbox_to_anchor=(RIGHT_EDGE, top), borderaxespad=0.0)
+        box = legend.get_window_extent(renderer)
+        if box.height <= axes_height or ncol == 3:
+            break
+        legend.remove()
+    fig.subplots_adjust(right=RIGHT_EDGE - box.width / fig.bbox.width - GAP)
+    return legend
+
+
+def _overlap(a, b):
+    """Area shared by boxes a and b, each (x0, y0, x1, y1)."""
+    w = min(a[2], b[2]) - max(a[0], b[0])
+    h = min(a[3], b[3]) - max(a[1], b[1])
+    return w * h if w > 0 and h > 0 else 0.0
+
+
+def marker_boxes(ax):
+    """(label, box) of every marker drawn inside the axes, in display pixels: scatter points
+    (s is the marker's area in points^2: a square of side sqrt(s)) and the markers of lines."""
+    fig = ax.figure
+    ax.get_xlim(), ax.get_ylim()   # applies a pending autoscale, or transData is stale
+    scale = fig.dpi / 72.0
+    frame = ax.get_window_extent(fig.canvas.get_renderer()).extents
+    boxes = []
+
+    def add(label, points, side_pt):
+        half = side_pt * scale / 2.0
+        for x, y in ax.transData.transform(points):
+            if math.isfinite(x) and math.isfinite(y) and frame[0] <= x <= frame[2] and frame[1] <= y <= frame[3]:
+                boxes.append((label, (x - half, y - half, x + half, y + half)))
+
+    for c in ax.collections:
+        offsets, sizes = c.get_offsets(), c.get_sizes()
+        if len(offsets) and len(sizes) and c.get_visible():
+            for i, point in enumerate(offsets):
+                add(c.get_label(), [point], math.sqrt(sizes[i % len(sizes)]))
+    for line in ax.get_lines():
+        if line.get_marker() not in (None, "", " ", "None", "none") and line.get_visible():
+            add(line.get_label(), line.get_xydata(), line.get_markersize())
+    return boxes
+
+
+# Where place_labels() tries a label: rings around its point (pixels at 100 dpi, scaled with the
+# figure's), 16 directions each, upper right first.
+RADII = (5, 9, 14, 20, 28, 38, 50, 64, 80, 100, 125, 155, 190, 230)
+DIRECTIONS = [math.radians(45 + 22.5 * k * (-1) ** k) for k in range(16)]
+PAD = 2.0   # pixels kept clear around markers and labels
+
+
+def place_labels(ax, items, fontsize=6):
+    """Annotates each (text, (x, y)) of items at the nearest position around its point whose box
+    overlaps no marker, no label placed before it and lies inside the axes; the least overlapping
+    position inside the axes when there is none. Labels more than a few pixels from their point get
+    a leader line. Call after the axes' limits, scales and margins are final (legend_outside)."""
+    fig = ax.figure
+    renderer = fig.canvas.get_renderer()
+    scale = fig.dpi / 100.0
+    frame = ax.get_window_extent(renderer).extents
+    obstacles = [box for _, box in marker_boxes(ax)]
+    placed = []
+    for text, anchor in items:
+        probe = ax.text(0, 0, text, fontsize=fontsize, ha="left", va="bottom")
+        extent = probe.get_window_extent(renderer)
+        probe.remove()
+        w, h = extent.width, extent.height
+        ax_x, ax_y = ax.transData.transform(anchor)
+        best, best_cost = None, None
+        for radius in RADII:
+            r = radius * scale
+            for angle in DIRECTIONS:
+                dx, dy = math.cos(angle), math.sin(angle)
+                x0 = ax_x + r * dx - (0.0 if dx > 0.3 else w if dx < -0.3 else w / 2)
+                y0 = ax_y + r * dy - (0.0 if dy > 0.3 else h if dy < -0.3 else h / 2)
+                box = (x0, y0, x0 + w, y0 + h)
+                if box[0] < frame[0] + PAD or box[2] > frame[2] - PAD or box[1] < frame[1] + PAD or box[3] > frame[3] - PAD:
+                    continue
+                padded = (x0 - PAD, y0 - PAD, x0 + w + PAD, y0 + h + PAD)
+                cost = sum(_overlap(padded, o) for o in obstacles + placed)
+                if best_cost is None or cost < best_cost:
+                    best, best_cost = (box, r), cost
+                if cost == 0.0:
+                    break
+            if best_cost == 0.0:
+                break
+        if best is None:   # larger than the axes: at the point, as before
+            best = ((ax_x + 4, ax_y + 4, ax_x + 4 + w, ax_y + 4 + h), 0.0)
+        box, r = best
+        placed.append(box)
+        points = 72.0 / fig.dpi
+        leader = dict(arrowstyle="-", lw=0.5, color="#666666", shrinkA=0, shrinkB=2) if r > 10 * scale else None
+        ax.annotate(text, anchor, xytext=((box[0] - ax_x) * points, (box[1] - ax_y) * points),
+                    textcoords="offset points", fontsize=fontsize, ha="left", va="bottom", zorder=4,
+                    arrowprops=leader, annotation_clip=False)
+
+
+def chart_boxes(fig):
+    """What box_problems() checks, in pixels of the saved PNG (the figure's dpi): the axes, the
+    legend, each label (its text's box and its point) and each marker."""
+    renderer = fig.canvas.get_renderer()
+    ax = fig.axes[0]
+    legends = [lg for lg in fig.legends] + ([ax.get_legend()] if ax.get_legend() else [])
+
+    def extents(box):
+        return [round(v, 2) for v in box.extents]
+
+    def text_box(t):
+        # The text's own box: an Annotation's get_window_extent() adds its leader line.
+        if hasattr(t, "update_positions"):
+            t.update_positions(renderer)
+        return Text.get_window_extent(t, renderer)
+
+    return {
+        "figure": [fig.bbox.width, fig.bbox.height],
+        "dpi": fig.dpi,
+        "axes": extents(ax.get_window_extent(renderer)),
+        "legend": extents(legends[0].get_window_extent(renderer)) if legends else None,
+        "labels": [{"text": t.get_text(), "box": extents(text_box(t)),
+                    "anchor": [round(v, 2) for v in ax.transData.transform(t.xy)]}
+                   for t in ax.texts if hasattr(t, "xy")],
+        "markers": [{"label": label, "box": [round(v, 2) for v in box]} for label, box in marker_boxes(ax)],
+    }
+
+
+def box_problems(boxes):
+    """What is wrong with a chart's boxes (chart_boxes): a label over a marker (its own included) or
+    over another label, a label outside the figure, the legend over the axes. [] when nothing."""
+    problems = []
+    labels, markers = boxes["labels"], boxes["markers"]
+    for i, label in enumerate(labels):
+        for marker in markers:
+            if _overlap(label["box"], marker["box"]) > 0:
+                problems.append(f"label '{label['text']}' covers a marker of {marker['label']}")
+        for other in labels[i + 1:]:
+            if _overlap(label["box"], other["box"]) > 0:
+                problems.append(f"labels '{label['text']}' and '{other['text']}' overlap")
+        x0, y0, x1, y1 = label["box"]
+        if x0 < 0 or y0 < 0 or x1 > boxes["figure"][0] or y1 > boxes["figure"][1]:
+            problems.append(f"label '{label['text']}' leaves the figure")
+    if boxes["legend"] is not None and _overlap(boxes["legend"], boxes["axes"]) > 0:
+        problems.append("the legend overlaps the axes")
+    return problems
 
 
 def title(ax, text, rows, extra=""):
@@ -104,7 +277,7 @@ def pareto_figure(rows, scene, size, kind):
     points = [r for r in rows if r["technique"] != "none"]
     if not points:
         return None
-    fig, ax = plt.subplots(figsize=(9, 6))
+    fig, ax = plt.subplots(figsize=FIGSIZE)
     by_technique = results.group_by(points, lambda r: r["technique"])
     for technique, items in sorted(by_technique.items()):
         colour, marker = results.style(technique)
@@ -113,9 +286,6 @@ def pareto_figure(rows, scene, size, kind):
     front = results.pareto_front(points, X, y)
     ax.plot([r[X] for r in front], [r[y] for r in front], "k--", lw=1, label="Pareto front", zorder=2)
     keys = {t: results.label_keys(items) for t, items in by_technique.items()}
-    for i, row in enumerate(front):
-        ax.annotate(results.label(row, keys[row["technique"]]), (row[X], row[y]), fontsize=6,
-                    xytext=(4, 4 if i % 2 == 0 else -9), textcoords="offset points", zorder=4)
 
     xs, ys = [r[X] for r in points], [r[y] for r in points]
     floors = [results.number(r.get("soft_reference_floor")) for r in points] if kind == "soft" else []
@@ -160,8 +330,9 @@ def pareto_figure(rows, scene, size, kind):
     title(ax, f"Speed against accuracy: {scene} at {results.size_name(size)}" + (f" ({gpu})" if gpu else ""),
           points + nones, extra)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, ncol=2)
-    layout(fig)
+    legend_outside(fig, ax)
+    # The front's labels last, once limits and margins are final: off every marker and each other.
+    place_labels(ax, [(results.label(row, keys[row["technique"]]), (row[X], row[y])) for row in front])
     return fig, {"y": y, "front": front, "none": none, "scales": scales, "floor": floor}
 
 
@@ -198,7 +369,7 @@ def against_figure(rows, key, scene, xlabel, base=10, per_size=True):
     if not series:
         return None
     sources = {k[3] for k in series}
-    fig, ax = plt.subplots(figsize=(9, 6))
+    fig, ax = plt.subplots(figsize=FIGSIZE)
     drawn = {}
     count = {}
     for (technique, size, others, source), points in sorted(series.items(), key=lambda kv: str(kv[0])):
@@ -219,8 +390,7 @@ def against_figure(rows, key, scene, xlabel, base=10, per_size=True):
     ax.set_ylabel("GPU milliseconds per frame (median)")
     title(ax, f"{scene}: frame time against {xlabel}", [r for r in rows if results.number(r.get(key)) is not None])
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=6, ncol=2)
-    layout(fig)
+    legend_outside(fig, ax, fontsize=6)
     return fig, {"series": drawn, "scales": scales}
 
 
@@ -239,7 +409,7 @@ def triangles_figure(sweep):
     series = {k: (t, sorted(p)) for k, (t, p) in series.items() if len({x for x, _ in p}) > 1}
     if not series:
         return None
-    fig, ax = plt.subplots(figsize=(9, 6))
+    fig, ax = plt.subplots(figsize=FIGSIZE)
     for text, (technique, points) in sorted(series.items()):
         colour, marker = results.style(technique)
         ax.plot([p[0] for p in points], [p[1] for p in points], marker=marker, ms=4, color=colour,
@@ -254,8 +424,7 @@ def triangles_figure(sweep):
     title(ax, f"{sweep['scene']}: frame time against triangles ({swept} swept, {results.size_name(sweep['size'])})",
           rows)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
-    layout(fig)
+    legend_outside(fig, ax, fontsize=7)
     return fig, {"series": series, "scenes": sorted({r["scene"] for r in rows}), "scales": scales}
 
 
@@ -346,7 +515,7 @@ def seed001_quads_figure(rows):
     series = seed001_order(quad_series(rows))
     if not series:
         return None
-    fig, ax = plt.subplots(figsize=(9, 6))
+    fig, ax = plt.subplots(figsize=FIGSIZE)
     plot_quad_series(ax, series)
     ys = [y for _, pts in series.values() for _, y in pts]
     # Composited shadows grow as N^2 (seed 001 sec. 5.3.1), the others about linearly: a log y axis
@@ -364,8 +533,7 @@ def seed001_quads_figure(rows):
     title(ax, f"{rows[0].get('scene', '')}: frame time against translucent quads (seed 001 Figs. 5.3.A-E)"
           + (f" ({gpu})" if gpu else ""), rows, extra)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
-    layout(fig)
+    legend_outside(fig, ax, fontsize=7)
     return fig, {"series": series, "scales": scales}
 
 
@@ -379,7 +547,7 @@ def seed001_fine_figure(rows):
     if not series:
         return None
     draws = quad_series([r for r in rows if r.get("technique") == COMPOSITED], DRAWS)
-    fig, ax = plt.subplots(figsize=(9, 6))
+    fig, ax = plt.subplots(figsize=FIGSIZE)
     plot_quad_series(ax, series, ls="-")
     plot_quad_series(ax, draws, suffix=": translucent draws (inside the main pass)", ls="--")
     ys = [y for _, pts in list(series.values()) + list(draws.values()) for _, y in pts]
@@ -391,15 +559,18 @@ def seed001_fine_figure(rows):
     title(ax, f"{rows[0].get('scene', '')}: composited translucent shadows, 0-30 quads (seed 001 Fig. 5.3.F)"
           + (f" ({gpu})" if gpu else ""), rows)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
-    layout(fig)
+    legend_outside(fig, ax, fontsize=7)
     return fig, {"series": series, "draws": draws, "scales": scales}
 
 
 def save(made, path, dpi):
+    """The PNG, and beside it <name>.boxes.json (chart_boxes) measured at the PNG's dpi."""
     if made is None:
         return None
     fig = made[0]
+    fig.set_dpi(dpi)
+    with open(os.path.splitext(path)[0] + ".boxes.json", "w") as f:
+        json.dump(chart_boxes(fig), f, indent=1)
     fig.savefig(path, dpi=dpi)
     plt.close(fig)
     return path
@@ -408,6 +579,13 @@ def save(made, path, dpi):
 def write_charts(rows, out_dir, dpi=120):
     """Every chart of the rows into out_dir; returns the paths written."""
     os.makedirs(out_dir, exist_ok=True)
+    # Figures made at the PNG's dpi: labels are placed in the pixels they are saved in.
+    with matplotlib.rc_context({"figure.dpi": dpi}):
+        return [p for p in chart_files(rows, out_dir, dpi) if p]
+
+
+def chart_files(rows, out_dir, dpi):
+    """write_charts()'s charts, each path or None (nothing to draw)."""
     written = []
     rows = results.techniques(rows)
     charted = results.techniques(rows, NOT_CHARTED)
@@ -431,7 +609,7 @@ def write_charts(rows, out_dir, dpi=120):
         written.append(save(triangles_figure(sweep), os.path.join(out_dir, name + ".png"), dpi))
     written.append(save(seed001_quads_figure(rows), os.path.join(out_dir, "seed001-quads.png"), dpi))
     written.append(save(seed001_fine_figure(rows), os.path.join(out_dir, "seed001-composited-fine.png"), dpi))
-    return [p for p in written if p]
+    return written
 
 
 def parse_args(argv):

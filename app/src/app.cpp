@@ -73,7 +73,7 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
     camera_.reset(scene_->camera);
     light_ = scene_->light;
     applyLightOverrides();
-    depthPrepass_ = options.depthPrepass;
+    if (options.depthPrepass) setDepthPrepassMode(*options.depthPrepass);
     translucentLayers_ = options.translucentLayers;
     referenceDevice_ = options.referenceDevice;
     techniques_ = std::make_unique<TechniqueManager>(HostContext{*renderer_, *shaders_, *timer_, backend_->loader()}, pluginDir());
@@ -106,6 +106,7 @@ bool App::loadScene(const std::string& nameOrPath, const std::map<std::string, d
         // Techniques keep screen- and scene-dependent resources; they rebuild on next use.
         scene_ = std::move(scene);
         ++sceneGeneration_;
+        depthPrepassRule_.reset();   // another scene, another depth complexity
         renderer_->setScene(*scene_);
         camera_.reset(scene_->camera);
         light_ = scene_->light;
@@ -192,6 +193,7 @@ bool App::renderFrame(const std::string& technique, std::string& error, FrameOut
     renderer_->applyDefaultState();
     loaded->host().beginFrame();
     loaded->technique().renderShadows(frame_, params);
+    decideDepthPrepass();
     const bool passes = runMainPasses(*loaded, frame_, params, outputs, true, error);
     timer_->endFrame();
     if (!passes) return false;
@@ -267,7 +269,9 @@ bool App::runMainPasses(LoadedTechnique& loaded, const FrameContext& frame, cons
         renderer_->eyeBlur(blur, float(host[kHostShadowBlurDepth]));
         end();
     }
-    if (depthPrepass_) {
+    // Timed frames count the opaque fragments for the depth pre-pass's auto rule.
+    if (timed) renderer_->countOverdrawNextPass();
+    if (prepassThisFrame_) {
         begin("depth pre-pass");
         renderer_->mainDepthPrepass(outputs);
         end();
@@ -296,6 +300,19 @@ bool App::runMainPasses(LoadedTechnique& loaded, const FrameContext& frame, cons
     end();
     renderer_->setEyeBlurRead(false);
     return true;
+}
+
+void App::decideDepthPrepass() {
+    if (const auto complexity = renderer_->pollOverdraw()) {
+        const bool changed = depthPrepassRule_.update(*complexity);
+        if (changed && depthPrepassMode() == DepthPrepassMode::Auto) {
+            char text[160];
+            std::snprintf(text, sizeof text, "depth pre-pass: auto turns it %s (%.2f opaque fragments per pixel)",
+                          depthPrepassRule_.autoDecision() ? "on" : "off", *complexity);
+            logInfo(text);
+        }
+    }
+    prepassThisFrame_ = depthPrepassRule_.active(depthPrepassMode());
 }
 
 void App::rebindAfterTranslucentHook(LoadedTechnique& loaded, const FrameContext& frame, const ParamValues& params,
@@ -508,13 +525,20 @@ double App::warmupSeconds() const {
 
 bool App::measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error) {
     if (!warmUp(warmupFrames, warmupSeconds(), [&] { return renderFrame(technique, error); })) return false;
+    // Auto decides from a frame already drawn: at least one before the timed ones (the drain
+    // below finishes its count, which the first timed frame reads).
+    if (depthPrepassMode() == DepthPrepassMode::Auto && !depthPrepassRule_.measured() && warmupFrames == 0 &&
+        !renderFrame(technique, error))
+        return false;
     timer_->drain();
     timer_->clearHistory();
     std::vector<double> cpu;
     cpu.reserve(size_t(frames));
+    int prepassFrames = 0;
     for (int i = 0; i < frames; ++i) {
         if (!renderFrame(technique, error)) return false;
         cpu.push_back(lastCpuFrameMs_);
+        prepassFrames += prepassThisFrame_ ? 1 : 0;
     }
     timer_->drain();
     out = {};
@@ -525,6 +549,8 @@ bool App::measure(const std::string& technique, int warmupFrames, int frames, Me
     LoadedTechnique* loaded = techniques_->get(technique, error);
     out.gpuBytes = loaded ? loaded->host().gpuBytes() : 0;
     out.frames = frames;
+    out.depthPrepassFrames = prepassFrames;
+    out.depthComplexity = depthPrepassRule_.complexity();
     return true;
 }
 

@@ -18,6 +18,7 @@
 #include "plugin/host_params.h"
 #include "plugin/params.h"
 #include "plugin/technique_runtime.h"
+#include "render/depth_prepass_rule.h"
 #include "render/gpu_reference.h"
 #include "render/gpu_timer.h"
 #include "render/renderer.h"
@@ -39,7 +40,7 @@ struct AppOptions {
     int msaaSamples = 0;
     std::optional<glm::vec3> lightDirection;            // overrides the scene's (travel direction)
     std::optional<float> lightSize;                     // scene units (degrees for directional)
-    bool depthPrepass = false;                          // host depth pre-pass, then main pass EQUAL
+    std::optional<DepthPrepassMode> depthPrepass;       // --depth-prepass: host.depth_prepass (default auto)
     int translucentLayers = 4;                          // evaluation: translucent receivers peeled, 0-8
     ReferenceDevice referenceDevice = ReferenceDevice::Cpu; // the ground truth: Embree (cpu) or the GPU tracer
 };
@@ -83,6 +84,8 @@ struct Measurement {
     int framesWaited = 0;                         // frames in which that wait was not zero
     size_t gpuBytes = 0;
     int frames = 0;
+    int depthPrepassFrames = 0;                   // timed frames that ran the host depth pre-pass
+    std::optional<double> depthComplexity;        // the newest count at the end (DepthPrepassRule)
 };
 
 // Accuracy of the last rendered frame against the ray-traced reference.
@@ -142,9 +145,14 @@ public:
     // The last frame's main pass again, same frame context and shadow maps, writing the accuracy
     // targets; not timed. evaluate() and the visibility view call it when the frame had none.
     bool renderAccuracyTargets(std::string& error);
-    // Host depth pre-pass before every main pass (main pass with depth test EQUAL, no depth write).
-    void setDepthPrepass(bool on) { depthPrepass_ = on; }
-    bool depthPrepass() const { return depthPrepass_; }
+    // The host depth pre-pass (main pass with depth test EQUAL, no depth write): off, on, or auto
+    // (render/depth_prepass_rule.h), stored as the host parameter host.depth_prepass.
+    void setDepthPrepassMode(DepthPrepassMode mode) { params_.values(hostParams())[kHostDepthPrepass] = double(mode); }
+    DepthPrepassMode depthPrepassMode() { return DepthPrepassMode(int(hostValues()[kHostDepthPrepass])); }
+    // Whether the last frame ran the pre-pass (what `auto` decided, or what on/off imposed).
+    bool depthPrepassActive() const { return prepassThisFrame_; }
+    // The depth complexity measured so far and auto's decision (updated in every renderFrame()).
+    const DepthPrepassRule& depthPrepassRule() const { return depthPrepassRule_; }
     // Translucent layers evaluate() peels and measures (0 = the opaque surfaces only).
     void setTranslucentLayers(int count) { translucentLayers_ = count; }
     int translucentLayers() const { return translucentLayers_; }
@@ -246,7 +254,9 @@ private:
     FrameContext frame_{};
     uint64_t framesRendered_ = 0;
     std::string lastTechnique_;            // of the last renderFrame() (renderAccuracyTargets)
-    bool depthPrepass_ = false;
+    DepthPrepassRule depthPrepassRule_;
+    bool prepassThisFrame_ = false;        // this frame's decision, kept by its accuracy re-render
+    void decideDepthPrepass();             // polls the overdraw count, then decides this frame
     int translucentLayers_ = 4;
     bool warnedLayersUnderMsaa_ = false;   // said once per run, not once per measured row
     bool evaluateTranslucentLayers(const ReferenceOptions& options, Evaluation& out, std::string& error);

@@ -67,6 +67,21 @@ void addTiming(nlohmann::json& row, const Measurement& m) {
     row["gbuffer_every_frame"] = false;
 }
 
+// What the host depth pre-pass did in the timed frames (issue 32): depth_prepass the decision
+// taken (1: the timed frames ran it), depth_prepass_mode the setting (host.depth_prepass),
+// depth_complexity the opaque fragments per pixel that auto decides from.
+void addDepthPrepassColumns(nlohmann::json& row, const Measurement& m, DepthPrepassMode mode) {
+    row["depth_prepass_mode"] = depthPrepassModeName(mode);
+    row["depth_prepass"] = 2 * m.depthPrepassFrames > m.frames ? 1 : 0;
+    if (m.depthComplexity) row["depth_complexity"] = *m.depthComplexity;
+    if (m.depthPrepassFrames != 0 && m.depthPrepassFrames != m.frames) {
+        // A still view should never switch (the rule's hysteresis); say so if it did.
+        row["depth_prepass_frames"] = m.depthPrepassFrames;
+        logWarning("bench: the depth pre-pass ran in " + std::to_string(m.depthPrepassFrames) + " of " +
+                   std::to_string(m.frames) + " timed frames of this row");
+    }
+}
+
 // One row to measure, planned before the first frame so progress can say "row N of M".
 struct BenchJob {
     std::string scene;
@@ -303,11 +318,11 @@ static bool addAccuracyColumns(App& app, const BenchSpec& spec, const TechniqueI
 // A row's settings on top of the technique's defaults: the spec's base, then the row's sweep values
 // (light size, host passes, the technique's parameters).
 static bool applyRowSettings(App& app, const BenchSpec& spec, const BenchJob& job, const LightInfo& sceneLight,
-                             bool savedPrepass, std::string& error) {
+                             const std::vector<double>& savedHost, std::string& error) {
     const TechniqueInfo* info = job.technique;
     app.params().resetToDefaults(*info);
     app.light() = sceneLight;
-    app.setDepthPrepass(savedPrepass);
+    app.params().values(hostParams()) = savedHost;   // each row's host.* from the command, then its sweep
     std::vector<std::string> assignments;
     for (const auto& text : spec.base) {
         const std::string param = benchParamFor(*info, text.substr(0, text.find('=')));
@@ -317,10 +332,8 @@ static bool applyRowSettings(App& app, const BenchSpec& spec, const BenchJob& jo
         if (isLightKey(key)) {
             const float v = static_cast<float>(parseNumberText(value).value_or(0.0));
             app.light().size = app.light().type == LightType::Directional ? glm::radians(v) : v;
-        } else if (key == "host.depth_prepass") {
-            app.setDepthPrepass(value == "1");
         } else if (isHostKey(key)) {
-            assignments.push_back(key + "=" + value);   // host.shadow_blur, ... (plugin/host_params.h)
+            assignments.push_back(key + "=" + value);   // host.depth_prepass, host.shadow_blur, ... (plugin/host_params.h)
         } else {
             assignments.push_back(benchParamFor(*info, key) + "=" + value);
         }
@@ -345,9 +358,10 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
     const auto started = std::chrono::steady_clock::now();
     LightInfo sceneLight;
     nlohmann::json common;
-    std::map<std::pair<int, bool>, double> mainFloor;   // none's main pass by (light size x 1e6, depth pre-pass)
+    // none's main pass by (light size x 1e6, pre-pass mode: auto decides alike for every technique
+    // of a group, whose scene, view and size are the same)
+    std::map<std::pair<int, int>, double> mainFloor;
     std::map<int, double> depthFloor;                   // bare depth pass ms by resolution
-    const bool savedPrepass = app.depthPrepass();
     const std::vector<double> savedHost = app.hostValues();   // host.* sweeps change them per row
 
     // Floors are measured once per group, when first needed, with the row's warm-up and frames.
@@ -380,11 +394,11 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
             if (!addDepthFloorRow(app, spec, job.depthFloorResolution, row, depthFloor, error)) return false;
         } else {
             const TechniqueInfo* info = job.technique;
-            if (!applyRowSettings(app, spec, job, sceneLight, savedPrepass, error)) return false;
+            if (!applyRowSettings(app, spec, job, sceneLight, savedHost, error)) return false;
             const LightInfo rowLight = app.light();
 
             // The main-pass floor: `none` in the same view, light and pre-pass setting, this run.
-            const std::pair<int, bool> floorKey{int(std::lround(rowLight.size * 1e6f)), app.depthPrepass()};
+            const std::pair<int, int> floorKey{int(std::lround(rowLight.size * 1e6f)), int(app.depthPrepassMode())};
             const auto floorsStart = std::chrono::steady_clock::now();
             if (!mainFloor.count(floorKey) && none && info != none) {
                 Measurement floor;
@@ -403,9 +417,10 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
             for (size_t i = 0; i < info->params.size(); ++i)
                 row["param." + info->params[i].id] = formatParamValue(info->params[i], values[i]);
             row["light_size"] = rowLight.type == LightType::Directional ? glm::degrees(rowLight.size) : rowLight.size;
-            row["depth_prepass"] = app.depthPrepass() ? 1 : 0;
-            for (size_t i = 0; i < hostParams().params.size(); ++i)
-                row["host." + hostParams().params[i].id] = formatParamValue(hostParams().params[i], app.hostValues()[i]);
+            addDepthPrepassColumns(row, m, app.depthPrepassMode());
+            for (size_t i = 0; i < hostParams().params.size(); ++i)   // depth_prepass: depth_prepass_mode
+                if (i != kHostDepthPrepass)
+                    row["host." + hostParams().params[i].id] = formatParamValue(hostParams().params[i], app.hostValues()[i]);
             addTiming(row, m);
             if (mainFloor.count(floorKey)) {
                 row["floor_main_ms"] = mainFloor[floorKey];
@@ -431,7 +446,6 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
                      durationText(elapsed).c_str(), durationText(left).c_str());
         if (onRow) onRow(row);
     }
-    app.setDepthPrepass(savedPrepass);
     app.params().values(hostParams()) = savedHost;
     return true;
 }

@@ -26,8 +26,8 @@ struct BenchSpec {
     std::vector<glm::ivec2> sizes{{1280, 720}};
     // Lists to permute. Keys: a technique parameter ("resolution", or "pcf.kernel" for one
     // technique), a scene parameter ("scene.count"), the light size ("light.size"), or the host's
-    // depth pre-pass ("host.depth_prepass": 0 or 1) or another host parameter ("host.shadow_blur",
-    // plugin/host_params.h).
+    // depth pre-pass ("host.depth_prepass": auto, on or off; 0 and 1 as off and on) or another host
+    // parameter ("host.shadow_blur", plugin/host_params.h).
     std::map<std::string, std::vector<std::string>> sweeps;
     std::vector<std::string> base;           // key=value set before every combination
     int warmupFrames = 20;
@@ -84,7 +84,7 @@ inline bool isSceneKey(const std::string& key) { return key.rfind("scene.", 0) =
 inline bool isLightKey(const std::string& key) { return key == "light.size"; }
 // The host's depth pre-pass, or one of its parameters (plugin/host_params.h: host.shadow_blur, ...).
 inline bool isHostKey(const std::string& key) {
-    return key == "host.depth_prepass" || (key.rfind("host.", 0) == 0 && hostParams().findParam(key.substr(5)));
+    return key.rfind("host.", 0) == 0 && hostParams().findParam(key.substr(5));
 }
 // The parameter id `key` names for `info`: "resolution" if it declares it, "pcf.kernel" for pcf; "" if none.
 std::string benchParamFor(const TechniqueInfo& info, const std::string& key);

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "app.h"
+#include "bench/report_page.h"
 #include "util/log.h"
 #include "util/parallel.h"
 #include "util/paths.h"
@@ -17,18 +18,6 @@
 
 namespace shadowlab {
 namespace {
-
-
-// One technique's picture on the page: its image, its error heatmap and what the caption says.
-struct ReportImage {
-    std::string scene;
-    std::string technique;
-    std::string displayName;
-    std::string image;            // images/<scene>-<technique>.png
-    std::string heatmap;          // images/<scene>-<technique>-error.png; "" for the reference
-    std::string reference;        // "hard" or "soft"
-    AccuracyMetrics metrics;
-};
 
 // PNG files of one scene, encoded on every core once its techniques are drawn: encoding is most
 // of the images phase's time on a fast GPU (two 1080p files a technique).
@@ -77,126 +66,6 @@ bool writeImages(App& app, const BenchSpec& spec, const std::filesystem::path& d
         if (!writePngs(pending, error)) return false;
     }
     return true;
-}
-
-// The parameters a sweep changes: for each technique, the param.* and scene.* keys whose value
-// differs between two of its rows. The others are its defaults or the spec's base, said once.
-std::map<std::string, std::set<std::string>> changingSettings(const std::vector<nlohmann::json>& rows) {
-    std::map<std::string, std::map<std::string, std::set<std::string>>> seen;
-    for (const auto& row : rows)
-        for (const auto& [key, value] : row.items())
-            if (key.rfind("param.", 0) == 0 || key.rfind("scene.", 0) == 0)
-                seen[row.value("technique", "")][key].insert(value.dump());
-    std::map<std::string, std::set<std::string>> changing;
-    for (const auto& [technique, keys] : seen)
-        for (const auto& [key, values] : keys)
-            if (values.size() > 1) changing[technique].insert(key);
-    return changing;
-}
-
-std::string changedSettings(const nlohmann::json& row, const std::set<std::string>& keys) {
-    std::string text;
-    for (const std::string& key : keys) {
-        if (!row.contains(key)) continue;
-        if (!text.empty()) text += ' ';
-        const auto& value = row[key];
-        text += key.substr(key.find('.') + 1) + "=" + (value.is_string() ? value.get<std::string>() : value.dump());
-    }
-    return text.empty() ? "defaults" : text;
-}
-
-std::string percent(const nlohmann::json& row, const std::string& key) {
-    return row.contains(key) ? fixed(100.0 * row[key].get<double>(), 2) + "%" : "-";
-}
-
-// The Markdown page: the machine, the columns explained, the charts, the results table and the
-// images with their heatmaps.
-std::string reportPage(const nlohmann::json& environment, const std::vector<BenchSpec>& specs,
-                       const std::vector<nlohmann::json>& rows, const std::vector<std::string>& charts,
-                       const std::vector<ReportImage>& images, size_t imageFiles) {
-    std::ostringstream page;
-    page << "# shadowlab report\n\n"
-         << "- GPU: " << environment.value("gpu", "") << "\n- driver: " << environment.value("driver", "")
-         << "\n- backend: " << environment.value("backend", "") << "\n- date: " << environment.value("date", "")
-         << "\n- commit: " << environment.value("commit", "") << "\n\n"
-         << "Medians of the timed frames after warm-up (p5 and p95 in results.csv). Timed frames write the lit "
-            "colour only; accuracy is measured on a separate, untimed re-render of the last frame with the "
-            "accuracy targets.\n\n"
-            "Columns of the results table:\n\n"
-            "- **scene**, **technique**: the built-in scene and the technique's id.\n"
-            "- **parameters**: only those the sweep changes for that technique (every other parameter has its "
-            "default, or the spec's base value listed above the table); all of them are in results.csv.\n"
-            "- **size**: the output size in pixels.\n"
-            "- **frame ms**: GPU time of a whole timed frame.\n"
-            "- **passes ms**: the technique's own passes (shadow maps, filtering, the camera pre-pass it asks for).\n"
-            "- **shadow term ms**: the technique's main pass minus `none`'s main pass, same view, same run: the "
-            "cost of its shadow lookup.\n"
-            "- **GPU MiB**: the technique's own GPU memory (its maps and scratch textures), not the host's targets.\n"
-            "- **MAE hard**, **MAE soft**: mean absolute error of the shadow term against the ray-traced "
-            "reference, on compared pixels (lit side, in the light's cone), against the hard reference (one ray to "
-            "the light's centre) and the soft one (rays over the light's area). Hard techniques are measured "
-            "against the hard reference, filtered and soft ones against both.\n"
-            "- **false shadow hard**, **false shadow soft**: share of compared pixels the reference lights "
-            "(>= 0.5) that the technique shadows (< 0.5): acne, over-darkening.\n"
-            "- **false light hard**, **false light soft**: share of compared pixels the reference shadows that "
-            "the technique lights: leaks, peter panning, light bleeding.\n"
-            "- **floors**: `none`'s main pass (no shadow lookup) and the bare depth pass at the technique's "
-            "resolution are in results.csv beside every row (floor_main_ms, floor_depth_ms).\n\n";
-    if (environment.value("gpu", "").find("llvmpipe") != std::string::npos)
-        page << "**Rendered with llvmpipe (CPU): the timings show relative costs on a CPU rasteriser, not GPU "
-                "speed.** Speed figures come from the GPU runs in docs/results/.\n\n";
-    page << "## Speed against accuracy\n\n";
-    for (const auto& chart : charts) page << "![" << chart << "](charts/" << chart << ")\n\n";
-    page << "## Results\n\n";
-    for (size_t i = 0; i < specs.size(); ++i)
-        if (!specs[i].base.empty()) {
-            std::string base;
-            for (const auto& item : specs[i].base) base += (base.empty() ? "" : ", ") + ("`" + item + "`");
-            page << "Set for every row" << (specs.size() > 1 ? " of spec " + std::to_string(i) : std::string()) << ": " << base
-                 << ".\n\n";
-        }
-    page << "| scene | technique | parameters | size | frame ms | passes ms | shadow term ms | GPU MiB | MAE hard | "
-            "false shadow hard | false light hard | MAE soft | false shadow soft | false light soft |\n"
-         << "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-    const auto changing = changingSettings(rows);
-    for (const auto& row : rows) {
-        const std::string technique = row.value("technique", "");
-        const auto keys = changing.find(technique);
-        page << "| " << row.value("scene", "") << " | " << technique << " | "
-             << changedSettings(row, keys == changing.end() ? std::set<std::string>{} : keys->second) << " | "
-             << row.value("width", 0) << "x" << row.value("height", 0) << " | " << fixed(row.value("frame_ms", 0.0), 3)
-             << " | " << fixed(row.value("technique_passes_ms", 0.0), 3) << " | "
-             << (row.contains("shadow_term_ms") ? fixed(row["shadow_term_ms"].get<double>(), 3) : "-") << " | "
-             << fixed(double(row.value("gpu_bytes", size_t(0))) / 1048576.0, 2) << " | "
-             << (row.contains("hard_mae") ? fixed(row["hard_mae"].get<double>(), 4) : "-") << " | "
-             << percent(row, "hard_false_shadow") << " | " << percent(row, "hard_false_light") << " | "
-             << (row.contains("soft_mae") ? fixed(row["soft_mae"].get<double>(), 4) : "-") << " | "
-             << percent(row, "soft_false_shadow") << " | " << percent(row, "soft_false_light") << " |\n";
-    }
-    page << "\n## Images\n\nEach technique with its defaults at " << (specs.empty() ? 0 : specs.front().sizes.front().x) << "x"
-         << (specs.empty() ? 0 : specs.front().sizes.front().y)
-         << ", and beside it its error heatmap against the ray-traced reference: magenta where it is darker "
-            "than the reference (false shadow), green where it is lighter (false light), stronger with the error, "
-            "black where it agrees or the pixel is not compared. "
-         << imageFiles << " images in images/.\n\n";
-    std::string scene;
-    for (const ReportImage& image : images) {
-        if (image.scene != scene) {
-            scene = image.scene;
-            page << "### " << scene << "\n\n| technique | image | error heatmap |\n|---|---|---|\n";
-        }
-        page << "| **" << image.displayName << "** (`" << image.technique << "`)";
-        if (image.heatmap.empty()) {
-            page << ": the reference itself | ![" << image.image << "](images/" << image.image << ") | - |\n";
-            continue;
-        }
-        page << ": against the " << image.reference << " reference, MAE " << fixed(image.metrics.mae, 4) << ", false shadow "
-             << fixed(100.0 * image.metrics.falseShadowRate, 2) << "%, false light "
-             << fixed(100.0 * image.metrics.falseLightRate, 2) << "% | ![" << image.image << "](images/" << image.image
-             << ") | ![" << image.heatmap << "](images/" << image.heatmap << ") |\n";
-    }
-    page << "\n";
-    return page.str();
 }
 
 } // namespace
@@ -252,13 +121,15 @@ int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesyst
         if (pclose(pipe) != 0) logWarning("charts: " + command + " failed (is python3-matplotlib installed?)");
     }
 
-    const nlohmann::json environment = rows.empty() ? benchEnvironment(app) : rows.front();
-    const std::string page = reportPage(environment, specs, rows, charts, images, imageFiles);
-    if (!writeWholeFile(outDir / "README.md", page, error)) return 1;
-    std::printf("report: %zu rows, %zu charts, %zu images (%zu technique images and their error heatmaps) in %s\n", rows.size(),
-                charts.size(), imageFiles, images.size(), outDir.string().c_str());
+    ReportContent content{rows.empty() ? benchEnvironment(app) : rows.front(), &specs, &rows, charts, images, imageFiles};
+    if (!writeWholeFile(outDir / "README.md", reportMarkdown(content), error) ||
+        !writeWholeFile(outDir / "index.html", reportHtml(content), error))
+        return 1;
+    std::printf("report: %zu rows, %zu charts, %zu images (%zu technique images and their error heatmaps) in %s: "
+                "README.md and index.html\n",
+                rows.size(), charts.size(), imageFiles, images.size(), outDir.string().c_str());
     // Where the main job's time went (issue 32's targets are for the whole of it).
-    std::printf("report: %.0f s in all: sweep %.0f s (%zu rows), images %.0f s, charts and page %.0f s\n",
+    std::printf("report: %.0f s in all: sweep %.0f s (%zu rows), images %.0f s, charts and pages %.0f s\n",
                 secondsSince(started), sweepSeconds, rows.size(), imagesSeconds, secondsSince(chartsStarted));
     return 0;
 }

@@ -2,10 +2,13 @@
 // it is the main job. Writes into a folder:
 //   results.csv, results.json      every benchmark row
 //   charts/*.png                   tools/charts.py (matplotlib): speed against accuracy with the
-//                                  Pareto front, milliseconds against each swept parameter
+//                                  Pareto front, milliseconds against each swept parameter; beside
+//                                  each, <name>.boxes.json (its label, legend and marker boxes)
 //   images/<scene>-<technique>.png each technique, lit; images/<scene>-<technique>-error.png its
 //                                  error heatmap against the reference
 //   README.md                      the page: environment, table, charts, images
+//   index.html                     the same as one self-contained HTML page (no script, nothing
+//                                  fetched; images by relative links into charts/ and images/)
 #pragma once
 
 #include <filesystem>

@@ -40,7 +40,7 @@ struct CommonOptions {
     std::string lightDirection;
     std::string lightSize;      // text: checked against the scene's light type once it is known
     int msaa = 0;
-    bool depthPrepass = false;
+    std::string depthPrepass;   // auto | on | off (or 1/0); empty: not given (host.depth_prepass's default)
     int translucentLayers = 4;
     std::string referenceDevice = "cpu";
     std::string budget;

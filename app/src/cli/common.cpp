@@ -60,7 +60,15 @@ std::optional<double> lightSizeOption(const CommonOptions& common) {
 bool buildOptions(const CommonOptions& common, AppOptions& options, std::string& error) {
     options.scene = common.scene;
     options.msaaSamples = common.msaa;
-    options.depthPrepass = common.depthPrepass;
+    if (!common.depthPrepass.empty()) {
+        std::string problem;
+        const auto mode = parseParamValue(*hostParams().findParam("depth_prepass"), common.depthPrepass, problem);
+        if (!mode) {
+            error = "--depth-prepass '" + common.depthPrepass + "': expected auto, on or off (or 1/0)";
+            return false;
+        }
+        options.depthPrepass = DepthPrepassMode(int(*mode));
+    }
     options.translucentLayers = common.translucentLayers;
     if (common.referenceDevice == "gpu") {
         options.referenceDevice = ReferenceDevice::Gpu;
@@ -114,9 +122,12 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
     cmd.add_option("--backend", o.backend, "glfw | egl | osmesa (default: glfw with a display, else egl)")->group("Output");
     cmd.add_option("--size", o.size, "render size WIDTHxHEIGHT (default 1280x720)")->group("Output");
     cmd.add_option("--msaa", o.msaa, "MSAA samples of the main pass (0 = off)")->check(CLI::IsMember({0, 2, 4, 8}))->group("Output");
-    cmd.add_flag("--depth-prepass", o.depthPrepass,
-                 "depth-only pre-pass of the opaque surfaces, then the main pass with depth test EQUAL: the shadow term "
-                 "runs once per visible pixel")
+    cmd.add_option("--depth-prepass", o.depthPrepass,
+                   "auto (default) | on | off; alone: on. A depth-only pre-pass of the opaque surfaces, then the main pass "
+                   "with depth test EQUAL: the shadow term runs once per visible pixel. auto turns it on where the "
+                   "frame's depth complexity is high (host.depth_prepass; docs/benchmarks.md)")
+        ->expected(0, 1)
+        ->default_str("on")
         ->group("Output");
     cmd.add_option("--translucent-layers", o.translucentLayers,
                    "evaluation: translucent receivers peeled from the camera and measured, 0-8 (default 4; seed 001 "

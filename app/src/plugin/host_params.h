@@ -4,14 +4,18 @@
 // entries (App::applyAssignments, bench_spec.h isHostKey, ui/ui.cpp).
 //
 // The eye-space depth-dependent blur of the shadow term and the lighting rules of seed 002
-// ch. 6 (sec. 6.2, 6.3, 9.4; host_shared/eye_blur_shared.h, render/renderer.h eyeBlur*).
+// ch. 6 (sec. 6.2, 6.3, 9.4; host_shared/eye_blur_shared.h, render/renderer.h eyeBlur*), and the
+// depth pre-pass (off | on | auto: render/depth_prepass_rule.h).
 #pragma once
 
+#include <cstdio>
+
 #include "plugin/params.h"
+#include "render/depth_prepass_rule.h"
 
 namespace shadowlab {
 
-enum HostParam : uint32_t { kHostShadowBlur = 0, kHostShadowBlurDepth = 1, kHostLighting = 2 };
+enum HostParam : uint32_t { kHostShadowBlur = 0, kHostShadowBlurDepth = 1, kHostLighting = 2, kHostDepthPrepass = 3 };
 
 inline const TechniqueInfo& hostParams() {
     static const TechniqueInfo info = [] {
@@ -27,7 +31,9 @@ inline const TechniqueInfo& hostParams() {
             "screen, keep their detail) smooths it without crossing depth edges, and the main pass attenuates the "
             "light with it. Lighting (sec. 6.2, Fig. 6.7): with phong the ambient is never shadowed and the diffuse "
             "N.L darkens exactly the surfaces grazed by the light, where projection aliasing (eq. 6.1) is worst; "
-            "with none the term lies on unlit surfaces and every artefact shows.";
+            "with none the term lies on unlit surfaces and every artefact shows. Depth pre-pass: the opaque depth laid "
+            "down first, so the main pass shades each visible pixel once instead of every overdrawn fragment; auto "
+            "turns it on where the frame's depth complexity is high (forest) and off where it is not.";
         t.params.push_back({"shadow_blur", "Eye-space blur", ParamType::Float, 0.0, 16.0, 0.0, "px",
                             "Seed 002 sec. 6.3 / 9.4.2: the shadow term of the opaque surfaces is written to a screen "
                             "texture and blurred with a box W pixels wide at the reference depth, W z_b / z beyond it "
@@ -45,6 +51,19 @@ inline const TechniqueInfo& hostParams() {
                             "attenuated by the shadow term; none = the shadow term on unlit surfaces (no N.L, no "
                             "specular), where projection aliasing is not hidden.",
                             {"phong", "none"}});
+        char autoRule[320];
+        std::snprintf(autoRule, sizeof autoRule,
+                      "auto: on while the opaque fragments that pass the depth test are at least %.3g per pixel, off "
+                      "again at %.3g or fewer (an occlusion query read a few frames late; docs/benchmarks.md "
+                      "\"Depth pre-pass\").",
+                      DepthPrepassRule::kOnAbove, DepthPrepassRule::kOffBelow);
+        // Labels in this order so that 0 and 1 (specs and sweeps from before `auto`) stay off and on.
+        t.params.push_back({"depth_prepass", "Depth pre-pass", ParamType::Enum, 0.0, 2.0, 2.0, "",
+                            std::string("A depth-only pass of the opaque surfaces, then the main pass with depth "
+                                        "test EQUAL: the shadow term runs once per visible pixel, for one more "
+                                        "geometry pass. ") +
+                                autoRule + " 0/1 are accepted as off/on.",
+                            {"off", "on", "auto"}});
         return t;
     }();
     return info;

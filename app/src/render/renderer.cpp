@@ -123,6 +123,7 @@ bool Renderer::init(std::string& error) {
     depthOnlyProgram_ = shaders_.build(hostShaderRequest("main.vert", "", "host depth pre-pass"), error);
     if (!depthOnlyProgram_) return false;
     eyeBlurProgram_ = shaders_.build(hostShaderRequest("fullscreen.vert", "eye_blur.frag", "host eye-space blur"), error);
+    overdraw_.create();
     return eyeBlurProgram_ != 0;
 }
 
@@ -133,6 +134,7 @@ GLuint Renderer::sampler(SamplerKind kind) const {
 
 void Renderer::setScene(const Scene& scene) {
     scene_ = &scene;
+    overdraw_.discardPending();   // counts of the previous scene
     adjacencyRanges_.clear();   // rebuilt on the first adjacency draw of this scene
     meshClosed_.clear();
     adjacencyReady_ = false;
@@ -497,10 +499,12 @@ void Renderer::mainDepthPrepass(FrameOutputs outputs) {
     const GLuint program = shaders_.program(depthOnlyProgram_);
     glUseProgram(program);
     bindSceneGeometry(program);
+    const bool counting = beginOverdrawCount();
     for (uint32_t index : opaqueBatches_) {
         const Batch& batch = batches_[index];
         drawBatch(batch.firstObject, batch.count, batch.mesh, batch.material);
     }
+    if (counting) overdraw_.end();
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     depthPrepassed_ = true;
 }
@@ -516,6 +520,17 @@ void Renderer::beginMainPass(GLuint program, FrameOutputs outputs) {
     glDepthMask(depthPrepassed_ ? GL_FALSE : GL_TRUE);
     glDisable(GL_BLEND);
     glDisable(GL_STENCIL_TEST);
+    if (depthPrepassed_) {
+        // Surfaces whose depths tie (coplanar, or a huge depth range's quantised far end) all pass
+        // EQUAL, where LESS kept the first drawn: a stencil count lets only the first fragment of
+        // a sample through, the same one LESS keeps (the same draw order), so the image is that of
+        // the main pass without the pre-pass, and no sample is shaded twice. The pre-pass cleared
+        // the stencil to 0.
+        glEnable(GL_STENCIL_TEST);
+        glStencilMask(0xFF);
+        glStencilFunc(GL_EQUAL, 0, 0xFF);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    }
     glDisable(GL_POLYGON_OFFSET_FILL);
     glDisable(GL_CULL_FACE);          // planes are single-sided quads seen from both sides
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -597,9 +612,20 @@ void Renderer::eyeBlur(float width, float referenceDepth) {
     resetPipelineState();
 }
 
+bool Renderer::beginOverdrawCount() {
+    if (!overdrawArmed_) return false;
+    overdrawArmed_ = false;
+    const uint64_t samples = uint64_t(size_.x) * uint64_t(size_.y) * uint64_t(std::max(msaaSamples_, 1));
+    return overdraw_.begin(samples);
+}
+
 void Renderer::drawMainPassObjects(GLuint program, FrameOutputs outputs) {
     if (!scene_) return;
+    // After a pre-pass (EQUAL) only the visible surfaces pass: the pre-pass counted already.
+    const bool counting = !depthPrepassed_ && beginOverdrawCount();
     drawOpaque(program);
+    if (counting) overdraw_.end();
+    glDisable(GL_STENCIL_TEST);   // the pre-pass's shade-once count is for the opaque surfaces only
     if (opaqueBatches_.size() == batches_.size()) return;
     // Translucent surfaces: blended colour, back to front from the camera by their bounds'
     // centres, without touching the G-buffer or depth, so the accuracy targets hold the opaque

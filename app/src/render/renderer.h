@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gl/gl.h"
+#include "render/overdraw_counter.h"
 #include "render/shader_library.h"
 #include "scene/scene.h"
 #include "shadowlab/technique.h"
@@ -99,6 +100,11 @@ public:
     // main targets, so the main pass then runs the shadow term once per visible pixel (depth test
     // EQUAL, no depth write). main.vert's invariant gl_Position makes both depths identical.
     void mainDepthPrepass(FrameOutputs outputs);
+    // Depth complexity (render/overdraw_counter.h, issue 32): the next pass that depth-tests the
+    // opaque surfaces with LESS (mainDepthPrepass, or mainPass without one) counts the fragments
+    // that pass. pollOverdraw(): the newest finished count per sample, never waiting.
+    void countOverdrawNextPass() { overdrawArmed_ = true; }
+    std::optional<double> pollOverdraw() { return overdraw_.poll(); }
     // SHADOWLAB_EXT_TRANSLUCENT_DRAWS: while set, the main pass and translucentLayer() draw the
     // translucent objects one at a time (back to front from the camera) and call the hook before
     // each with its index, and once with kTranslucentDrawsDone after the last. The hook may change
@@ -248,6 +254,9 @@ private:
     GlFramebuffer mainFbo_[2], msFbo_[2];
     bool accuracyCurrent_ = false;
     bool depthPrepassed_ = false;                // this frame's main pass follows a depth pre-pass
+    OverdrawCounter overdraw_;
+    bool overdrawArmed_ = false;
+    bool beginOverdrawCount();                   // consumes overdrawArmed_; true when a query runs
     GlTexture displayColor_;
     GlFramebuffer displayFbo_;
     GlSampler presentSampler_;

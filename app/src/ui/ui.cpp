@@ -644,6 +644,13 @@ void Ui::drawHostSection(App& app) {
         ImGui::PopTextWrapPos();
         auto& values = app.params().values(host);
         for (size_t i = 0; i < host.params.size(); ++i) parameterWidget(host.params[i], values[i]);
+        // The pre-pass's mode and what the last frame did (auto's decision and what it is based on).
+        const DepthPrepassRule& rule = app.depthPrepassRule();
+        const DepthPrepassMode mode = app.depthPrepassMode();
+        char complexity[64] = "not measured yet";
+        if (rule.complexity()) std::snprintf(complexity, sizeof complexity, "%.2f opaque fragments per pixel", *rule.complexity());
+        ImGui::Text("Depth pre-pass: %s, %s", depthPrepassModeName(mode), app.depthPrepassActive() ? "running" : "not running");
+        ImGui::TextDisabled("depth complexity %s; auto: %s", complexity, rule.autoDecision() ? "on" : "off");
     }
 }
 
