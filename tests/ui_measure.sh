@@ -28,14 +28,17 @@ for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 
 import json, re, sys
 log = open(sys.argv[1]).read()
 started = re.findall(r'measuring accuracy on a worker thread from presented frame (\d+)', log)
-done = re.findall(r'accuracy measured in ([0-9.]+) s on a worker thread: (\d+) frames presented meanwhile', log)
+done = re.findall(r'accuracy measured in ([0-9.]+) s on a worker thread: (\d+) frames presented meanwhile, '
+                  r'at most (\d+) ms apart', log)
 mae = re.findall(r'accuracy of pcss [^:]*: MAE ([0-9.]+)', log)
 assert len(started) == 1 and len(done) == 1 and len(mae) == 1, f'expected one measurement in the log:\n{log}'
-seconds, frames = float(done[0][0]), int(done[0][1])
+seconds, frames, gap = float(done[0][0]), int(done[0][1]), int(done[0][2])
 assert frames >= 5, f'only {frames} frames presented in the {seconds} s the measurement took: the loop stalled\n{log}'
+assert gap <= 500 * seconds, f'a frame took {gap} ms of the {seconds} s measurement: the loop stalled\n{log}'
 expected = json.load(open(sys.argv[2]))['accuracy']['soft']['mae']
 assert abs(float(mae[0]) - expected) <= 2e-6 + 1e-3 * expected, f'window MAE {mae[0]}, eval {expected}'
-print(f'ok: {frames} frames presented during the {seconds} s measurement; MAE {mae[0]} (eval {expected:.6f})')
+print(f'ok: {frames} frames presented during the {seconds} s measurement, at most {gap} ms apart; '
+      f'MAE {mae[0]} (eval {expected:.6f})')
 PY
 
 # 2. Cancelled by a scene change (a tour step) and by quitting.

@@ -103,9 +103,14 @@ void App::applyLightOverrides() {
 bool App::loadScene(const std::string& nameOrPath, const std::map<std::string, double>& parameters, std::string& error) {
     try {
         auto scene = std::make_unique<Scene>(shadowlab::loadScene(nameOrPath, parameters));
-        // Techniques keep screen- and scene-dependent resources; they rebuild on next use.
-        scene_ = std::move(scene);
-        ++sceneGeneration_;
+        {
+            // A trace of another thread (the window's measurement, joined before a scene change)
+            // would make this wait rather than read a scene being replaced.
+            std::unique_lock lock(groundTruthMutex_);
+            // Techniques keep screen- and scene-dependent resources; they rebuild on next use.
+            scene_ = std::move(scene);
+            ++sceneGeneration_;
+        }
         renderer_->setScene(*scene_);
         camera_.reset(scene_->camera);
         light_ = scene_->light;

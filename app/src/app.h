@@ -142,6 +142,9 @@ public:
     // Creates the context, loads GL, scans plugins, loads the scene. Sets `badInput` when the
     // failure is the user's input (scene file), so callers can exit with 2 rather than 1.
     bool init(const AppOptions& options, bool windowed, std::string& error, bool& badInput);
+    // GL thread. A trace another thread runs for the old scene (evaluateCapture) should be
+    // cancelled and joined first: the scene is swapped under the ground truth's exclusive lock,
+    // so it would wait for that trace, which then fails ("the scene changed").
     bool loadScene(const std::string& nameOrPath, const std::map<std::string, double>& parameters, std::string& error);
 
     // "--set key=value" for `technique` (keys may also name another technique: "pcf.kernel=5").

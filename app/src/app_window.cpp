@@ -96,6 +96,7 @@ private:
         const auto now = std::chrono::steady_clock::now();
         const float seconds = std::chrono::duration<float>(now - last_).count();
         last_ = now;
+        if (measurement_.running()) longestFrameGap_ = std::max(longestFrameGap_, seconds);
         pollMeasurement();
         const bool held = options_.frames > 0 && measurement_.running();
         handleInput(seconds);
@@ -354,17 +355,23 @@ private:
         }
         if (app_.referenceDevice() == ReferenceDevice::Gpu) return measureNow(requests);
         std::string error;
+        const auto captureStart = std::chrono::steady_clock::now();
         if (!measurement_.start(requests, error)) {
             state_.measureError = error;
             logError("measure accuracy: " + error);
             return;
         }
         measureStartFrame_ = presentedFrames_;
+        longestFrameGap_ = 0.0f;
         measureStart_ = std::chrono::steady_clock::now();
         state_.measuring = true;
         state_.measureProgress = 0.0f;
         state_.measureStage = measurement_.stage();
-        logInfo("measuring accuracy on a worker thread from presented frame " + std::to_string(presentedFrames_));
+        const double captureMs = std::chrono::duration<double, std::milli>(measureStart_ - captureStart).count();
+        char text[160];
+        std::snprintf(text, sizeof(text), "measuring accuracy on a worker thread from presented frame %ld (frames captured in %.0f ms)",
+                      presentedFrames_, captureMs);
+        logInfo(text);
     }
 
     void measureNow(const std::vector<AsyncMeasurement::Side>& requests) {
@@ -410,9 +417,10 @@ private:
             return;
         }
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - measureStart_).count();
-        char text[160];
-        std::snprintf(text, sizeof(text), "accuracy measured in %.2f s on a worker thread: %ld frames presented meanwhile",
-                      seconds, presentedFrames_ - measureStartFrame_);
+        char text[200];
+        std::snprintf(text, sizeof(text),
+                      "accuracy measured in %.2f s on a worker thread: %ld frames presented meanwhile, at most %.0f ms apart",
+                      seconds, presentedFrames_ - measureStartFrame_, 1000.0 * double(longestFrameGap_));
         logInfo(text);
         showMeasurement(std::move(results));
     }
@@ -514,6 +522,7 @@ private:
     glm::dvec2 lastMouse_{0.0};
     long presentedFrames_ = 0;         // swaps, held frames included
     long measureStartFrame_ = 0;
+    float longestFrameGap_ = 0.0f;     // seconds between two frames while measuring (the click's frame included)
     std::chrono::steady_clock::time_point measureStart_;
     AsyncMeasurement measurement_{app_};   // last: joined and released before the rest goes
 };
