@@ -38,8 +38,12 @@ bool AsyncMeasurement::start(const std::vector<Side>& sides, std::string& error)
     // Every side is drawn at the renderer's size: room for each side's targets, layers and lit view.
     const glm::ivec2 size = app_.renderer().size();
     const size_t litBytes = size_t(size.x) * size_t(size.y) * 4;
-    const size_t reads = 3 * size_t(1 + app_.translucentLayers()) + 1;   // each padded to 16 bytes
-    readback_.begin(sides.size() * (EvaluationInput::bytesFor(size, app_.translucentLayers()) + litBytes + 16 * reads));
+    // Layers are peeled only in a scene with translucent surfaces (App::captureTranslucentLayers).
+    const auto& materials = app_.scene().materials;
+    const bool translucent = std::any_of(materials.begin(), materials.end(), [](const Material& m) { return m.translucent(); });
+    const int layers = translucent ? app_.translucentLayers() : 0;
+    const size_t reads = 3 * size_t(1 + layers) + 1;   // each padded to 16 bytes
+    readback_.begin(sides.size() * (EvaluationInput::bytesFor(size, layers) + litBytes + 16 * reads));
     for (const Side& side : sides)
         if (!captureSide(side, *job_, error)) {
             error = side.technique + ": " + error;
