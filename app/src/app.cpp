@@ -103,9 +103,14 @@ void App::applyLightOverrides() {
 bool App::loadScene(const std::string& nameOrPath, const std::map<std::string, double>& parameters, std::string& error) {
     try {
         auto scene = std::make_unique<Scene>(shadowlab::loadScene(nameOrPath, parameters));
-        // Techniques keep screen- and scene-dependent resources; they rebuild on next use.
-        scene_ = std::move(scene);
-        ++sceneGeneration_;
+        {
+            // A trace of another thread (the window's measurement, joined before a scene change)
+            // would make this wait rather than read a scene being replaced.
+            std::unique_lock lock(groundTruthMutex_);
+            // Techniques keep screen- and scene-dependent resources; they rebuild on next use.
+            scene_ = std::move(scene);
+            ++sceneGeneration_;
+        }
         depthPrepassRule_.reset();   // another scene, another depth complexity
         renderer_->setScene(*scene_);
         camera_.reset(scene_->camera);
@@ -612,148 +617,6 @@ bool App::measureDepthFloor(int resolution, int warmupFrames, int frames, Measur
     shaders_->release(program);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return true;
-}
-
-bool App::traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
-                         std::string& error, ReferenceStats* stats) {
-    if (referenceDevice_ == ReferenceDevice::Gpu) {
-        if (!gpuReference_) gpuReference_ = std::make_unique<GpuReference>(*shaders_);
-        const bool traced = gpuReference_->trace(*renderer_, gbuffer, light_, options, visibility, stats, error);
-        renderer_->applyDefaultState();
-        if (!traced) error = "gpu reference: " + error;
-        return traced;
-    }
-    if (!groundTruth_) {
-        groundTruth_ = loadGroundTruth(error);
-        if (!groundTruth_) return false;
-    }
-    try {
-        if (groundTruthGeneration_ != sceneGeneration_) {
-            groundTruth_->setScene(*scene_);   // the BVH is built once per scene
-            groundTruthGeneration_ = sceneGeneration_;
-        }
-        // Every technique of a frame has the same G-buffer: its reference is traced once.
-        const ReferenceCache::Key key = ReferenceCache::keyOf(gbuffer, light_, options, sceneGeneration_);
-        const ReferenceStats* cachedStats = nullptr;
-        if (const auto* cached = referenceCache_.find(key, &cachedStats)) {
-            visibility = *cached;
-            if (stats) *stats = *cachedStats;
-            return true;
-        }
-        ReferenceStats traced;
-        groundTruth_->trace(gbuffer, light_, options, visibility, &traced);
-        referenceCache_.insert(key, visibility, traced);
-        if (stats) *stats = std::move(traced);
-    } catch (const std::exception& e) {
-        error = std::string("ground truth: ") + e.what();
-        return false;
-    }
-    return true;
-}
-
-bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error) {
-    using Clock = std::chrono::steady_clock;
-    auto secondsSince = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
-    const auto renderStart = Clock::now();
-    if (!renderAccuracyTargets(error)) return false;
-    const glm::ivec2 size = renderer_->size();
-    auto positions = renderer_->readTarget(MainTarget::Position);   // moved into out.positions at the end
-    const auto normals = renderer_->readTarget(MainTarget::Normal);
-    const auto visibility = renderer_->readTarget(MainTarget::Visibility);
-    const GBufferView gbuffer{size.x, size.y, positions.data(), normals.data()};
-    out.width = size.x;
-    out.height = size.y;
-    out.technique.resize(visibility.size());
-    for (size_t i = 0; i < visibility.size(); ++i) out.technique[i] = glm::clamp(glm::vec3(visibility[i]), 0.0f, 1.0f);
-    out.renderSeconds = secondsSince(renderStart);
-    out.mask = compareMask(gbuffer, light_);
-    const auto start = Clock::now();
-    if (!traceReference(gbuffer, options, out.reference, error, &out.referenceStats)) return false;
-    out.traceSeconds = secondsSince(start);
-    const auto metricsStart = Clock::now();
-    out.metrics = compareVisibility(out.technique, out.reference, out.mask, size.x, size.y);
-    const CameraInfo camera = camera_.info(size);
-    addViewDepthThirds(out.metrics, out.technique, out.reference, out.mask, positions.data(), size.x, size.y, camera.view,
-                       camera.nearPlane, camera.farPlane);
-    if (LoadedTechnique* loaded = techniques_->get(lastTechnique_, error))
-        out.footprint = measureTexelFootprint(gbuffer, out.mask, frame_.camera, frame_.light, loaded->host().shadowMaps());
-    else
-        return false;
-    out.referenceFloor = out.referenceStats.sampleError.empty()
-                             ? 0.0
-                             : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);
-    out.positions = std::move(positions);
-    out.metricsSeconds = secondsSince(metricsStart);
-    const auto layersStart = Clock::now();
-    const bool layers = evaluateTranslucentLayers(options, out, error);
-    out.layersSeconds = secondsSince(layersStart);
-    return layers;
-}
-
-bool App::evaluateTranslucentLayers(const ReferenceOptions& options, Evaluation& out, std::string& error) {
-    out.translucentLayers.clear();
-    out.translucentMetrics = {};
-    // The built-in reference draws a screen texture traced from the opaque surfaces: it has no
-    // shadow term of its own for a translucent layer to compare.
-    if (translucentLayers_ <= 0 || lastTechnique_ == referenceDescriptor().id) return true;
-    if (renderer_->msaaSamples() > 0) {
-        // The peel reads the single-sample opaque depth, which a multisampled main pass leaves unwritten.
-        if (!warnedLayersUnderMsaa_ &&
-            std::any_of(scene_->materials.begin(), scene_->materials.end(), [](const Material& m) { return m.translucent(); })) {
-            logWarning("translucent receivers are not measured with MSAA on (--msaa 0 measures them)");
-            warnedLayersUnderMsaa_ = true;
-        }
-        return true;
-    }
-    LoadedTechnique* loaded = techniques_->get(lastTechnique_, error);
-    if (!loaded) return false;
-    const GLuint program = loaded->translucentLayerProgram(error);
-    if (!program) return false;
-    const std::vector<double>& values = params_.values(loaded->info());
-    const ParamValues params(values.data(), uint32_t(values.size()));
-    const glm::ivec2 size = renderer_->size();
-    const size_t pixels = size_t(size.x) * size_t(size.y);
-    // All layers stacked into one image for the combined metrics (a penumbra neighbourhood may
-    // reach across the seam between two layers: one row each, negligible).
-    std::vector<glm::vec3> allTechnique, allReference;
-    std::vector<uint8_t> allMask;
-    renderer_->setView(frame_.camera, frame_.light);
-    auto translucentHook = [&](uint32_t object) { rebindAfterTranslucentHook(*loaded, frame_, params, program, object); };
-    for (int k = 0; k < translucentLayers_; ++k) {
-        if (loaded->host().hasTranslucentHook()) renderer_->setTranslucentHook(Renderer::translucentHookFor(translucentHook));
-        const bool drawn = renderer_->translucentLayer(k, program, [&] { loaded->technique().bindMainPass(frame_, params); });
-        renderer_->setTranslucentHook({});
-        if (!drawn) break;
-        const auto positions = renderer_->readLayer(MainTarget::Position);
-        const auto normals = renderer_->readLayer(MainTarget::Normal);
-        const auto visibility = renderer_->readLayer(MainTarget::Visibility);
-        if (std::none_of(positions.begin(), positions.end(), [](const glm::vec4& p) { return p.w != 0.0f; })) break;
-        const GBufferView gbuffer{size.x, size.y, positions.data(), normals.data()};
-        TranslucentLayerEvaluation layer;
-        layer.technique.resize(pixels);
-        for (size_t i = 0; i < pixels; ++i) layer.technique[i] = glm::clamp(glm::vec3(visibility[i]), 0.0f, 1.0f);
-        layer.mask = compareMask(gbuffer, light_);
-        if (!traceReference(gbuffer, options, layer.reference, error)) return false;
-        layer.metrics = compareVisibility(layer.technique, layer.reference, layer.mask, size.x, size.y);
-        allTechnique.insert(allTechnique.end(), layer.technique.begin(), layer.technique.end());
-        allReference.insert(allReference.end(), layer.reference.begin(), layer.reference.end());
-        allMask.insert(allMask.end(), layer.mask.begin(), layer.mask.end());
-        layer.positions = positions;
-        out.translucentLayers.push_back(std::move(layer));
-    }
-    renderer_->applyDefaultState();
-    if (!out.translucentLayers.empty())
-        out.translucentMetrics = compareVisibility(allTechnique, allReference, allMask, size.x,
-                                                   size.y * int(out.translucentLayers.size()));
-    return true;
-}
-
-Image Evaluation::heatmap() const {
-    const auto rgb = errorHeatmap(technique, reference, mask, width, height);
-    Image image{width, height, 4, std::vector<uint8_t>(size_t(width) * size_t(height) * 4, 255)};
-    for (size_t i = 0; i < size_t(width) * size_t(height); ++i)
-        for (int c = 0; c < 3; ++c) image.pixels[i * 4 + size_t(c)] = rgb[i * 3 + size_t(c)];
-    return image;
 }
 
 } // namespace shadowlab

@@ -5,7 +5,9 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
+#include <shared_mutex>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,7 @@
 #include "render/renderer.h"
 #include "render/shadow_map_views.h"
 #include "render/shader_library.h"
+#include "render/texture_readback.h"
 #include "scene/scene.h"
 #include "util/image.h"
 #include "util/stats.h"
@@ -117,6 +120,27 @@ struct Evaluation {
     Image heatmap() const;              // errorHeatmap() as an RGBA image
 };
 
+// What an evaluation reads from the GPU and the frame (App::captureEvaluation): everything the
+// reference and the metrics need, as CPU data, so that App::evaluateCapture may run on another
+// thread (the window's measurement, ui/async_measurement.h).
+struct EvaluationInput {
+    struct Targets {   // one image's accuracy targets, width * height texels each, GL's row order
+        std::vector<glm::vec4> positions, normals, visibility;
+    };
+    glm::ivec2 size{0};
+    Targets opaque;
+    // The translucent layers peeled, nearest the camera first (read later, empty layers may
+    // follow the last one with a surface: evaluateCapture stops at the first empty one).
+    std::vector<Targets> layers;
+    LightInfo light;                         // App::light() when captured: what the reference is traced for
+    CameraInfo camera;                       // the camera at the render size (view-depth thirds)
+    FrameContext frame;                      // the frame's camera and light (texel footprint)
+    std::vector<ShadowMapInfo> shadowMaps;   // what the technique reported (its label and edge pointers dropped)
+    uint64_t sceneGeneration = 0;            // the scene it was drawn from (App::loadScene bumps it)
+    // Bytes of the targets of one image of `size` and `layers` translucent layers.
+    static size_t bytesFor(glm::ivec2 size, int layers);
+};
+
 class App {
 public:
     App() = default;
@@ -127,6 +151,9 @@ public:
     // Creates the context, loads GL, scans plugins, loads the scene. Sets `badInput` when the
     // failure is the user's input (scene file), so callers can exit with 2 rather than 1.
     bool init(const AppOptions& options, bool windowed, std::string& error, bool& badInput);
+    // GL thread. A trace another thread runs for the old scene (evaluateCapture) should be
+    // cancelled and joined first: the scene is swapped under the ground truth's exclusive lock,
+    // so it would wait for that trace, which then fails ("the scene changed").
     bool loadScene(const std::string& nameOrPath, const std::map<std::string, double>& parameters, std::string& error);
 
     // "--set key=value" for `technique` (keys may also name another technique: "pcf.kernel=5").
@@ -194,8 +221,22 @@ public:
     // from the host's fitted light space, at resolution x resolution (no bias, no culling).
     bool measureDepthFloor(int resolution, int warmupFrames, int frames, Measurement& out, std::string& error);
     // Compares the last frame's shadow term with the reference traced from its own G-buffer
-    // (re-rendering that frame with the accuracy targets when it was a timed frame).
+    // (re-rendering that frame with the accuracy targets when it was a timed frame):
+    // captureEvaluation() with an ImmediateReader, then evaluateCapture().
     bool evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error);
+    // The GL half, GL thread: the last frame's accuracy targets (re-rendered when it was timed),
+    // its translucent layers peeled, and the frame's light, camera and reported maps, read through
+    // `reader` into `input` (ImmediateReader: filled on return; PixelBufferReadback: once its
+    // fence has signalled and it delivered, with every layer up to translucentLayers() peeled).
+    bool captureEvaluation(EvaluationInput& input, TextureReader& reader, std::string& error);
+    // The CPU half: the reference traced for `input` (options.control reports progress and can
+    // cancel) and the metrics. With the CPU reference device any thread may call it while the GL
+    // thread draws, but never across loadScene() (the window joins its measurement first); with
+    // the GPU device, the GL thread only.
+    bool evaluateCapture(const EvaluationInput& input, const ReferenceOptions& options, Evaluation& out, std::string& error);
+    // The traces evaluateCapture() will run for `input` (the opaque image and each layer with a
+    // surface): the window's progress counts them.
+    static size_t plannedTraces(const EvaluationInput& input);
     // Which tracer evaluate() and the reference views use (--reference-device): Embree on the CPU
     // (the default ground truth) or the GPU tracer of issue 27 (render/gpu_reference.h).
     void setReferenceDevice(ReferenceDevice device) { referenceDevice_ = device; }
@@ -203,6 +244,13 @@ public:
     // Traces the current scene and light for `gbuffer` (loads the Embree module on first use).
     bool traceReference(const GBufferView& gbuffer, const ReferenceOptions& options, std::vector<glm::vec3>& visibility,
                         std::string& error, ReferenceStats* stats = nullptr);
+    // The same for a light and scene generation captured earlier (EvaluationInput). Thread-safe
+    // with the CPU device: the ground truth is loaded and its BVH built under an exclusive lock,
+    // traces share it, the cache has its own lock; a cancelled trace (options.control) fails
+    // with "cancelled" and is not cached.
+    bool traceReferenceFor(const GBufferView& gbuffer, const LightInfo& light, uint64_t sceneGeneration,
+                           const ReferenceOptions& options, std::vector<glm::vec3>& visibility, std::string& error,
+                           ReferenceStats* stats = nullptr);
     // The traces of this run, shared by every technique measured on the same G-buffer, light and
     // options (groundtruth/reference_cache.h); `enabled = false` traces every time.
     ReferenceCache& referenceCache() { return referenceCache_; }
@@ -259,7 +307,9 @@ private:
     void decideDepthPrepass();             // polls the overdraw count, then decides this frame
     int translucentLayers_ = 4;
     bool warnedLayersUnderMsaa_ = false;   // said once per run, not once per measured row
-    bool evaluateTranslucentLayers(const ReferenceOptions& options, Evaluation& out, std::string& error);
+    bool captureTranslucentLayers(LoadedTechnique& loaded, EvaluationInput& input, TextureReader& reader, std::string& error);
+    bool evaluateLayers(const EvaluationInput& input, const ReferenceOptions& options, Evaluation& out, std::string& error);
+    bool groundTruthFor(uint64_t sceneGeneration, std::string& error);
     // After the technique's translucent-draws hook (SHADOWLAB_EXT_TRANSLUCENT_DRAWS): the state
     // contract, `program` bound, bindMainPass again.
     void rebindAfterTranslucentHook(LoadedTechnique& loaded, const FrameContext& frame, const ParamValues& params,
@@ -270,6 +320,8 @@ private:
     std::chrono::steady_clock::time_point lastFrameEnd_{};   // when the last frame was submitted (warm-up rule)
     std::vector<std::string> lastReloaded_;
     GroundTruthPtr groundTruth_;
+    std::shared_mutex groundTruthMutex_;   // exclusive: loading and setScene; shared: traces
+    std::mutex referenceCacheMutex_;
     ReferenceDevice referenceDevice_ = ReferenceDevice::Cpu;
     std::unique_ptr<GpuReference> gpuReference_;   // made on first use with the GPU device
     ReferenceCache referenceCache_;

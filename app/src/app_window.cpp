@@ -7,17 +7,23 @@
 //   measure, load scene, tour step, load tour, save or load session), each its own function ->
 //   swap.
 // --tour and --session are the same commands, run once before the first frame.
+// "Measure accuracy" captures its frames at the click and traces on a worker
+// (ui/async_measurement.h); every frame polls it first, and the result arrives frames later. A
+// run of --frames N holds its script still (frame index, smoke test, path, screenshots) while a
+// measurement runs, so its slides show the measured frame as before; frames go on being drawn.
 #include "app.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 #include <GLFW/glfw3.h>
 
 #include "app_paths.h"
 #include "render/view_compositor.h"
+#include "ui/async_measurement.h"
 #include "ui/session.h"
 #include "ui/tour_player.h"
 #include "ui/ui.h"
@@ -39,6 +45,7 @@ public:
             if (options_.frames > 0 && frameIndex_ >= options_.frames) break;
             if (state_.quitRequested) break;
         }
+        cancelMeasurement("the window closed");   // the worker is joined before anything it reads goes
         app_.camera().setFramingAspect(0.0f);
         ui_.shutdown();
         return exitCode_;
@@ -69,6 +76,8 @@ private:
         state_.view = options_.view;
         if (options_.probe) app_.setProbePixel(options_.probe);
         state_.uiScale = options_.uiScale;
+        state_.referenceMode = options_.softReference ? 1 : 0;
+        state_.referenceSamples = options_.referenceSamples;
         state_.msaaSamples = app_.renderer().msaaSamples();
         app_.camera().setFramingAspect(kSceneFramingAspect);
         last_ = std::chrono::steady_clock::now();
@@ -87,10 +96,15 @@ private:
         const auto now = std::chrono::steady_clock::now();
         const float seconds = std::chrono::duration<float>(now - last_).count();
         last_ = now;
+        if (measurement_.running()) longestFrameGap_ = std::max(longestFrameGap_, seconds);
+        pollMeasurement();
+        const bool held = options_.frames > 0 && measurement_.running();
         handleInput(seconds);
-        driveSmokeTest();
-        advancePath();
-        queueTimedMeasurement();
+        if (!held) {
+            driveSmokeTest();
+            advancePath();
+            queueTimedMeasurement();
+        }
         if (!prepareSurface()) return false;
         const bool comparing = !state_.compareTechnique.empty();
         state_.layout = computeViewLayout(surfaceSize_, state_.showUi, panelWidthFor(state_.uiScale, surfaceSize_.x), comparing,
@@ -100,9 +114,10 @@ private:
             markStaleMeasurement(comparing);
         }
         ui_.draw(app_, state_, seconds, surface_, surfaceSize_);
-        runQueuedCommands();
+        runQueuedCommands(held);
         app_.backend().swapBuffers();
-        ++frameIndex_;
+        ++presentedFrames_;
+        if (!held) ++frameIndex_;
         return true;
     }
 
@@ -266,17 +281,19 @@ private:
     }
 
     // The panel's commands, outside the ImGui frame. The screenshot first: it saves the frame just
-    // drawn, panel included.
-    void runQueuedCommands() {
-        const bool finalShot = options_.frames > 0 && frameIndex_ + 1 == options_.frames && !options_.screenshot.empty();
+    // drawn, panel included. A held frame (a --frames run waiting for its measurement) takes no
+    // scripted screenshot and does not advance the path.
+    void runQueuedCommands(bool held) {
+        const bool finalShot =
+            !held && options_.frames > 0 && frameIndex_ + 1 == options_.frames && !options_.screenshot.empty();
         std::vector<UiCommand> commands;
         commands.swap(state_.commands);
         if (finalShot) commands.insert(commands.begin(), UiCommand{UiCommand::Kind::Screenshot, options_.screenshot});
-        if (options_.frames > 0)
+        if (options_.frames > 0 && !held)
             for (const auto& [at, file] : options_.screenshotsAt)
                 if (at == frameIndex_ && !(finalShot && file == options_.screenshot))
                     commands.insert(commands.begin(), UiCommand{UiCommand::Kind::Screenshot, file});
-        if (state_.path && state_.pathPlaying) ++state_.pathFrame;   // a step applied by a command below starts at 0
+        if (state_.path && state_.pathPlaying && !held) ++state_.pathFrame;   // a step applied by a command below starts at 0
         for (const UiCommand& command : commands) runCommand(command);
     }
 
@@ -284,11 +301,12 @@ private:
         switch (command.kind) {
         case UiCommand::Kind::Screenshot: return screenshot(command.argument);
         case UiCommand::Kind::Measure: return measure();
-        case UiCommand::Kind::LoadScene: return loadScene(command.argument);
-        case UiCommand::Kind::TourStep: return tourStep(command.argument);
-        case UiCommand::Kind::LoadTour: return loadTour(command.argument);
+        case UiCommand::Kind::CancelMeasure: return cancelMeasurement("Cancel was pressed");
+        case UiCommand::Kind::LoadScene: return cancelMeasurement("the scene changed"), loadScene(command.argument);
+        case UiCommand::Kind::TourStep: return cancelMeasurement("a tour step was applied"), tourStep(command.argument);
+        case UiCommand::Kind::LoadTour: return cancelMeasurement("a tour was loaded"), loadTour(command.argument);
         case UiCommand::Kind::SaveSession: return saveSession(command.argument);
-        case UiCommand::Kind::LoadSession: return loadSession(command.argument);
+        case UiCommand::Kind::LoadSession: return cancelMeasurement("a session was loaded"), loadSession(command.argument);
         }
     }
 
@@ -320,35 +338,115 @@ private:
     }
 
     // Each side measured against the reference for its own technique; the heatmaps replace the
-    // view until it changes.
+    // view until it changes. With Embree the frames are captured now and traced on a worker
+    // (pollMeasurement takes the result); the GPU tracer draws with GL, so it measures here, at once.
     void measure() {
-        ReferenceOptions reference;
-        reference.mode = state_.referenceMode == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
-        reference.samplesPerPixel = state_.referenceSamples;
-        std::vector<SideMeasurement> results;
         state_.measureError.clear();
         const std::string sides[2] = {state_.technique, state_.compareTechnique};
+        std::vector<AsyncMeasurement::Side> requests;
         for (int s = 0; s < (state_.compareTechnique.empty() ? 1 : 2); ++s) {
             const TechniqueInfo* info = app_.techniques().find(sides[s]);
-            reference.model = state_.referenceModel == 1 && info ? info->translucencyModel : TranslucencyModel::Physical;
+            AsyncMeasurement::Side side{sides[s], {}, 0.0};
+            side.options.mode = state_.referenceMode == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
+            side.options.samplesPerPixel = state_.referenceSamples;
+            side.options.model = state_.referenceModel == 1 && info ? info->translucencyModel : TranslucencyModel::Physical;
+            // One core stays with the frame loop (the thread count changes no sample).
+            side.options.threads = std::max(1, int(std::thread::hardware_concurrency()) - 1);
+            const auto frameMs = state_.sideTimings[s].find("frame");
+            side.gpuMs = frameMs == state_.sideTimings[s].end() ? 0.0 : frameMs->second;
+            requests.push_back(std::move(side));
+        }
+        if (app_.referenceDevice() == ReferenceDevice::Gpu) return measureNow(requests);
+        std::string error;
+        const auto captureStart = std::chrono::steady_clock::now();
+        if (!measurement_.start(requests, error)) {
+            state_.measureError = error;
+            logError("measure accuracy: " + error);
+            return;
+        }
+        measureStartFrame_ = presentedFrames_;
+        longestFrameGap_ = 0.0f;
+        measureStart_ = std::chrono::steady_clock::now();
+        state_.measuring = true;
+        state_.measureProgress = 0.0f;
+        state_.measureStage = measurement_.stage();
+        const double captureMs = std::chrono::duration<double, std::milli>(measureStart_ - captureStart).count();
+        char text[160];
+        std::snprintf(text, sizeof(text), "measuring accuracy on a worker thread from presented frame %ld (frames captured in %.0f ms)",
+                      presentedFrames_, captureMs);
+        logInfo(text);
+    }
+
+    void measureNow(const std::vector<AsyncMeasurement::Side>& requests) {
+        cancelMeasurement("a new measurement started");
+        std::vector<SideMeasurement> results;
+        for (const AsyncMeasurement::Side& side : requests) {
             SideMeasurement result;
             std::string error;
-            if (!measureSide(app_, sides[s], reference, result, error)) {
-                state_.measureError = sides[s] + ": " + error;
+            if (!measureSide(app_, side.technique, side.options, result, error)) {
+                state_.measureError = side.technique + ": " + error;
                 return;
             }
-            const auto frameMs = state_.sideTimings[s].find("frame");
-            result.gpuMs = frameMs == state_.sideTimings[s].end() ? 0.0 : frameMs->second;
+            result.gpuMs = side.gpuMs;
+            results.push_back(std::move(result));
+        }
+        showMeasurement(std::move(results));
+    }
+
+    // Once a frame, before anything is drawn: a measurement of techniques no longer shown is
+    // cancelled; a finished one is shown.
+    void pollMeasurement() {
+        if (measurement_.running()) {
+            const std::vector<std::string> measured = measurement_.techniques();
+            std::vector<std::string> shown{state_.technique};
+            if (!state_.compareTechnique.empty()) shown.push_back(state_.compareTechnique);
+            if (measured != shown) cancelMeasurement("the technique changed");
+        }
+        switch (measurement_.poll()) {
+        case AsyncMeasurement::Status::Idle: state_.measuring = false; return;
+        case AsyncMeasurement::Status::Running:
+            state_.measureProgress = measurement_.progress();
+            state_.measureStage = measurement_.stage();
+            return;
+        case AsyncMeasurement::Status::Done:
+        case AsyncMeasurement::Status::Failed: break;
+        }
+        state_.measuring = false;
+        std::string error;
+        std::vector<SideMeasurement> results = measurement_.take(error);
+        if (!error.empty()) {
+            state_.measureError = error;
+            logError("measure accuracy: " + error);
+            return;
+        }
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - measureStart_).count();
+        char text[200];
+        std::snprintf(text, sizeof(text),
+                      "accuracy measured in %.2f s on a worker thread: %ld frames presented meanwhile, at most %.0f ms apart",
+                      seconds, presentedFrames_ - measureStartFrame_, 1000.0 * double(longestFrameGap_));
+        logInfo(text);
+        showMeasurement(std::move(results));
+    }
+
+    void showMeasurement(std::vector<SideMeasurement> results) {
+        for (size_t s = 0; s < results.size(); ++s) {
+            const SideMeasurement& result = results[s];
             state_.measured.push_back({result.label, result.gpuMs, result.metrics.mae});
             char figures[128];
             std::snprintf(figures, sizeof(figures), ": MAE %.6f, %.3f ms GPU, %.2f MiB", result.metrics.mae, result.gpuMs,
                           double(result.gpuBytes) / (1024.0 * 1024.0));
             logInfo("accuracy of " + result.label + figures);
-            compositor_.setHeatmap(s, result.heatmap);
-            results.push_back(std::move(result));
+            compositor_.setHeatmap(int(s), result.heatmap);   // uploaded here, on the GL thread
         }
         state_.measurement = std::move(results);
         if (state_.compareLayout != CompareLayout::Difference) state_.view = {ViewSelection::Kind::ErrorHeatmap, ""};
+    }
+
+    void cancelMeasurement(const std::string& reason) {
+        if (!measurement_.running()) return;
+        measurement_.cancel();   // joins the worker
+        state_.measuring = false;
+        logInfo("measurement cancelled: " + reason);
     }
 
     void loadScene(const std::string& name) {
@@ -425,6 +523,11 @@ private:
     int exitCode_ = 0;
     std::chrono::steady_clock::time_point last_;
     glm::dvec2 lastMouse_{0.0};
+    long presentedFrames_ = 0;         // swaps, held frames included
+    long measureStartFrame_ = 0;
+    float longestFrameGap_ = 0.0f;     // seconds between two frames while measuring (the click's frame included)
+    std::chrono::steady_clock::time_point measureStart_;
+    AsyncMeasurement measurement_{app_};   // last: joined and released before the rest goes
 };
 
 int App::runInteractive(const InteractiveOptions& options) { return WindowSession(*this, options).run(); }

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "app.h"
+#include "bench/accuracy_columns.h"
 #include "util/log.h"
 #include "util/text_file.h"
 
@@ -230,89 +231,20 @@ static bool addDepthFloorRow(App& app, const BenchSpec& spec, int resolution, nl
 }
 
 // The ground-truth columns of a row (spec.accuracy): the last timed frame re-rendered untimed with
-// the accuracy targets and measured against each reference mode and translucency model asked for.
-static bool addAccuracyColumns(App& app, const BenchSpec& spec, const TechniqueInfo* info, const LightInfo& rowLight,
-                               nlohmann::json& row, std::string& error) {
-    const ReferenceOptions::Mode modes[2] = {ReferenceOptions::Mode::Hard, ReferenceOptions::Mode::Soft};
-    // Measured on the last timed frame, re-rendered untimed with the accuracy targets
-    // (App::evaluate); the measure() above had the lit colour only.
+// the accuracy targets (App::evaluate; the measure() before had the lit colour only) and measured
+// against each reference mode and translucency model asked for, by the function eval --json
+// uses too (bench/accuracy_columns.h).
+static bool addRowAccuracy(App& app, const BenchSpec& spec, const TechniqueInfo* info, const LightInfo& rowLight,
+                           nlohmann::json& row, std::string& error) {
     app.light() = rowLight;
-    const bool hardOnly = spec.reference == "hard" ||
-                          (spec.reference == "auto" && (info->category == "hard" || info->category == "baseline"));
-    const bool softOnly = spec.reference == "soft";
-    // Physical in the plain columns (hard_mae, ...), the technique's own model where it
-    // differs in hard_own_* / soft_own_* (docs/benchmarks.md, "Translucency models").
-    row["translucency_model"] = translucencyModelName(info->translucencyModel);
-    const std::vector<TranslucencyModel> models = judgedModels(info->translucencyModel, app.scene());
-    for (const auto mode : modes) {
-        if ((mode == ReferenceOptions::Mode::Soft && hardOnly) || (mode == ReferenceOptions::Mode::Hard && softOnly))
-            continue;
-        for (const TranslucencyModel model : models) {
-            const bool own = model != TranslucencyModel::Physical;
-            ReferenceOptions options;
-            options.mode = mode;
-            options.samplesPerPixel = spec.referenceSamples;
-            options.adaptive = spec.referenceAdaptive;
-            options.model = model;
-            Evaluation evaluation;
-            if (!app.evaluate(options, evaluation, error)) return false;
-            row["seconds_accuracy_render"] = row.value("seconds_accuracy_render", 0.0) + evaluation.renderSeconds;
-            row["seconds_reference"] = row.value("seconds_reference", 0.0) + evaluation.traceSeconds;
-            row["seconds_metrics"] = row.value("seconds_metrics", 0.0) + evaluation.metricsSeconds;
-            row["seconds_translucent_layers"] = row.value("seconds_translucent_layers", 0.0) + evaluation.layersSeconds;
-            const std::string prefix =
-                std::string(mode == ReferenceOptions::Mode::Hard ? "hard_" : "soft_") + (own ? "own_" : "");
-            const AccuracyMetrics& a = evaluation.metrics;
-            row[prefix + "mae"] = a.mae;
-            row[prefix + "rmse"] = a.rmse;
-            row[prefix + "false_shadow"] = a.falseShadowRate;
-            row[prefix + "false_light"] = a.falseLightRate;
-            row[prefix + "mae_penumbra"] = a.maePenumbra;
-            row[prefix + "mae_outside_penumbra"] = a.maeOutsidePenumbra;
-            row[prefix + "compared_fraction"] = a.comparedFraction;
-            row[prefix + "noise"] = a.noiseEnergy;
-            // Per channel on the opaque receivers, and the translucent receivers (peeled
-            // layers; seed 001 sec. 5.3.3) where the scene has some in view.
-            static constexpr const char* kChannels[] = {"r", "g", "b"};
-            for (int c = 0; c < 3; ++c) row[prefix + "mae_" + kChannels[c]] = a.maePerChannel[c];
-            if (!evaluation.translucentLayers.empty()) {
-                const AccuracyMetrics& t = evaluation.translucentMetrics;
-                row[prefix + "translucent_mae"] = t.mae;
-                for (int c = 0; c < 3; ++c) row[prefix + "translucent_mae_" + kChannels[c]] = t.maePerChannel[c];
-                row[prefix + "translucent_false_shadow"] = t.falseShadowRate;
-                row[prefix + "translucent_false_light"] = t.falseLightRate;
-                row[prefix + "translucent_noise"] = t.noiseEnergy;
-                row[prefix + "translucent_pixels"] = t.comparedPixels;
-                row[prefix + "translucent_layers"] = evaluation.translucentLayers.size();
-            }
-            if (own) continue;
-            // By view-depth third (perspective aliasing: seed 002 sec. 3.1).
-            static constexpr const char* kThirds[] = {"near", "mid", "far"};
-            for (size_t t = 0; t < 3; ++t) row[prefix + "mae_" + kThirds[t]] = a.maeByViewDepth[t];
-            if (evaluation.footprint.maps > 0 && !row.contains("footprint_median")) {
-                const TexelFootprint& f = evaluation.footprint;
-                row["footprint_median"] = f.median;
-                row["footprint_p95"] = f.p95;
-                row["footprint_max"] = f.max;
-                row["footprint_undersampled"] = f.undersampledFraction;
-                for (size_t t = 0; t < 3; ++t) row[std::string("footprint_") + kThirds[t]] = f.medianByViewDepth[t];
-                row["projection_ratio_median"] = f.projectionMedian;
-                row["shadow_maps"] = f.maps;
-            }
-            row["technique_penumbra_fraction"] = a.techniquePenumbraFraction;
-            if (mode == ReferenceOptions::Mode::Soft) {
-                // The soft reference's own error: soft figures (and differences between
-                // them) below about 4x the floor are not resolved.
-                const ReferenceStats& r = evaluation.referenceStats;
-                row["soft_reference_rays"] = r.samplesPerPixel;
-                row["soft_reference_adaptive"] = r.adaptive;
-                row["soft_reference_floor"] = evaluation.referenceFloor;
-                row["soft_reference_refined_fraction"] =
-                    r.tracedPixels ? double(r.refinedPixels) / double(r.tracedPixels) : 0.0;
-            }
-        }
+    AccuracyRequest request;
+    if (!referenceModesFor(spec.reference, *info, request.modes)) {
+        error = "reference '" + spec.reference + "': expected hard, soft, both or auto";
+        return false;
     }
-    return true;
+    request.samples = spec.referenceSamples;
+    request.adaptive = spec.referenceAdaptive;
+    return addAccuracyColumns(app, *info, request, row, error);
 }
 
 // A row's settings on top of the technique's defaults: the spec's base, then the row's sweep values
@@ -436,7 +368,7 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
             LoadedTechnique* loaded = app.techniques().get(info->id, error);
             if (loaded)
                 for (const auto& [name, value] : loaded->host().statistics()) row["stat." + columnName(name)] = value;
-            if (spec.accuracy && !addAccuracyColumns(app, spec, info, rowLight, row, error)) return false;
+            if (spec.accuracy && !addRowAccuracy(app, spec, info, rowLight, row, error)) return false;
         }
         row["seconds_row"] = secondsSince(rowStart);
         rows.push_back(row);

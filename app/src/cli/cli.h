@@ -67,6 +67,8 @@ struct WindowOptions {
     double uiScale = 1.0;
     bool hideUi = false;
     bool measure = false;
+    std::string measureReference = "hard";   // the reference of "Measure accuracy": hard | soft
+    int measureSamples = 64;                 // its rays per pixel when soft
     std::string screenshotDir = "screenshots";
     std::string tour;            // a built-in tour's name or a tour file
     int tourStep = 1;            // from 1

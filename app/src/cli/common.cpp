@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app.h"
+#include "bench/accuracy_columns.h"
 #include "bench/bench.h"
 #include "bench/path_run.h"
 #include "bench/report.h"
@@ -194,6 +195,10 @@ int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& te
     out.uiScale = float(w.uiScale);
     out.showUi = !w.hideUi;
     out.measure = w.measure;
+    if (w.measureReference != "hard" && w.measureReference != "soft")
+        return fail("--measure-reference '" + w.measureReference + "': expected hard or soft", kExitBadInput);
+    out.softReference = w.measureReference == "soft";
+    out.referenceSamples = w.measureSamples;
     out.screenshotFolder = w.screenshotDir;
     out.screenshot = w.screenshot;
     out.cycle = w.smokeFrames > 0;
@@ -222,18 +227,9 @@ std::vector<TechniqueInfo> describedTechniques() {
 // --reference: hard | soft | both | auto (hard for hard techniques, both for filtered and soft).
 bool referenceModes(const std::string& text, const TechniqueInfo& info, std::vector<ReferenceOptions::Mode>& modes,
                     std::string& error) {
-    using Mode = ReferenceOptions::Mode;
-    if (text == "hard") modes = {Mode::Hard};
-    else if (text == "soft") modes = {Mode::Soft};
-    else if (text == "both") modes = {Mode::Hard, Mode::Soft};
-    else if (text == "auto")
-        modes = (info.category == "hard" || info.category == "baseline") ? std::vector<Mode>{Mode::Hard}
-                                                                         : std::vector<Mode>{Mode::Hard, Mode::Soft};
-    else {
-        error = "--reference '" + text + "': expected hard, soft, both or auto";
-        return false;
-    }
-    return true;
+    if (referenceModesFor(text, info, modes)) return true;
+    error = "--reference '" + text + "': expected hard, soft, both or auto";
+    return false;
 }
 
 std::vector<std::string> splitList(const std::string& text) {

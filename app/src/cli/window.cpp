@@ -78,6 +78,11 @@ void MainJob::declare(CLI::App& cli) {
     windowOption(cli.add_flag("--measure", window_.measure,
                               "window: measure accuracy after a few frames, each side of a comparison for its own "
                               "technique, and show the heatmap (with --frames: a slide of it)"));
+    windowOption(cli.add_option("--measure-reference", window_.measureReference,
+                                "window: the reference \"Measure accuracy\" traces: hard (default) | soft"));
+    windowOption(cli.add_option("--measure-samples", window_.measureSamples,
+                                "window: rays per pixel of the soft reference (4-256, default 64)"))
+        ->check(CLI::Range(4, 256));
     windowOption(cli.add_option("--screenshot-dir", window_.screenshotDir, "window: folder of F12 screenshots (default screenshots)"));
     windowOption(cli.add_option("--tour", window_.tour,
                                 "window: play a guided tour, a built-in name (assets/tours) or a tour file; with --frames "

@@ -11,6 +11,7 @@
 // module reads through setScene) changes layout or meaning.
 #pragma once
 
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -21,7 +22,7 @@
 
 #include "scene/scene.h"
 
-#define SHADOWLAB_GROUNDTRUTH_ABI_VERSION 3u
+#define SHADOWLAB_GROUNDTRUTH_ABI_VERSION 4u
 #define SHADOWLAB_GROUNDTRUTH_ENTRY_SYMBOL "shadowlab_create_groundtruth"
 #define SHADOWLAB_GROUNDTRUTH_MODULE "libshadowlab_groundtruth.so"
 
@@ -34,6 +35,20 @@ struct GBufferView {
     int height = 0;
     const glm::vec4* positions = nullptr; // world space; w = 1 where geometry was drawn, 0 background
     const glm::vec4* normals = nullptr;   // world-space unit shading normals (xyz; w ignored)
+};
+
+// Progress and cancellation of a trace that runs on another thread than its caller's UI (the
+// window's "Measure accuracy", issue 32). The module adds the rows it plans to rowsTotal when a
+// pass starts (the adaptive soft reference has two passes over the image) and 1 to rowsDone per
+// row finished; once `cancel` is set its threads take no new row and trace() returns early with
+// an incomplete image, which the caller must drop (App::traceReference never caches it).
+// tracesDone is the host's: traces finished of a measurement that runs several.
+struct TraceControl {
+    std::atomic<uint64_t> rowsDone{0};
+    std::atomic<uint64_t> rowsTotal{0};
+    std::atomic<bool> cancel{false};
+    std::atomic<int> tracesDone{0};
+    bool cancelled() const { return cancel.load(std::memory_order_relaxed); }
 };
 
 struct ReferenceOptions {
@@ -64,6 +79,9 @@ struct ReferenceOptions {
     bool adaptive = false;
     int firstBatch = 32;
     int refineRadius = 2;
+
+    // Progress and cancellation (TraceControl); null: neither. Not part of what is traced.
+    TraceControl* control = nullptr;
 };
 
 // What a trace did, and how far the soft reference is from its own limit (N -> infinity).

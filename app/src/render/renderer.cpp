@@ -735,15 +735,11 @@ void Renderer::setTranslucentLayerState(int k, GLuint program) {
     glUniform1i(SHADOWLAB_LIGHTING_LOCATION, lighting_);
 }
 
-std::vector<glm::vec4> Renderer::readLayer(MainTarget which) const {
-    const GLuint texture = which == MainTarget::Visibility ? layerVisibility_.get()
-                           : which == MainTarget::Position ? layerPosition_.get()
-                           : which == MainTarget::Normal   ? layerNormal_.get()
-                                                           : 0u;
-    std::vector<glm::vec4> pixels(size_t(size_.x) * size_t(size_.y));
-    if (!texture) return pixels;
-    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(pixels.size() * sizeof(glm::vec4)), pixels.data());
-    return pixels;
+GLuint Renderer::layerTarget(MainTarget which) const {
+    return which == MainTarget::Visibility ? layerVisibility_.get()
+           : which == MainTarget::Position ? layerPosition_.get()
+           : which == MainTarget::Normal   ? layerNormal_.get()
+                                           : 0u;
 }
 
 void Renderer::applyDefaultState() {

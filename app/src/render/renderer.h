@@ -128,7 +128,7 @@ public:
     // of the opaque depth of the last accuracy main pass, peeled behind layer k - 1 (call them in
     // order 0, 1, ...; host_shared/translucent_layers_shared.h). `program` is the technique's main
     // pass built with SHADOWLAB_ACCURACY_TARGETS and SHADOWLAB_TRANSLUCENT_PEEL; the layer's shadow
-    // term, position and normal go to targets read with readLayer(). False (nothing drawn) when the
+    // term, position and normal go to the layerTarget() textures. False (nothing drawn) when the
     // scene has no translucent object or the main pass is multisampled (its single-sample depth
     // is not written then).
     template <typename BindTechnique>
@@ -142,7 +142,8 @@ public:
         drawTranslucent(program, [this, k, program] { setTranslucentLayerState(k, program); });
         return true;
     }
-    std::vector<glm::vec4> readLayer(MainTarget which) const;
+    // The texture a translucent layer's Visibility, Position or Normal goes to (0 for Color).
+    GLuint layerTarget(MainTarget which) const;
 
     // The framebuffer a main pass of `outputs` draws into (tests check its attachments).
     GLuint mainFramebuffer(FrameOutputs outputs) const;

@@ -31,19 +31,12 @@ MeasurementKey currentMeasurementKey(App& app, const std::string& technique) {
     return key;
 }
 
-bool measureSide(App& app, const std::string& technique, const ReferenceOptions& options, SideMeasurement& out,
-                 std::string& error) {
+bool describeSide(App& app, const std::string& technique, SideMeasurement& out, std::string& error) {
     const TechniqueInfo* info = app.techniques().find(technique);
     if (!info) {
         error = "no technique '" + technique + "'";
         return false;
     }
-    // This side's own frame: the frame before may have been the other side's technique.
-    if (!app.renderFrame(technique, error, FrameOutputs::Accuracy)) return false;
-    Evaluation evaluation;
-    if (!app.evaluate(options, evaluation, error)) return false;
-    if (!app.presentView(technique, {}, ~0u, {}, error)) return false;
-    const Image lit = app.readDisplay();
     out.technique = technique;
     out.label = technique;
     const auto& values = app.params().values(*info);
@@ -52,12 +45,31 @@ bool measureSide(App& app, const std::string& technique, const ReferenceOptions&
     std::string loadError;
     LoadedTechnique* loaded = app.techniques().get(technique, loadError);
     out.gpuBytes = loaded ? loaded->host().gpuBytes() : 0;
+    out.key = currentMeasurementKey(app, technique);
+    return true;
+}
+
+void fillSideFigures(const Evaluation& evaluation, const Image& lit, SideMeasurement& out) {
     out.metrics = evaluation.metrics;
     out.translucentMetrics = evaluation.translucentMetrics;
     out.translucentLayers = evaluation.translucentLayers.size();
     out.traceSeconds = evaluation.traceSeconds;
     out.heatmap = heatmapOverLit(lit, evaluation.technique, evaluation.reference, evaluation.mask);
-    out.key = currentMeasurementKey(app, technique);
+}
+
+bool measureSide(App& app, const std::string& technique, const ReferenceOptions& options, SideMeasurement& out,
+                 std::string& error) {
+    if (!app.techniques().find(technique)) {
+        error = "no technique '" + technique + "'";
+        return false;
+    }
+    // This side's own frame: the frame before may have been the other side's technique.
+    if (!app.renderFrame(technique, error, FrameOutputs::Accuracy)) return false;
+    Evaluation evaluation;
+    if (!app.evaluate(options, evaluation, error)) return false;
+    if (!app.presentView(technique, {}, ~0u, {}, error)) return false;
+    if (!describeSide(app, technique, out, error)) return false;
+    fillSideFigures(evaluation, app.readDisplay(), out);
     return true;
 }
 

@@ -29,6 +29,8 @@ struct InteractiveOptions {
     std::vector<std::pair<int, std::string>> screenshotsAt;   // with frames: also (frame from 0, file), a path's strip
     bool cycle = false;                            // smoke test: every technique and view in turn
     bool measure = false;                          // measure accuracy after a few frames (slides of the heatmap)
+    bool softReference = false;                    // the panel's reference at the start: soft (else hard)
+    int referenceSamples = 64;                     // its rays per pixel
     bool showUi = true;                            // false: the view (and comparison labels) only
     ViewSelection view;                            // the image shown at the start (lit, visibility, ...)
     std::optional<glm::ivec2> probe;               // the kernel view's pixel at the start (main-target pixels)
@@ -59,9 +61,15 @@ struct SideMeasurement {
 // What a measurement of `technique` at the current render size and camera depends on.
 MeasurementKey currentMeasurementKey(App& app, const std::string& technique);
 
+// The side's technique, label (id and parameter values), memory and key as they are now.
+bool describeSide(App& app, const std::string& technique, SideMeasurement& out, std::string& error);
+// The figures and the heatmap (over `lit`, the side's lit view) of an evaluation of the side.
+void fillSideFigures(const Evaluation& evaluation, const Image& lit, SideMeasurement& out);
+
 // Renders one frame of `technique` (at the renderer's current size, with the accuracy targets),
 // traces the reference for that frame and fills `out` (gpuMs is the caller's: timings are read
-// a few frames late). Each side of a comparison is measured this way, for its own technique.
+// a few frames late), all at once. The window does this with the GPU reference device (its
+// tracer draws with GL); with Embree it measures without stopping (ui/async_measurement.h).
 bool measureSide(App& app, const std::string& technique, const ReferenceOptions& options, SideMeasurement& out,
                  std::string& error);
 

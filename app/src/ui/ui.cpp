@@ -506,8 +506,10 @@ void Ui::drawAccuracySection(App& app, UiState& state) {
         const char* modes[] = {"hard reference", "soft reference"};
         fieldLabel("against", "Traces the ray-traced reference (Embree, CPU) from the G-buffer of the frame on screen and "
                               "compares the technique's shadow term per pixel; in a comparison each side is measured for "
-                              "its own technique. The heatmap shows false shadow (acne, over-darkening) in magenta and "
-                              "false light (leaks, peter panning) in green over the dimmed scene.");
+                              "its own technique. The trace runs beside the frame loop, so the view keeps drawing; "
+                              "changing the scene or the technique cancels it. The heatmap shows false shadow (acne, "
+                              "over-darkening) in magenta and false light (leaks, peter panning) in green over the dimmed "
+                              "scene.");
         ImGui::Combo("##against", &state.referenceMode, modes, 2);
         if (state.referenceMode == 1) {
             fieldLabel("rays per pixel");
@@ -523,7 +525,14 @@ void Ui::drawAccuracySection(App& app, UiState& state) {
         const char* models[] = {"physical", ownLabel.c_str()};
         fieldLabel("translucency model");
         ImGui::Combo("##translucency-model", &state.referenceModel, models, 2);
-        if (ImGui::Button("Measure accuracy (M)")) state.commands.push_back({UiCommand::Kind::Measure, ""});
+        if (ImGui::Button(state.measuring ? "Measure again (M)" : "Measure accuracy (M)"))
+            state.commands.push_back({UiCommand::Kind::Measure, ""});
+        if (state.measuring) {
+            // The reference is traced on a worker: the view keeps drawing meanwhile.
+            ImGui::TextWrapped("measuring: %s", state.measureStage.c_str());
+            ImGui::ProgressBar(state.measureProgress, ImVec2(-1.0f, 0.0f));
+            if (ImGui::Button("Cancel")) state.commands.push_back({UiCommand::Kind::CancelMeasure, ""});
+        }
         if (!state.measureError.empty()) {
             ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.4f, 0.4f, 1));
             ImGui::TextWrapped("%s", state.measureError.c_str());

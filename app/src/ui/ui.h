@@ -26,7 +26,7 @@ namespace shadowlab {
 // --session at the start, and the headless `tour` command (one step per run) all apply a step
 // with the same command.
 struct UiCommand {
-    enum class Kind { Measure, Screenshot, LoadScene, TourStep, LoadTour, SaveSession, LoadSession } kind;
+    enum class Kind { Measure, CancelMeasure, Screenshot, LoadScene, TourStep, LoadTour, SaveSession, LoadSession } kind;
     // LoadScene, LoadTour, LoadSession: name or path; SaveSession: path ("" = a new name under
     // the session folder); TourStep: "next", "previous", "restart" or a step index from 0.
     std::string argument;
@@ -78,6 +78,11 @@ struct UiState {
     int referenceModel = 0;           // 0 physical, 1 each side's technique's own translucency model
     std::vector<SideMeasurement> measurement;
     std::string measureError;
+    // A measurement running on its worker (ui/async_measurement.h): the frame loop goes on; the
+    // panel shows how far it is and offers Cancel. The result replaces `measurement` when done.
+    bool measuring = false;
+    float measureProgress = 0.0f;     // 0..1
+    std::string measureStage;         // what it is doing ("tracing the reference, image 1 of 2")
     std::string staleReason;          // why the shown measurement no longer matches the view ("" = current)
     std::map<std::string, double> sideTimings[2];   // GPU ms per pass of each side's latest frame
     struct MeasuredPoint {

@@ -346,6 +346,15 @@ void parallelRows(int threads, Worker&& worker) {
     if (failure) std::rethrow_exception(failure);
 }
 
+// TraceControl (groundtruth.h): rows planned and done, and whether to stop taking rows.
+void planRows(const ReferenceOptions& options, int rows) {
+    if (options.control) options.control->rowsTotal += static_cast<uint64_t>(std::max(rows, 0));
+}
+void rowDone(const ReferenceOptions& options) {
+    if (options.control) options.control->rowsDone.fetch_add(1, std::memory_order_relaxed);
+}
+bool stopRequested(const ReferenceOptions& options) { return options.control && options.control->cancelled(); }
+
 int threadCount(int requested, int rows) {
     int threads = requested > 0 ? requested : static_cast<int>(std::thread::hardware_concurrency());
     return std::clamp(threads, 1, std::max(1, rows));
@@ -552,6 +561,7 @@ private:
                    std::vector<glm::vec3>& visibility) const {
         const int width = gbuffer.width, height = gbuffer.height;
         const bool coloured = options.model != TranslucencyModel::Opaque && anyTranslucentCaster_;
+        planRows(options, height);
         parallelRows(threadCount(options.threads, height), [&](std::atomic<int>& nextRow) {
             std::vector<RTCRay> rays(static_cast<size_t>(std::max(width, 1)));
             std::vector<int> rayPixel(rays.size());
@@ -559,7 +569,7 @@ private:
             rtcInitIntersectContext(&context);
             // Hard rays of a row to one light are coherent, but the coherent stream mode is not
             // used (see kStreamFlags).
-            for (int row; (row = nextRow++) < height;) {
+            for (int row; !stopRequested(options) && (row = nextRow++) < height; rowDone(options)) {
                 const size_t rowStart = static_cast<size_t>(row) * static_cast<size_t>(width);
                 int count = 0;
                 for (int x = 0; x < width; ++x) {
@@ -680,6 +690,7 @@ private:
         const int threads = threadCount(options.threads, height);
         std::vector<int> everyStratum(static_cast<size_t>(strata.count));
         for (int k = 0; k < strata.count; ++k) everyStratum[static_cast<size_t>(k)] = k;
+        planRows(options, adaptive ? 2 * height : height);
 
         // Per pixel: 0 not traced (not facing the light), 1 unanimous first batch, 2 split first
         // batch, 3 to be traced with all N strata.
@@ -698,7 +709,7 @@ private:
                 RTCIntersectContext c;
                 context(c);
                 uint64_t traced = 0;
-                for (int row; (row = nextRow++) < height;) {
+                for (int row; !stopRequested(options) && (row = nextRow++) < height; rowDone(options)) {
                     for (int x = 0; x < width; ++x) {
                         const size_t i = static_cast<size_t>(row) * static_cast<size_t>(width) + static_cast<size_t>(x);
                         if (state[i] == kSkip) continue;
@@ -749,7 +760,7 @@ private:
             RTCIntersectContext c;
             context(c);
             uint64_t traced = 0;
-            for (int row; (row = nextRow++) < height;) {
+            for (int row; !stopRequested(options) && (row = nextRow++) < height; rowDone(options)) {
                 for (int x = 0; x < width; ++x) {
                     const size_t i = static_cast<size_t>(row) * static_cast<size_t>(width) + static_cast<size_t>(x);
                     if (state[i] != kRefine) continue;

@@ -1,0 +1,46 @@
+// The accuracy fields of one frame, named as bench rows name them (docs/benchmarks.md): one
+// function measures them for both `bench --accuracy` (into the row) and `eval --json` (its
+// "bench_columns" object), so the two report the same keys with the same values for the same
+// frame (issue 32; test eval_bench_columns).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app.h"
+
+namespace shadowlab {
+
+// "hard" | "soft" | "both" | "auto" (hard for the hard and baseline techniques, else both), the
+// meaning of bench's and eval's --reference; false for anything else.
+bool referenceModesFor(const std::string& reference, const TechniqueInfo& info, std::vector<ReferenceOptions::Mode>& modes);
+
+struct AccuracyRequest {
+    std::vector<ReferenceOptions::Mode> modes;
+    int samples = 1024;      // soft reference rays per pixel
+    bool adaptive = true;    // soft reference sampled adaptively
+};
+
+// An evaluation as it is measured: its column prefix ("hard_", "soft_own_"), mode and model.
+struct AccuracyPass {
+    std::string prefix;
+    ReferenceOptions::Mode mode;
+    TranslucencyModel model;
+};
+
+// Evaluates the last frame (App::evaluate) against each mode of `request` and each model the
+// technique is judged by (judgedModels: physical, then its own where it differs and the scene has
+// a translucent caster), adding the columns to `columns`: translucency_model; per pass <prefix>mae,
+// _rmse, _false_shadow, _false_light, _mae_penumbra, _mae_outside_penumbra, _compared_fraction,
+// _noise, _mae_r/g/b, the translucent receivers' _translucent_* where the frame has some; for
+// the physical passes the view-depth thirds, technique_penumbra_fraction, the texel footprint
+// (first pass only) and, soft, the reference's rays and floor. `each` sees every evaluation
+// (eval adds its per-layer and per-bin details).
+bool addAccuracyColumns(App& app, const TechniqueInfo& info, const AccuracyRequest& request, nlohmann::json& columns,
+                        std::string& error,
+                        const std::function<void(const AccuracyPass&, const Evaluation&)>& each = {});
+
+} // namespace shadowlab
