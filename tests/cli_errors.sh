@@ -232,7 +232,7 @@ expect 2 "tour-scene.json: steps\[1\].*scene: .*nowhere: cannot open scene file"
 tour_step "$tmp/tour-light.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "light": {"size": 90}, "caption": "c"}'
 expect 2 "tour-light.json: steps\[1\].*light.size" -- tour "$tmp/tour-light.json" --out "$tmp/tour"
 tour_step "$tmp/tour-view.json" '{"title": "two", "scene": "cube", "technique": "pcf", "view": "moments", "caption": "c"}'
-expect_bounded 2 "tour-view.json: steps\[1\].*view 'moments': pcf has no such image" -- tour --backend osmesa --size 64x48 "$tmp/tour-view.json" --out "$tmp/tour"
+expect_bounded 2 "tour-view.json: steps\[1\].*view 'moments': pcf has no such view" -- tour --backend osmesa --size 64x48 "$tmp/tour-view.json" --out "$tmp/tour"
 [ ! -e "$tmp/tour/step-01.png" ] || { echo "FAIL: a slide was drawn before the tour was refused"; failures=$((failures + 1)); }
 expect 2 "no-such-tour: no such tour file" -- tour no-such-tour --out "$tmp/tour"
 # A step's path (issue 12's paths): a built-in name or a file relative to the tour, checked before
@@ -252,7 +252,7 @@ expect 2 "tour-pathtypo.json: steps\[1\].*typo.json.*camra" -- tour "$tmp/tour-p
 tour_step "$tmp/tour-patherror.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "path": "orbit", "view": "error", "caption": "c"}'
 expect 2 "tour-patherror.json: steps\[1\].*path 'orbit': the error view" -- tour "$tmp/tour-patherror.json" --out "$tmp/tour"
 # The window checks a step's debug view when the tour is loaded, before the first step is shown.
-expect_bounded 2 "tour-view.json: steps\[1\].*view 'moments': pcf has no such image" -- --backend osmesa --size 64x48 --tour "$tmp/tour-view.json" --frames 2 --screenshot "$tmp/s-view.png"
+expect_bounded 2 "tour-view.json: steps\[1\].*view 'moments': pcf has no such view" -- --backend osmesa --size 64x48 --tour "$tmp/tour-view.json" --frames 2 --screenshot "$tmp/s-view.png"
 [ ! -e "$tmp/s-view.png" ] || { echo "FAIL: the window drew the tour before refusing its view"; failures=$((failures + 1)); }
 # The window's --tour and --session, with and without a display.
 expect 2 "--tour: .*tour-range.json: steps\[1\]" -- --backend osmesa --tour "$tmp/tour-range.json" --frames 2 --screenshot "$tmp/s.png"

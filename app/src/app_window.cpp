@@ -23,6 +23,7 @@
 #include "ui/ui.h"
 #include "util/log.h"
 #include "util/paths.h"
+#include "util/progress.h"
 #include "util/text_file.h"
 
 namespace shadowlab {
@@ -38,6 +39,10 @@ public:
             if (!frame()) break;
             if (options_.frames > 0 && frameIndex_ >= options_.frames) break;
             if (state_.quitRequested) break;
+            if (interrupted()) {   // Ctrl-C in the terminal closes the window (util/progress.h)
+                exitCode_ = kExitInterrupted;
+                break;
+            }
         }
         app_.camera().setFramingAspect(0.0f);
         ui_.shutdown();
@@ -78,6 +83,7 @@ private:
             runCommand({UiCommand::Kind::TourStep, std::to_string(options_.tourStep)});
         }
         if (!options_.session.empty()) runCommand({UiCommand::Kind::LoadSession, options_.session});
+        if (!options_.session.empty() && state_.sessionStatusIsError) return 2;   // refused before the first frame, as --tour
         return 0;
     }
 
@@ -403,7 +409,8 @@ private:
     void loadSession(const std::string& file) {
         TourStep step;
         std::string error;
-        if (!shadowlab::loadSession(file, app_.techniques().techniques(), step, error) || !applyTourStep(app_, step, state_, error))
+        if (!shadowlab::loadSession(file, app_.techniques().techniques(), step, error) ||
+            !checkStepView(app_, step, file, error) || !applyTourStep(app_, step, state_, error))
             return failed(state_.sessionStatus, state_.sessionStatusIsError, error, 2);
         state_.sessionStatus = "loaded " + file;
         state_.sessionStatusIsError = false;

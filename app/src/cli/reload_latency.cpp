@@ -76,6 +76,9 @@ public:
         return reload;
     }
     int run(const CommonOptions& common) override { return commandReloadLatency(common, trials_); }
+    std::vector<Unused> unusedCommonOptions() const override {
+        return {{"--set", "it times the reload of the library with the technique's defaults"}};
+    }
 
 private:
     int trials_ = 10;
