@@ -25,6 +25,7 @@
 #include "bench/tour_pages.h"
 #include "util/log.h"
 #include "util/paths.h"
+#include "util/progress.h"
 #include "util/stats.h"
 #include "util/strings.h"
 #include "util/text_file.h"
@@ -161,8 +162,11 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         return code;
     }
     if (!probe.empty()) return renderProbeSlide(app, technique, view, frames, out, probePixel);
-    for (int i = 0; i < std::max(frames, 1); ++i)
+    Progress progress("render: drawing " + technique, uint64_t(std::max(frames, 1)), "frames");   // a huge scene on llvmpipe
+    for (int i = 0; i < std::max(frames, 1); ++i) {
         if (!app.renderFrame(technique, error)) return fail(error, kExitFailure);
+        progress.step(uint64_t(i + 1));
+    }
     Image image;
     if (view == "error" || view == "reference") {
         // Accuracy views: the reference traced from this frame's own G-buffer.

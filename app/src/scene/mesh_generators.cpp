@@ -21,7 +21,7 @@ public:
     GridProgress(const char* shape, int columns, int rows)
         : rows_(uint64_t(rows) + 1), progress_(std::string("generating a ") + shape + " of " + std::to_string(columns) + " x " +
                                                     std::to_string(rows),
-                                                2 * (uint64_t(rows) + 1), "rows") {}
+                                                2 * uint64_t(rows) + 1, "rows") {}
     void vertexRow(int row) { progress_.stepOrThrow(uint64_t(row) + 1); }
     void indexRow(uint32_t row) { progress_.stepOrThrow(rows_ + row + 1); }
 
@@ -96,6 +96,8 @@ void addSide(Mesh& mesh, float bottomRadius, float topRadius, float y0, float y1
 Mesh makePlane(float sizeX, float sizeZ, int subdivisions) {
     const int cells = std::max(subdivisions, 1);
     Mesh mesh;
+    mesh.vertices.reserve(size_t(cells + 1) * size_t(cells + 1));
+    mesh.indices.reserve(size_t(cells) * size_t(cells) * 6);
     GridProgress progress("plane", cells, cells);
     for (int j = 0; j <= cells; ++j) {
         progress.vertexRow(j);
@@ -146,6 +148,8 @@ Mesh makeSphere(float radius, int segments, int rings) {
     segments = std::max(segments, 3);
     rings = std::max(rings, 2);
     Mesh mesh;
+    mesh.vertices.reserve(size_t(rings + 1) * size_t(segments + 1));
+    mesh.indices.reserve(size_t(rings) * size_t(segments) * 6);
     GridProgress progress("sphere", segments, rings);
     // theta from the north pole (+y) down, phi around y from +x towards +z.
     for (int r = 0; r <= rings; ++r) {
@@ -192,6 +196,8 @@ Mesh makeTorus(float majorRadius, float minorRadius, int segments, int sides) {
     segments = std::max(segments, 3);
     sides = std::max(sides, 3);
     Mesh mesh;
+    mesh.vertices.reserve(size_t(segments + 1) * size_t(sides + 1));
+    mesh.indices.reserve(size_t(segments) * size_t(sides) * 6);
     GridProgress progress("torus", sides, segments);
     for (int i = 0; i <= segments; ++i) {
         progress.vertexRow(i);
