@@ -508,16 +508,23 @@ bool warmUp(int warmupFrames, RenderOne&& renderOne) {
 } // namespace
 
 bool App::measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error) {
-    if (!warmUp(warmupFrames, [&] { return renderFrame(technique, error); })) return false;
+    // Silent unless it takes a while (200 frames of the forest on llvmpipe: half a minute).
+    Progress progress("measuring " + technique, uint64_t(warmupFrames) + uint64_t(frames), "frames (warm-up included)");
+    uint64_t warmed = 0;
+    auto warmFrame = [&] {
+        const bool drawn = renderFrame(technique, error);
+        progress.step(std::min(++warmed, uint64_t(warmupFrames)));   // warm-up may run longer than its frames
+        return drawn;
+    };
+    if (!warmUp(warmupFrames, warmFrame)) return false;
     timer_->drain();
     timer_->clearHistory();
     std::vector<double> cpu;
     cpu.reserve(size_t(frames));
-    Progress progress("measuring " + technique, uint64_t(frames), "frames");   // silent unless it takes a while
     for (int i = 0; i < frames; ++i) {
         if (!renderFrame(technique, error)) return false;
         cpu.push_back(lastCpuFrameMs_);
-        progress.step(uint64_t(i + 1));
+        progress.step(uint64_t(warmupFrames) + uint64_t(i + 1));
     }
     timer_->drain();
     out = {};
