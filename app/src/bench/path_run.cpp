@@ -232,8 +232,10 @@ int renderPath(App& app, const std::string& technique, const std::string& pathTe
         if (!app.renderFrame(technique, error)) {
             // Ctrl-C: the frames written so far are the result.
             if (interrupted())
-                error = "interrupted (Ctrl-C): frames 0 to " + std::to_string(frame - 1) + " of path '" + path.name +
-                        "' written to " + outDir.string() + " (" + std::to_string(frame) + " of " + std::to_string(path.frames) + ")";
+                error = "interrupted (Ctrl-C): " +
+                        (frame == 0 ? std::string("no frame") : "frames 0 to " + std::to_string(frame - 1)) + " of path '" +
+                        path.name + "' written to " + outDir.string() + " (" + std::to_string(frame) + " of " +
+                        std::to_string(path.frames) + ")";
             return 1;
         }
         if (!app.presentView(technique, selection, ~0u, {}, error)) return 2;
