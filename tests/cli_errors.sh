@@ -289,6 +289,8 @@ expect 2 "--set: \`report\` does not use it" -- report --set resolution=512 --ou
 expect 2 "--scene: \`list\` does not use it" -- list --scene cube
 expect 2 "--technique: \`stress\` does not use it (use --techniques)" -- stress --technique shadowmap --out "$tmp/stress31"
 expect 2 "--scene: \`tour\` does not use it" -- tour shadow-mapping --scene cube --out "$tmp/tour31"
+expect 2 "--translucent-layers: \`render\` does not use it (only the accuracy views" -- render --translucent-layers 2 --out "$tmp/a.png"
+expect 2 "--reference-device: \`bench\` does not use it (only --accuracy traces the reference)" -- bench --techniques shadowmap --reference-device gpu --out "$tmp/b.csv"
 expect 2 "--set nosuch=1: 'nosuch' is no parameter of the techniques measured (shadowmap)" -- stress --backend osmesa --techniques shadowmap --set nosuch=1 --out "$tmp/stress31"
 expect 2 "--techniques: an empty value" -- bench --techniques '' --out "$tmp/b.csv"
 expect 2 "--scene: an empty value" -- render --scene '' --out "$tmp/a.png"

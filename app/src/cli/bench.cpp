@@ -167,6 +167,9 @@ public:
     }
     std::vector<Unused> unusedCommonOptions() const override {
         std::vector<Unused> unused{{"--technique", "use --techniques"}};
+        if (specFile_.empty() && !spec_.accuracy)
+            for (const char* option : {"--translucent-layers", "--reference-device"})
+                unused.push_back({option, "only --accuracy traces the reference"});
         if (path_.empty() || !scenes_.empty()) {
             unused.push_back({"--scene", "use --scenes"});
             unused.push_back({"--scene-param", "sweep scene parameters: --sweep scene.NAME=V"});

@@ -242,6 +242,11 @@ public:
             return fail("--wipe: places the divider of --compare-layout wipe", kExitBadInput);
         return commandRender(common, out_, view_, frames_, reference_, samples_, compare_, path_, pathFrames_, probe_);
     }
+    std::vector<Unused> unusedCommonOptions() const override {
+        if (view_ == "error" || view_ == "reference") return {};
+        const std::string accuracy = "only the accuracy views (--view error or reference) trace the reference";
+        return {{"--translucent-layers", accuracy}, {"--reference-device", accuracy}};
+    }
 
 private:
     std::string out_, view_ = "lit", probe_, reference_ = "auto", path_;
