@@ -51,7 +51,7 @@ grep -q '"depth_prepass_mode": "auto"' "$tmp/prepass.json" && grep -q '"depth_pr
 expect 2 "no such technique" -- render --backend osmesa -t nonexistent --out "$tmp/a.png"
 expect 2 "expected glfw, egl or osmesa" -- render --backend vulkan --out "$tmp/a.png"
 expect 2 "WIDTHxHEIGHT" -- render --backend osmesa --size 12by3 --out "$tmp/a.png"
-expect 2 "no debug image 'nope'" -- render --backend osmesa -t shadowmap --view nope --out "$tmp/a.png"
+expect 2 "--view 'nope': shadowmap has no such view (views: lit, visibility, error, footprint, texel-grid, coverage, focus-body, kernel, reference, 'shadow map')" -- render --backend osmesa -t shadowmap --view nope --out "$tmp/a.png"
 expect 0 "wrote" -- render --backend osmesa -t shadowmap --view "shadow map" --size 64x48 --out "$tmp/map.png"
 [ -s "$tmp/map.png" ] || { echo "FAIL: no PNG written"; failures=$((failures + 1)); }
 expect 0 '"id": "shadowmap"' -- list --json
@@ -69,7 +69,7 @@ expect 2 "truncated.json" -- "${pathrender[@]}" --path "$tmp/truncated.json" --o
 expect 2 "no-such-path.json" -- "${pathrender[@]}" --path "$tmp/no-such-path.json" --out "$tmp/frames"
 expect 2 "not a file, nor a path of scene 'cube' or a built-in path (orbit, dolly" -- "${pathrender[@]}" --path spiral --out "$tmp/frames"
 expect 2 "backwards.json" -- bench --backend osmesa --size 48x32 --techniques shadowmap --path "$tmp/backwards.json" --out "$tmp/p.json"
-expect 2 "--path: times one setting per technique" -- bench --backend osmesa --techniques shadowmap --path orbit --sweep resolution=512,1024 --out "$tmp/p.json"
+expect 2 "--sweep excludes --path" -- bench --backend osmesa --techniques shadowmap --path orbit --sweep resolution=512,1024 --out "$tmp/p.json"
 expect 0 "wrote 3 frames of path 'dolly'" -- "${pathrender[@]}" --path dolly --path-frames 3 --out "$tmp/frames"
 [ "$(ls "$tmp/frames" | grep -c '^frame_0000[0-2].png$')" = 3 ] || { echo "FAIL: render --path did not write frame_00000..2.png"; failures=$((failures + 1)); }
 expect 0 "p50" -- bench --backend osmesa --size 48x32 --techniques shadowmap,pcf --path sweep --path-frames 6 --warmup 2 --accuracy --out "$tmp/path.json"
@@ -157,7 +157,7 @@ expect_bounded 2 "render targets .* would need more than the GPU memory budget" 
 # bench: the whole command checked before the first frame
 bench=(bench --backend osmesa --size 64x48 --frames 1 --warmup 0 --out "$tmp/b.csv")
 expect_bounded 2 "--sweep light.size=...: 'abc' is not a number" -- "${bench[@]}" --sweep light.size=abc
-expect_bounded 2 "--sweep resolution=...: shadowmap: parameter 'resolution': 'abc' is not a number" -- "${bench[@]}" -t shadowmap --techniques shadowmap --sweep resolution=256,abc --depth-floor
+expect_bounded 2 "--sweep resolution=...: shadowmap: parameter 'resolution': 'abc' is not a number" -- "${bench[@]}" --techniques shadowmap --sweep resolution=256,abc --depth-floor
 expect_bounded 2 "--reference 'sofft': expected hard, soft, both or auto" -- "${bench[@]}" --accuracy --reference sofft
 expect_bounded 2 "--reference 'bogus'" -- "${bench[@]}" --accuracy --reference bogus
 expect_bounded 2 "--samples 0: expected 1 to 4096" -- "${bench[@]}" --accuracy --samples 0
@@ -222,8 +222,9 @@ code = child.wait(timeout=30)
 print(code, len(glob.glob(os.path.join(tmp, "shadowlab-*"))))
 PY
 )
-    expected="-$( [ $signal = INT ] && echo 2 || echo 15) 0"
-    if [ "$result" = "$expected" ]; then echo "ok: SIG$signal during a run -> killed by it, scratch folder removed"
+    # SIGINT stops the run cleanly (exit 130, util/progress.h); SIGTERM kills it. Either way the folder goes.
+    expected="$( [ $signal = INT ] && echo 130 || echo -15) 0"
+    if [ "$result" = "$expected" ]; then echo "ok: SIG$signal during a run -> exit $expected, scratch folder removed"
     else echo "FAIL: SIG$signal: got '$result' (exit status, folders left), want '$expected'"; failures=$((failures + 1)); fi
 done
 
@@ -245,7 +246,7 @@ expect 2 "tour-scene.json: steps\[1\].*scene: .*nowhere: cannot open scene file"
 tour_step "$tmp/tour-light.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "light": {"size": 90}, "caption": "c"}'
 expect 2 "tour-light.json: steps\[1\].*light.size" -- tour "$tmp/tour-light.json" --out "$tmp/tour"
 tour_step "$tmp/tour-view.json" '{"title": "two", "scene": "cube", "technique": "pcf", "view": "moments", "caption": "c"}'
-expect_bounded 2 "tour-view.json: steps\[1\].*view 'moments': pcf has no such image" -- tour --backend osmesa --size 64x48 "$tmp/tour-view.json" --out "$tmp/tour"
+expect_bounded 2 "tour-view.json: steps\[1\].*view 'moments': pcf has no such view" -- tour --backend osmesa --size 64x48 "$tmp/tour-view.json" --out "$tmp/tour"
 [ ! -e "$tmp/tour/step-01.png" ] || { echo "FAIL: a slide was drawn before the tour was refused"; failures=$((failures + 1)); }
 expect 2 "no-such-tour: no such tour file" -- tour no-such-tour --out "$tmp/tour"
 # A step's path (issue 12's paths): a built-in name or a file relative to the tour, checked before
@@ -265,7 +266,7 @@ expect 2 "tour-pathtypo.json: steps\[1\].*typo.json.*camra" -- tour "$tmp/tour-p
 tour_step "$tmp/tour-patherror.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "path": "orbit", "view": "error", "caption": "c"}'
 expect 2 "tour-patherror.json: steps\[1\].*path 'orbit': the error view" -- tour "$tmp/tour-patherror.json" --out "$tmp/tour"
 # The window checks a step's debug view when the tour is loaded, before the first step is shown.
-expect_bounded 2 "tour-view.json: steps\[1\].*view 'moments': pcf has no such image" -- --backend osmesa --size 64x48 --tour "$tmp/tour-view.json" --frames 2 --screenshot "$tmp/s-view.png"
+expect_bounded 2 "tour-view.json: steps\[1\].*view 'moments': pcf has no such view" -- --backend osmesa --size 64x48 --tour "$tmp/tour-view.json" --frames 2 --screenshot "$tmp/s-view.png"
 [ ! -e "$tmp/s-view.png" ] || { echo "FAIL: the window drew the tour before refusing its view"; failures=$((failures + 1)); }
 # The window's --tour and --session, with and without a display.
 expect 2 "--tour: .*tour-range.json: steps\[1\]" -- --backend osmesa --tour "$tmp/tour-range.json" --frames 2 --screenshot "$tmp/s.png"
@@ -276,6 +277,129 @@ echo '{"title": "s", "scene": "cube", "technique": "shadowmap", "parameters": {"
 expect 2 "--session: .*session-bad.json.*slope_bias.*out of range" -- --backend osmesa --session "$tmp/session-bad.json" --frames 2
 echo '{"title": "s", "scene": "cube", "technique": "shadowmap", "caption": "c", "steps": []}' > "$tmp/session-tour.json"
 expect 2 "session-tour.json: unknown field 'steps'" -- --backend osmesa --session "$tmp/session-tour.json" --frames 2
+
+# --- issue 31: one rule for every reader. Each check: exit 2, the message names the file or option.
+# A step is checked alike in a tour and in a session file (here: its view, before the first frame).
+echo '{"title": "s", "scene": "cube", "technique": "pcf", "view": "moments", "caption": "c"}' > "$tmp/session-view.json"
+expect_bounded 2 "session-view.json.*view 'moments': pcf has no such view (views: lit, visibility, error, footprint" -- --backend osmesa --size 64x48 --session "$tmp/session-view.json" --frames 2 --screenshot "$tmp/s-session.png"
+[ ! -e "$tmp/s-session.png" ] || { echo "FAIL: the window drew the session before refusing its view"; failures=$((failures + 1)); }
+# A path keyframe gets a scene's camera and light checks, and so does every frame between keyframes.
+printf '{"keyframes": [{"time": 0, "camera": {"position": [1, 2, 3], "target": [1, 2, 3]}}, {"time": 1, "camera": {"position": [0, 2, 3]}}]}' > "$tmp/path-same.json"
+expect 2 "path-same.json: keyframes\[0\].camera: the target is at the camera position" -- "${pathrender[@]}" --path "$tmp/path-same.json" --out "$tmp/frames31"
+printf '{"keyframes": [{"time": 0, "light": {"direction": [1, -1, 0]}}, {"time": 1, "light": {"direction": [-1, 1, 0]}}], "frames": 3}' > "$tmp/path-zero.json"
+expect 2 "path-zero.json: frame 1 (time 0.5): the light's direction passes through zero" -- "${pathrender[@]}" --path "$tmp/path-zero.json" --out "$tmp/frames31"
+printf '{"keyframes": [{"time": 0, "camera": {"position": [0, 9, 0], "target": [0, 0, 0]}}], "frames": 2}' > "$tmp/path-up.json"
+expect 2 "path-up.json: frame 0 (time 0): the camera looks straight along its up vector" -- "${pathrender[@]}" --path "$tmp/path-up.json" --out "$tmp/frames31"
+echo '{"camera": {"position": [0, 9, 0], "target": [0, 0, 0]}, "objects": [{"shape": "box"}]}' > "$tmp/camera-up.json"
+expect 2 "camera-up.json: camera.up: the camera looks straight along its up vector" -- "${render[@]}" --scene "$tmp/camera-up.json"
+tour_step "$tmp/tour-camera-up.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "camera": {"position": [0, 9, 0], "target": [0, 0, 0]}, "caption": "c"}'
+expect 2 "tour-camera-up.json: steps\[1\] (\"two\"): camera: the camera looks straight along its up vector" -- tour "$tmp/tour-camera-up.json" --out "$tmp/tour31"
+# A repeat block's grid is held to the cell limit with a count too.
+echo '{"objects": [{"shape": "box", "repeat": {"count": 2, "grid": [1000000, 1000000]}}]}' > "$tmp/grid.json"
+expect_bounded 2 "grid.json: objects\[0\].repeat.grid: 1000000 x 1000000 = 1000000000000 cells, more than 1000000" -- "${render[@]}" --scene "$tmp/grid.json"
+# Options: a common option a command does not use, empty values and list items, options that need another.
+expect 2 "--set: \`report\` does not use it" -- report --set resolution=512 --out "$tmp/report31"
+expect 2 "--scene: \`list\` does not use it" -- list --scene cube
+expect 2 "--technique: \`stress\` does not use it (use --techniques)" -- stress --technique shadowmap --out "$tmp/stress31"
+expect 2 "--scene: \`tour\` does not use it" -- tour shadow-mapping --scene cube --out "$tmp/tour31"
+expect 2 "--translucent-layers: \`render\` does not use it (only the accuracy views" -- render --translucent-layers 2 --out "$tmp/a.png"
+expect 2 "--reference-device: \`bench\` does not use it (only --accuracy traces the reference)" -- bench --techniques shadowmap --reference-device gpu --out "$tmp/b.csv"
+expect 2 "--set nosuch=1: 'nosuch' is no parameter of the techniques measured (shadowmap)" -- stress --backend osmesa --techniques shadowmap --set nosuch=1 --out "$tmp/stress31"
+expect 2 "--techniques: an empty value" -- bench --techniques '' --out "$tmp/b.csv"
+expect 2 "--scene: an empty value" -- render --scene '' --out "$tmp/a.png"
+expect 2 "--budget: an empty value" -- render --budget '' --out "$tmp/a.png"
+expect 2 "--techniques 'shadowmap,': item 2 of the list is empty" -- bench --techniques shadowmap, --out "$tmp/b.csv"
+expect 2 "--sweep resolution=... '512,,1024': item 2 of the list is empty" -- bench --techniques shadowmap --sweep resolution=512,,1024 --out "$tmp/b.csv"
+expect 2 "--cases ',acne-5': item 1 of the list is empty" -- stress --techniques shadowmap --cases ,acne-5 --out "$tmp/stress31"
+expect 2 "--budget 'objects=10,,triangles=5': item 2 of the list is empty" -- "${render[@]}" --budget objects=10,,triangles=5
+expect 2 "--path-frames requires --path" -- render --path-frames 3 --out "$tmp/a.png"
+expect 2 "--path-frames requires --path" -- bench --path-frames 3 --out "$tmp/b.csv"
+expect 2 "--wipe requires --compare" -- render --wipe 0.3 --out "$tmp/a.png"
+expect 2 "--wipe: places the divider of --compare-layout wipe" -- render --compare shadowmap,pcf --wipe 0.3 --out "$tmp/a.png"
+expect 2 "--samples: only the accuracy views trace the reference" -- render --samples 64 --out "$tmp/a.png"
+expect 2 "--samples: only --accuracy traces the reference" -- bench --techniques shadowmap --samples 64 --out "$tmp/b.csv"
+expect 2 "--tour-step requires --tour" -- --backend osmesa --tour-step 2 --frames 1
+expect 2 "--techniques excludes --spec" -- bench --spec assets/bench/quick.json --techniques shadowmap --out "$tmp/b.csv"
+expect 2 "--set: the spec (--spec) sets its parameters itself" -- bench --spec assets/bench/quick.json --set resolution=512 --out "$tmp/b.csv"
+# Repeated keys: in JSON files (every reader), --budget, --set, --sweep.
+echo '{"objects": [{"shape": "box", "size": [1, 1, 1], "size": [2, 2, 2]}]}' > "$tmp/dup.json"
+expect 2 "dup.json: duplicate key \"size\" in \"/objects/0\"" -- "${render[@]}" --scene "$tmp/dup.json"
+echo '{"techniques": ["shadowmap"], "frames": 2, "frames": 3}' > "$tmp/dup-spec.json"
+expect 2 "dup-spec.json: duplicate key \"frames\" in the top-level object" -- bench --spec "$tmp/dup-spec.json" --out "$tmp/b.csv"
+tour_step "$tmp/tour-dup.json" '{"title": "two", "scene": "cube", "technique": "shadowmap", "parameters": {"resolution": 512, "resolution": 1024}, "caption": "c"}'
+expect 2 "tour-dup.json: duplicate key \"resolution\" in \"/steps/1/parameters\"" -- tour "$tmp/tour-dup.json" --out "$tmp/tour31"
+echo '{"title": "s", "scene": "cube", "technique": "shadowmap", "view": "lit", "view": "visibility", "caption": "c"}' > "$tmp/session-dup.json"
+expect 2 "session-dup.json: duplicate key \"view\"" -- --backend osmesa --session "$tmp/session-dup.json" --frames 2
+printf '{"keyframes": [{"time": 0, "time": 1}]}' > "$tmp/path-dup.json"
+expect 2 "path-dup.json: duplicate key \"time\" in \"/keyframes/0\"" -- "${pathrender[@]}" --path "$tmp/path-dup.json" --out "$tmp/frames31"
+expect 2 "--budget 'objects=10,objects=20': the key 'objects' is given twice" -- "${render[@]}" --budget objects=10,objects=20
+expect 2 "--set resolution=...: the key is given twice" -- "${render[@]}" --set resolution=512 --set resolution=1024
+expect 2 "--sweep resolution=...: the key is swept twice" -- bench --techniques shadowmap --sweep resolution=512 --sweep resolution=1024 --out "$tmp/b.csv"
+# Outputs are checked before the first frame: a file where the folder should be is found at once.
+touch "$tmp/afile"
+SECONDS=0
+expect_bounded 2 "--out $tmp/afile: cannot create the folder $tmp/afile" -- report --backend osmesa --out "$tmp/afile"
+[ "$SECONDS" -lt 20 ] || { echo "FAIL: report took ${SECONDS}s to refuse its output folder (measured first?)"; failures=$((failures + 1)); }
+expect_bounded 2 "--out $tmp/afile/b.csv: cannot create the folder" -- bench --backend osmesa --techniques shadowmap --out "$tmp/afile/b.csv"
+expect_bounded 2 "--out $tmp/afile/frames: cannot create the folder" -- "${pathrender[@]}" --path dolly --out "$tmp/afile/frames"
+expect_bounded 2 "--out $tmp/afile/s: cannot create the folder" -- stress --backend osmesa --techniques shadowmap --out "$tmp/afile/s"
+expect_bounded 2 "--out $tmp: a folder, expected a file" -- render --backend osmesa --size 64x48 --out "$tmp"
+# Messages keep their subject: a spec file's content errors name the file; a NUL byte is shown.
+echo '{"techniques": ["nosuch"]}' > "$tmp/spec-tech.json"
+expect 2 "spec-tech.json: techniques: no technique 'nosuch'" -- bench --backend osmesa --spec "$tmp/spec-tech.json" --out "$tmp/b.csv"
+echo '[{"techniques": ["shadowmap"]}, {"techniques": ["shadowmap"], "sweep": {"resolutoin": [512]}}]' > "$tmp/spec-sweep.json"
+expect 2 "spec-sweep.json: spec 1: sweep.resolutoin: 'resolutoin' is no parameter" -- bench --backend osmesa --spec "$tmp/spec-sweep.json" --out "$tmp/b.csv"
+echo '{"techniques": ["shadowmap"], "scenes": ["nowhere"]}' > "$tmp/spec-scene.json"
+expect 2 "spec-scene.json: scenes 'nowhere'" -- report --backend osmesa --spec "$tmp/spec-scene.json" --out "$tmp/report31"
+printf '{"objects": [{"shape": "box"}], "na\\u0000me": "x"}' > "$tmp/nul.json"
+expect 2 "nul.json: na\\\\x00me: unknown field (did you mean 'name'?)" -- "${render[@]}" --scene "$tmp/nul.json"
+printf 'v 0 0 0\nv 1 0 0\nv 0 0 -1\nf 1 2 3x\000tail-of-the-line\n' > "$tmp/nul.obj"
+echo '{"objects": [{"shape": "obj", "file": "nul.obj"}]}' > "$tmp/nul-obj.json"
+expect 2 "nul.obj:4: OBJ parse error: '3x\\\\x00tail-of-the-line' is not a vertex index" -- "${render[@]}" --scene "$tmp/nul-obj.json"
+
+# Ctrl-C: a long run stops cleanly, writes what it did and exits 130 (util/progress.h).
+interrupt() {   # interrupt WHAT WAIT-FOR CHECK-SCRIPT -- ARGS...: SIGINT once the file WAIT-FOR exists (or after N s: "after:N")
+    local what=$1 wait_for=$2 check=$3
+    shift 4
+    if python3 - "$shadowlab" "$wait_for" "$check" "$@" <<'PY'
+import os, signal, subprocess, sys, time
+shadowlab, wait_for, check = sys.argv[1:4]
+signal.signal(signal.SIGINT, signal.SIG_DFL)
+child = subprocess.Popen([shadowlab] + sys.argv[4:], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+deadline = time.time() + (float(wait_for[6:]) if wait_for.startswith("after:") else 120)
+while time.time() < deadline and (wait_for.startswith("after:") or not os.path.exists(wait_for)) and child.poll() is None:
+    time.sleep(0.05)
+time.sleep(0.5)
+child.send_signal(signal.SIGINT)
+_, err = child.communicate(timeout=60)
+assert child.returncode == 130, (child.returncode, err[-2000:])
+assert "interrupted (Ctrl-C)" in err, err[-2000:]
+exec(check)
+PY
+    then echo "ok: $what: SIGINT -> exit 130, partial results written"
+    else echo "FAIL: $what: SIGINT"; failures=$((failures + 1)); fi
+}
+interrupt "bench" "$tmp/int-bench.json" '
+import json
+rows = json.load(open(sys.argv[2]))
+assert 1 <= len(rows) < 40, len(rows)
+assert all(r["technique"] == "shadowmap" for r in rows), rows' -- \
+    bench --backend osmesa --size 64x48 --techniques shadowmap --frames 400 --warmup 0 \
+    --sweep resolution=256,272,288,304,320,336,352,368,384,400,416,432,448,464,480,496,512,528,544,560,576,592,608,624,640,656,672,688,704,720,736,752,768,784,800,816,832,848,864,880 \
+    --out "$tmp/int-bench.json"
+interrupt "render --path" "$tmp/int-frames/frame_00003.png" '
+import glob
+frames = sorted(glob.glob(sys.argv[2].rsplit("/", 1)[0] + "/frame_*.png"))
+assert 4 <= len(frames) < 100000, len(frames)
+assert frames[0].endswith("frame_00000.png") and frames[-1].endswith("frame_%05d.png" % (len(frames) - 1)), frames[-3:]' -- \
+    render --backend osmesa --size 64x48 -t shadowmap --path dolly --path-frames 100000 --out "$tmp/int-frames"
+interrupt "bench --path" "after:4" '
+import json
+rows = json.load(open(sys.argv[sys.argv.index("--out") + 1]))
+assert len(rows) == 1 and rows[0]["interrupted"] is True, rows
+assert 1 <= rows[0]["frames"] < 100000 and rows[0]["path_frames"] == 100000, rows[0]["frames"]
+assert len(rows[0]["frame_ms_per_frame"]) == rows[0]["frames"]' -- \
+    bench --backend osmesa --size 64x48 --techniques shadowmap --path orbit --path-frames 100000 --warmup 0 --out "$tmp/int-path.json"
 
 [ $failures = 0 ] || { echo "$failures failure(s)"; exit 1; }
 echo "all CLI error checks passed"

@@ -118,6 +118,18 @@ TEST(FuzzRegressions, TextureInputsReplayCleanly) {
               17);
 }
 
+// Session files (issue 31): the reader --session uses, with its own seeds and regressions.
+TEST(FuzzRegressions, SessionInputsReplayCleanly) {
+    EXPECT_GE(replay({kFuzz / "regressions" / "session"},
+                     [](const std::string& text) { return fuzz::fuzzSession(bytes(text), text.size()); }),
+              8);
+    EXPECT_GE(replay({kFuzz / "corpus" / "session"}, [](const std::string& text) {
+                  EXPECT_TRUE(fuzz::fuzzSession(bytes(text), text.size())) << "a seed that is refused";
+                  return true;
+              }),
+              3);
+}
+
 TEST(FuzzRegressions, PathInputsReplayCleanly) {
     EXPECT_GE(replay({kFuzz / "regressions" / "path"}, [](const std::string& text) { return fuzz::fuzzPath(bytes(text), text.size()); }), 7);
     replay({kFuzz / "corpus" / "path", kSource / "assets" / "stress"}, [](const std::string& text) {

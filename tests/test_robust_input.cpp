@@ -6,7 +6,10 @@
 //   the scene budget (objects, drawn triangles, GPU bytes) and checkScene;
 //   OBJ files: mtllib never opened, FIFOs and devices refused, 64-bit indices, polygon size and
 //   triangulation, and only pre-scanned lines reaching tinyobjloader, read as it reads them;
-//   benchmark specs checked as a whole.
+//   benchmark specs checked as a whole;
+//   issue 31's rules for every reader: duplicate JSON keys, repeated option keys and empty list
+//   items, one camera, light-direction and repeat-grid check for every reader, messages that keep
+//   their subject (spec files, NUL bytes), and Ctrl-C.
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
@@ -25,7 +28,12 @@
 #include "scene/scene.h"
 #include "test_support.h"
 #include "util/paths.h"
+#include "util/progress.h"
+#include "util/strings.h"
 #include "util/text_file.h"
+#include "bench/stress.h"
+#include "scene/camera_path.h"
+#include "ui/tour.h"
 
 using namespace shadowlab;
 namespace fs = std::filesystem;
@@ -668,4 +676,226 @@ TEST(RobustReference, NonFiniteLightIsRefusedWithAMessage) {
     light.direction = glm::vec3(NAN);
     EXPECT_MENTIONS(refusal(light), "direction is not a finite non-zero vector");
     EXPECT_EQ(refusal(LightInfo{}), "accepted");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 31: one rule for every reader of the same structure
+
+TEST(RobustRules, DuplicateJsonKeysAreRefusedNamingTheKeyAndWhere) {
+    nlohmann::json json;
+    std::string error;
+    EXPECT_FALSE(parseJsonText(R"({"a": 1, "b": 2, "a": 3})", "top.json", json, error));
+    EXPECT_MENTIONS(error, "top.json: duplicate key \"a\" in the top-level object");
+    EXPECT_FALSE(parseJsonText(R"({"steps": [{"x": 1}, {"x": 1, "p": {"k": 1, "k": 2}}]})", "deep.json", json, error));
+    EXPECT_MENTIONS(error, "deep.json: duplicate key \"k\" in \"/steps/1/p\"");
+    EXPECT_FALSE(parseJsonText(R"({"a/b": {"~": [[], {"z": 0, "z": 0}]}})", "escaped.json", json, error));
+    EXPECT_MENTIONS(error, "duplicate key \"z\" in \"/a~1b/~0/1\"");   // RFC 6901 escapes
+    // The same key in different objects, and a key that is also a value, are fine.
+    EXPECT_TRUE(parseJsonText(R"({"a": {"a": "a"}, "b": [{"a": 1}, {"a": 2}], "c": "a"})", "fine.json", json, error)) << error;
+    EXPECT_EQ(json["b"][1]["a"], 2);
+    // A key of 10,000 bytes is named, not copied whole into the message.
+    const std::string longKey(10000, 'k');
+    EXPECT_FALSE(parseJsonText("{\"" + longKey + "\": 1, \"" + longKey + "\": 2}", "long.json", json, error));
+    EXPECT_LT(error.size(), 400u) << error;
+}
+
+TEST(RobustRules, EveryJsonReaderRefusesADuplicateKey) {
+    TempDir dir;
+    std::string error;
+    // Scene files.
+    EXPECT_MENTIONS(sceneErrorOf([&] { loadScene(dir.write("s.json", R"({"objects": [{"shape": "box", "shape": "sphere"}]})").string()); }),
+                    "s.json: duplicate key \"shape\" in \"/objects/0\"");
+    // Benchmark specs.
+    std::vector<BenchSpec> specs;
+    EXPECT_FALSE(loadBenchSpecs(dir.write("b.json", R"({"techniques": ["shadowmap"], "sweep": {"resolution": [512], "resolution": [1024]}})"),
+                                specs, error));
+    EXPECT_MENTIONS(error, "b.json: duplicate key \"resolution\" in \"/sweep\"");
+    // Tours and sessions.
+    Tour tour;
+    EXPECT_FALSE(loadTour(dir.write("t.json", R"({"title": "t", "title": "u", "steps": []})").string(), realTechniques(), tour, error));
+    EXPECT_MENTIONS(error, "t.json: duplicate key \"title\" in the top-level object");
+    TourStep step;
+    EXPECT_FALSE(loadSession(dir.write("x.json", R"({"title": "s", "scene": "cube", "technique": "shadowmap", "caption": "c",
+                                                     "light": {"size": 1, "size": 2}})"),
+                             realTechniques(), step, error));
+    EXPECT_MENTIONS(error, "x.json: duplicate key \"size\" in \"/light\"");
+    // Camera paths and stress cases files.
+    CameraPath path;
+    EXPECT_FALSE(loadPathFile(dir.write("p.json", R"({"keyframes": [{"time": 0}], "frames": 2, "frames": 3})").string(), path, error));
+    EXPECT_MENTIONS(error, "p.json: duplicate key \"frames\"");
+    StressSuite suite;
+    EXPECT_FALSE(loadStressSuite(dir.write("c.json", R"({"cases": [], "cases": []})"), suite, error));
+    EXPECT_MENTIONS(error, "c.json: duplicate key \"cases\"");
+}
+
+TEST(RobustRules, RepeatedOptionKeysAndEmptyListItemsAreRefused) {
+    SceneBudget budget;
+    std::string error;
+    EXPECT_FALSE(parseSceneBudget("objects=10,objects=20", budget, error));
+    EXPECT_MENTIONS(error, "--budget 'objects=10,objects=20': the key 'objects' is given twice");
+    for (const char* text : {"objects=10,,triangles=5", ",objects=10", "objects=10,", ""}) {
+        EXPECT_FALSE(parseSceneBudget(text, budget, error)) << text;
+        EXPECT_MENTIONS(error, "of the list is empty");
+    }
+    BenchSpec spec;
+    EXPECT_FALSE(addSweep(spec, "resolution=512,,1024", error));
+    EXPECT_MENTIONS(error, "--sweep resolution=... '512,,1024': item 2 of the list is empty");
+    EXPECT_FALSE(addSweep(spec, "resolution=512,", error));
+    EXPECT_MENTIONS(error, "item 2 of the list is empty");
+    EXPECT_TRUE(addSweep(spec, "resolution=512,1024", error)) << error;
+    EXPECT_FALSE(addSweep(spec, "resolution=2048", error));
+    EXPECT_MENTIONS(error, "--sweep resolution=...: the key is swept twice");
+    EXPECT_EQ(spec.sweeps["resolution"], (std::vector<std::string>{"512", "1024"})) << "the first list kept";
+    std::vector<std::string> items;
+    EXPECT_TRUE(splitList("a,b,c", "--x", items, error));
+    EXPECT_EQ(items, (std::vector<std::string>{"a", "b", "c"}));
+    // An empty technique list in a spec file would mean "all": refused.
+    EXPECT_FALSE(parseBenchSpec(nlohmann::json::parse(R"({"techniques": []})"), spec, error));
+    EXPECT_MENTIONS(error, "techniques: expected a non-empty array");
+}
+
+TEST(RobustRules, ASpecFilesContentErrorsNameTheFile) {
+    TempDir dir;
+    std::vector<BenchSpec> specs;
+    std::string error;
+    ASSERT_TRUE(loadBenchSpecs(dir.write("one.json", R"({"techniques": ["nosuch"]})"), specs, error)) << error;
+    EXPECT_FALSE(checkBenchSpec(specs[0], realTechniques(), error));
+    EXPECT_MENTIONS(error, (dir.path() / "one.json").string() + ": techniques: no technique 'nosuch'");
+    specs.clear();
+    EXPECT_FALSE(loadBenchSpecs(dir.write("two.json", R"([{"techniques": ["shadowmap"]}, {"sizes": ["99999x1"]}])"), specs, error));
+    EXPECT_MENTIONS(error, "two.json: spec 1: sizes:");
+    specs.clear();
+    ASSERT_TRUE(loadBenchSpecs(dir.write("three.json", R"([{"techniques": ["shadowmap"]},
+        {"techniques": ["shadowmap"], "scenes": ["nowhere"]}])"),
+                               specs, error))
+        << error;
+    EXPECT_TRUE(checkBenchSpec(specs[0], realTechniques(), error)) << error;
+    EXPECT_FALSE(checkBenchSpec(specs[1], realTechniques(), error));
+    EXPECT_MENTIONS(error, "three.json: spec 1: scenes 'nowhere'");
+    // From the command line, the option is named, with no file.
+    EXPECT_MENTIONS(specError(commandLineSpec({"resolutoin=256"})), "--sweep resolutoin=...");
+}
+
+TEST(RobustRules, OneCameraCheckForScenesToursSessionsAndPaths) {
+    // The same camera, 5e-5 apart: refused by every reader alike (it used to pass a scene file).
+    EXPECT_MENTIONS(parseError(R"({"camera": {"position": [1, 1, 1], "target": [1, 1, 1.00005]}, "objects": [{"shape": "box"}]})"),
+                    "bad.json: camera.target: the target is at the camera position");
+    std::string error;
+    TourStep step;
+    nlohmann::json session = {{"title", "s"}, {"scene", "cube"}, {"technique", "shadowmap"}, {"caption", "c"},
+                              {"camera", {{"position", {1, 1, 1}}, {"target", {1, 1, 1.00005}}}}};
+    EXPECT_FALSE(parseTourStep(session, "s.json", {}, step, error));
+    EXPECT_MENTIONS(error, "s.json.camera: the target is at the camera position");
+    CameraPath path;
+    EXPECT_FALSE(parsePath(nlohmann::json::parse(R"({"keyframes": [{"time": 0, "camera": {"position": [1, 1, 1], "target": [1, 1, 1.00005]}}]})"),
+                           "p.json", path, error));
+    EXPECT_MENTIONS(error, "p.json: keyframes[0].camera: the target is at the camera position");
+    // Looking straight down the scene's up vector: refused in a scene, a step and a path's frames.
+    EXPECT_MENTIONS(parseError(R"({"camera": {"position": [0, 9, 0], "target": [0, 0, 0]}, "objects": [{"shape": "box"}]})"),
+                    "camera.up: the camera looks straight along its up vector");
+    session["camera"] = {{"position", {0, 9, 0}}, {"target", {0, 0, 0}}};
+    ASSERT_TRUE(parseTourStep(session, "s.json", {}, step, error)) << error;   // the scene's up is known only to the check
+    EXPECT_FALSE(checkTourStep(step, "s.json", realTechniques(), error));
+    EXPECT_MENTIONS(error, "s.json (\"s\"): camera: the camera looks straight along its up vector");
+    ASSERT_TRUE(parsePath(nlohmann::json::parse(R"({"keyframes": [{"time": 0, "camera": {"position": [0, 9, 0], "target": [0, 0, 0]}},
+                                                                  {"time": 1, "camera": {"position": [4, 9, 0]}}], "frames": 5})"),
+                          "p.json", path, error))
+        << error;
+    const Scene cube = loadScene("cube");
+    EXPECT_MENTIONS(pathSceneProblem(path, cube), "p.json: frame 0 (time 0): the camera looks straight along its up vector");
+    // Between keyframes: the eye passes through the target at the middle frame.
+    ASSERT_TRUE(parsePath(nlohmann::json::parse(R"({"keyframes": [{"time": 0, "camera": {"position": [-2, 0, 0], "target": [0, 0, 0]}},
+                                                                  {"time": 1, "camera": {"position": [2, 0, 0], "target": [0, 0, 0]}}], "frames": 5})"),
+                          "p.json", path, error))
+        << error;
+    EXPECT_MENTIONS(pathSceneProblem(path, cube), "p.json: frame 2 (time 0.5): the target is at the camera position");
+    path.frames = 4;   // frames at 0, 1/3, 2/3, 1: never on the target
+    EXPECT_EQ(pathSceneProblem(path, cube), "");
+}
+
+TEST(RobustRules, OneLightDirectionCheckForScenesToursAndPaths) {
+    EXPECT_MENTIONS(parseError(R"({"light": {"direction": [0, 0, 0]}, "objects": [{"shape": "box"}]})"),
+                    "light.direction: zero-length direction");
+    std::string error;
+    TourStep step;
+    EXPECT_FALSE(parseTourStep({{"title", "s"}, {"scene", "cube"}, {"technique", "shadowmap"}, {"caption", "c"},
+                                {"light", {{"direction", {0, 0, 0}}}}},
+                               "s.json", {}, step, error));
+    EXPECT_MENTIONS(error, "s.json.light.direction: zero-length direction");
+    CameraPath path;
+    EXPECT_FALSE(parsePath(nlohmann::json::parse(R"({"keyframes": [{"time": 0, "light": {"direction": [0, 0, 0]}}]})"), "p.json", path, error));
+    EXPECT_MENTIONS(error, "p.json: keyframes[0].light.direction: zero-length direction");
+    // Opposite directions interpolate through zero: the frame between them is refused.
+    ASSERT_TRUE(parsePath(nlohmann::json::parse(R"({"keyframes": [{"time": 0, "light": {"direction": [1, -1, 0]}},
+                                                                  {"time": 1, "light": {"direction": [-1, 1, 0]}}], "frames": 3})"),
+                          "p.json", path, error))
+        << error;
+    EXPECT_MENTIONS(pathSceneProblem(path, loadScene("cube")), "p.json: frame 1 (time 0.5): the light's direction passes through zero");
+}
+
+TEST(RobustRules, ARepeatGridIsHeldToTheCellLimitInEveryForm) {
+    // Grid alone, grid with a count, and a count alone: the same limit of 1,000,000 cells.
+    EXPECT_MENTIONS(parseError(R"({"objects": [{"shape": "box", "repeat": {"grid": [1001, 1000]}}]})"),
+                    "objects[0].repeat.grid: 1001 x 1000 = 1001000 cells, more than 1000000");
+    EXPECT_MENTIONS(parseError(R"({"objects": [{"shape": "box", "repeat": {"count": 2, "grid": [1000000, 1000000]}}]})"),
+                    "objects[0].repeat.grid: 1000000 x 1000000 = 1000000000000 cells, more than 1000000");
+    EXPECT_MENTIONS(parseError(R"({"objects": [{"shape": "box", "repeat": {"count": 1000001}}]})"), "objects[0].repeat.count");
+    EXPECT_MENTIONS(sceneErrorOf([] {
+                        checkSceneText(R"({"objects": [{"shape": "box", "repeat": {"count": 2, "grid": [1000000, 1000000]}}]})",
+                                       "check.json", fs::current_path());
+                    }),
+                    "check.json: objects[0].repeat.grid");
+    EXPECT_NO_THROW(parseScene(R"({"objects": [{"shape": "box", "repeat": {"count": 3, "grid": [1000, 1000]}}]})", "ok.json",
+                               fs::current_path()));
+}
+
+TEST(RobustRules, MessagesKeepTheirSubjectPastANulByte) {
+    // what() is a C string: the NUL is shown as \x00 and what follows it is kept.
+    const std::string obj = std::string("v 0 0 0\nv 1 0 0\nv 0 0 -1\nf 1 2 3x") + '\0' + "tail\n";
+    const std::string message = sceneErrorOf([&] { parseObj(obj, "nul.obj"); });
+    EXPECT_MENTIONS(message, "nul.obj:4:");
+    EXPECT_MENTIONS(message, "3x\\x00tail");
+    EXPECT_MENTIONS(parseError(std::string(R"({"objects": [{"shape": "box"}], "na\u0000me": 1})")), "na\\x00me: unknown field");
+    EXPECT_EQ(printable(std::string("a\0b\x1b[31mc\n", 10)), "a\\x00b\\x1b[31mc\\x0a");
+    EXPECT_EQ(printable(std::string("line\n\tnext"), true), "line\n\tnext");
+    EXPECT_EQ(quoteForMessage(std::string(100, 'k'), 10), "\"kkkkkkkkkk...\"");
+}
+
+// Ctrl-C (util/progress.h): the flag stops generation (nothing partial to keep) and a sweep at its
+// next frame, with the rows measured before it kept.
+TEST(RobustRules, AnInterruptStopsGenerationAndKeepsTheRowsMeasured) {
+    requestInterrupt();
+    EXPECT_THROW(makeSphere(1.0f, 64, 64), Interrupted);
+    EXPECT_THROW(loadScene("spheres"), Interrupted);
+    Progress progress("test", 10, "steps");
+    EXPECT_FALSE(progress.step(1));
+    clearInterrupt();
+    EXPECT_TRUE(progress.step(2));
+    EXPECT_EQ(makeSphere(1.0f, 64, 64).indices.size(), size_t(64) * 63 * 2 * 3) << "generates again once cleared";
+
+    auto app = test::makeHeadlessApp("cube", {64, 48});
+    ASSERT_TRUE(app);
+    BenchSpec spec;
+    spec.techniques = {"shadowmap"};
+    spec.sizes = {{64, 48}};
+    spec.frames = 3;
+    spec.warmupFrames = 0;
+    std::string error;
+    ASSERT_TRUE(addSweep(spec, "resolution=256,512,1024,2048", error)) << error;
+    std::vector<nlohmann::json> rows;
+    int delivered = 0;
+    // Ctrl-C while the second row is measured (raised as the first is delivered).
+    EXPECT_FALSE(runBench(*app, spec, rows, error, [&](const nlohmann::json&) {
+        if (++delivered == 1) requestInterrupt();
+    }));
+    const bool wasInterrupted = interrupted();
+    clearInterrupt();
+    EXPECT_TRUE(wasInterrupted);
+    EXPECT_MENTIONS(error, "interrupted (Ctrl-C)");
+    EXPECT_EQ(delivered, 1);
+    ASSERT_EQ(rows.size(), 1u) << "the row in progress is dropped, the one before kept";
+    EXPECT_EQ(rows[0]["param.resolution"], "256");
+    rows.clear();
+    EXPECT_TRUE(runBench(*app, spec, rows, error)) << error;
+    EXPECT_EQ(rows.size(), 4u) << "the app draws again once the flag is cleared";
 }

@@ -116,8 +116,8 @@ TEST(Tours, ABadStepIsNamedWithItsFileStepAndProblem) {
         {{{"sceneParameters", {{"height", "high"}}}}, "sceneParameters.height: expected a finite number"},
         {{{"sceneParameters", {{"heigth", 1}}}}, "heigth"},
         {{{"light", {{"size", 90}}}}, "light.size"},
-        {{{"light", {{"direction", {0, 0, 0}}}}}, "light.direction: must not be zero"},
-        {{{"camera", {{"position", {0, 1, 0}}, {"target", {0, 1, 0}}}}}, "position and target are the same point"},
+        {{{"light", {{"direction", {0, 0, 0}}}}}, "light.direction: zero-length direction"},
+        {{{"camera", {{"position", {0, 1, 0}}, {"target", {0, 1, 0}}}}}, "camera: the target is at the camera position"},
         {{{"camera", {{"position", {0, 1, 0}}, {"target", {0, 0, 0}}, {"fov", 0}}}}, "camera.fov"},
         {{{"camera", {{"position", {0, 1e30, 0}}, {"target", {0, 0, 0}}}}}, "camera.position"},
         {{{"layout", "diagonal"}}, "layout: 'diagonal'"},
@@ -479,7 +479,7 @@ TEST(TourPlayer, TheWindowRefusesAMissingDebugViewBeforeTheFirstStep) {
                           "t.json", {}, *tour, error)) << error;
     ASSERT_TRUE(checkTour(*tour, realTechniques(), error)) << error;   // the view exists only once pcf draws
     EXPECT_FALSE(checkTourDebugViews(*app, *tour, error));
-    EXPECT_NE(error.find("t.json: steps[1] (\"no such view\"): view 'moments': pcf has no such image"), std::string::npos)
+    EXPECT_NE(error.find("t.json: steps[1] (\"no such view\"): view 'moments': pcf has no such view"), std::string::npos)
         << error;
     TempDir dir;
     InteractiveOptions options;

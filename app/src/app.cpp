@@ -18,6 +18,7 @@
 #include "shadowlab/kit/depth_map_shared.h"
 #include "render/render_limits.h"
 #include "util/log.h"
+#include "util/progress.h"
 #include "util/paths.h"
 
 namespace shadowlab {
@@ -161,6 +162,12 @@ uint32_t frameSeed(uint64_t frameIndex) {
 } // namespace
 
 bool App::renderFrame(const std::string& technique, std::string& error, FrameOutputs outputs) {
+    // Ctrl-C is checked here, between frames, for every frame loop at once (bench rows, paths,
+    // stress cells, eval, tours): each stops at its next frame and writes what it has done.
+    if (interrupted()) {
+        error = "interrupted (Ctrl-C)";
+        return false;
+    }
     // May wait for the GPU to finish the frame 4 back (when it is the bottleneck); that wait is
     // not host work, so the CPU clock starts after it.
     timer_->beginFrame();
@@ -359,6 +366,12 @@ std::string viewName(const ViewSelection& view) {
 
 bool isHostViewName(const std::string& name) { return viewFromName(name).kind != ViewSelection::Kind::DebugImage; }
 
+const std::vector<std::string>& hostViewNames() {
+    static const std::vector<std::string> names = {"lit",       "visibility", "error",      "footprint",
+                                                   "texel-grid", "coverage",   "focus-body", "kernel"};
+    return names;
+}
+
 KernelProbe App::probeKernel(const std::string& technique, std::string& error) {
     KernelProbe none;
     LoadedTechnique* loaded = techniques_->get(technique, error);
@@ -433,6 +446,25 @@ std::string App::debugViewsOf(const std::string& technique) {
     if (host.filterFootprint().kernel != FilterKernel::None) appendListItem(views, "kernel");
     for (const DebugImage& image : host.debugImages()) appendListItem(views, "'" + image.name + "'");
     return views;
+}
+
+std::string App::viewProblem(const std::string& technique, const std::string& view,
+                             const std::vector<std::string>& extraViews) {
+    if (isHostViewName(view) || std::find(extraViews.begin(), extraViews.end(), view) != extraViews.end()) return "";
+    std::string error;
+    LoadedTechnique* loaded = techniques_->get(technique, error);
+    if (loaded && loaded->host().debugImages().empty() && renderFrame(technique, error)) loaded = techniques_->get(technique, error);
+    std::string names;
+    for (const std::string& name : hostViewNames()) appendListItem(names, name);
+    for (const std::string& name : extraViews) appendListItem(names, name);
+    if (loaded) {
+        for (const DebugImage& image : loaded->host().debugImages()) {
+            if (image.name == view) return "";
+            appendListItem(names, "'" + image.name + "'");
+        }
+    }
+    return "view '" + view + "': " + technique + " has no such view (views: " + names + ")" +
+           (loaded ? std::string() : "; " + error);
 }
 
 bool App::presentView(const std::string& technique, const ViewSelection& view, GLuint framebuffer, glm::ivec2 viewport,
@@ -529,7 +561,15 @@ double App::warmupSeconds() const {
 }
 
 bool App::measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error) {
-    if (!warmUp(warmupFrames, warmupSeconds(), [&] { return renderFrame(technique, error); })) return false;
+    // Silent unless it takes a while (200 frames of the forest on llvmpipe: half a minute).
+    Progress progress("measuring " + technique, uint64_t(warmupFrames) + uint64_t(frames), "frames (warm-up included)");
+    uint64_t warmed = 0;
+    auto warmFrame = [&] {
+        const bool drawn = renderFrame(technique, error);
+        progress.step(std::min(++warmed, uint64_t(warmupFrames)));   // warm-up may run longer than its frames
+        return drawn;
+    };
+    if (!warmUp(warmupFrames, warmupSeconds(), warmFrame)) return false;
     // Auto decides from a frame already drawn: at least one before the timed ones (the drain
     // below finishes its count, which the first timed frame reads).
     if (depthPrepassMode() == DepthPrepassMode::Auto && !depthPrepassRule_.measured() && warmupFrames == 0 &&
@@ -544,6 +584,7 @@ bool App::measure(const std::string& technique, int warmupFrames, int frames, Me
         if (!renderFrame(technique, error)) return false;
         cpu.push_back(lastCpuFrameMs_);
         prepassFrames += prepassThisFrame_ ? 1 : 0;
+        progress.step(uint64_t(warmupFrames) + uint64_t(i + 1));
     }
     timer_->drain();
     out = {};

@@ -79,6 +79,8 @@ ViewSelection viewFromName(const std::string& name);
 std::string viewName(const ViewSelection& view);
 // Whether `name` is one of the host's own views (not a technique's debug image).
 bool isHostViewName(const std::string& name);
+// The host's own views, every one, in the order messages list them.
+const std::vector<std::string>& hostViewNames();
 
 struct Measurement {
     std::map<std::string, TimingSummary> gpuMs;   // per pass, plus "frame"
@@ -207,6 +209,13 @@ public:
     // The host views that apply to `technique` after its last frame, by what it reported: the
     // map views, focus-body, kernel, and its debug images ("footprint, texel-grid, ...").
     std::string debugViewsOf(const std::string& technique);
+    // The one check of a view name for `render --view`, tours and sessions: "" when `view` is a
+    // host view or one of `technique`'s debug images (a frame of it is drawn first when it has
+    // drawn none, since plugins register their images when they create them), else
+    // "view 'X': T has no such view (views: <every host view>, <every debug image of T>)".
+    // `extraViews` are views only the caller has (render's "reference").
+    std::string viewProblem(const std::string& technique, const std::string& view,
+                            const std::vector<std::string>& extraViews = {});
     // Warm-up frames, then `frames` timed frames; waits for the GPU only at the end.
     bool measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error);
     // The classroom window (ui/session.cpp): in the GLFW window, or with a headless backend in

@@ -29,6 +29,7 @@
 #include "ui/ui.h"
 #include "util/log.h"
 #include "util/paths.h"
+#include "util/progress.h"
 #include "util/text_file.h"
 
 namespace shadowlab {
@@ -44,6 +45,10 @@ public:
             if (!frame()) break;
             if (options_.frames > 0 && frameIndex_ >= options_.frames) break;
             if (state_.quitRequested) break;
+            if (interrupted()) {   // Ctrl-C in the terminal closes the window (util/progress.h)
+                exitCode_ = kExitInterrupted;
+                break;
+            }
         }
         cancelMeasurement("the window closed");   // the worker is joined before anything it reads goes
         app_.camera().setFramingAspect(0.0f);
@@ -87,6 +92,7 @@ private:
             runCommand({UiCommand::Kind::TourStep, std::to_string(options_.tourStep)});
         }
         if (!options_.session.empty()) runCommand({UiCommand::Kind::LoadSession, options_.session});
+        if (!options_.session.empty() && state_.sessionStatusIsError) return 2;   // refused before the first frame, as --tour
         return 0;
     }
 
@@ -504,7 +510,8 @@ private:
     void loadSession(const std::string& file) {
         TourStep step;
         std::string error;
-        if (!shadowlab::loadSession(file, app_.techniques().techniques(), step, error) || !applyTourStep(app_, step, state_, error))
+        if (!shadowlab::loadSession(file, app_.techniques().techniques(), step, error) ||
+            !checkStepView(app_, step, file, error) || !applyTourStep(app_, step, state_, error))
             return failed(state_.sessionStatus, state_.sessionStatusIsError, error, 2);
         state_.sessionStatus = "loaded " + file;
         state_.sessionStatusIsError = false;

@@ -199,6 +199,29 @@ bool fuzzTour(const uint8_t* data, size_t size) {
     return true;
 }
 
+bool fuzzSession(const uint8_t* data, size_t size) {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    std::string error;
+    TourStep step;
+    if (!parseSessionText(text, "fuzz-session.json", {}, techniques(), step, error)) {
+        if (error.rfind("fuzz-session.json", 0) != 0) broken("the error does not name the file: " + error);
+        return false;
+    }
+    bool known = false;
+    for (const auto& t : techniques()) known |= t.id == step.technique;
+    if (!known) broken("an unknown technique was accepted: " + step.technique);
+    if (step.caption.empty() || step.caption.size() > kMaxCaptionBytes) broken("a caption out of bounds was accepted");
+    if (step.camera && !cameraProblem(step.camera->position, step.camera->target).empty())
+        broken("a degenerate camera was accepted: " + cameraProblem(step.camera->position, step.camera->target));
+    if (step.light.direction && !directionProblem(*step.light.direction).empty()) broken("a zero light direction was accepted");
+    // What F5 writes reads back as the same step, through the same reader.
+    const std::string written = tourStepJson(step).dump(2);
+    TourStep again;
+    if (!parseSessionText(written, "again.json", {}, techniques(), again, error)) broken("a saved session does not read back: " + error);
+    if (tourStepJson(again).dump(2) != written) broken("a saved session reads back differently: " + written);
+    return true;
+}
+
 bool fuzzPath(const uint8_t* data, size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
     std::string error;
@@ -210,10 +233,17 @@ bool fuzzPath(const uint8_t* data, size_t size) {
     bool accepted = false;
     CameraPath path;
     if (parsePath(json, "fuzz-path.json", path, error)) {
-        accepted = true;
         if (path.frames < 1 || path.frames > 100000) broken("a path with a frame count out of range");
-        // Every frame samples to finite values (the first, the last and a few between).
+        // What a scene checks before drawing a path (every frame, from its camera and light; a
+        // spot light takes every form of light keyframe): a path it accepts samples to finite
+        // values (the first, the last and a few frames between).
+        LightInfo spot;
+        spot.type = LightType::Spot;
+        const std::string problem = pathProblem(path, "fuzz", SceneCamera{}, spot);
+        if (!problem.empty() && problem.rfind("fuzz-path.json", 0) != 0) broken("the path's problem does not name it: " + problem);
+        accepted = problem.empty();
         for (int frame : {0, path.frames / 3, path.frames / 2, path.frames - 1}) {
+            if (!problem.empty()) break;
             const PathState state = samplePath(path, path.frameTime(frame));
             for (const auto& v : {state.cameraPosition, state.cameraTarget, state.cameraOrbit, state.lightDirection, state.lightPosition})
                 if (v && !finite(*v)) broken("a path samples to a non-finite value");

@@ -36,9 +36,16 @@ bool fuzzBenchSpec(const uint8_t* data, size_t size);
 // (tourStepJson, a saved session) read back as the same steps.
 bool fuzzTour(const uint8_t* data, size_t size);
 
+// A session file (`--session`, the window's "Load session"): parseSessionText, the reader
+// loadSession uses, against a fixed technique list. Errors name "fuzz-session.json"; an accepted
+// session holds a known technique, a usable camera (scene.h's cameraProblem) and light direction,
+// and written back as JSON (what F5 saves) reads back as the same step.
+bool fuzzSession(const uint8_t* data, size_t size);
+
 // A camera and light path (scene/camera_path.h) and, read from the same JSON, a stress cases file
 // (bench/stress.h): each either parses, with finite keyframes and samples, or fails with a message
-// naming the source. Returns whether either accepted it.
+// naming the source. A path counts as accepted when a scene with the default camera and a spot
+// light would also take every frame of it (pathProblem). Returns whether either accepted it.
 bool fuzzPath(const uint8_t* data, size_t size);
 
 // A texture file (PNG, the one image format scenes take): decodePngTexture either gives a texture

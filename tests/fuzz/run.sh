@@ -18,12 +18,13 @@ cmake --build "$build" -j"${JOBS:-$(nproc)}"
 
 status=0
 summary=""
-for target in scene obj bench_spec tour path texture; do
+for target in scene obj bench_spec tour session path texture; do
     case $target in
     scene) seeds=(assets/scenes tests/fuzz/corpus/scene tests/fuzz/regressions/scene); dict=scene.dict; max_len=16384 ;;
     obj) seeds=(tests/fuzz/corpus/obj tests/fuzz/regressions/obj); dict=obj.dict; max_len=16384 ;;
     bench_spec) seeds=(assets/bench tests/fuzz/corpus/bench tests/fuzz/regressions/bench); dict=bench.dict; max_len=8192 ;;
     tour) seeds=(assets/tours tests/fuzz/corpus/tour tests/fuzz/regressions/tour); dict=tour.dict; max_len=16384 ;;
+    session) seeds=(tests/fuzz/corpus/session tests/fuzz/regressions/session); dict=tour.dict; max_len=8192 ;;
     path) seeds=(assets/stress tests/fuzz/corpus/path tests/fuzz/regressions/path); dict=path.dict; max_len=16384 ;;
     texture) seeds=(tests/fuzz/corpus/texture tests/fuzz/regressions/texture); dict=png.dict; max_len=65536 ;;
     esac

@@ -11,6 +11,7 @@
 
 #include "app.h"
 #include "bench/accuracy_columns.h"
+#include "util/progress.h"
 #include "util/log.h"
 #include "util/text_file.h"
 
@@ -95,14 +96,6 @@ struct BenchJob {
 
 bool sameGroup(const BenchJob& a, const BenchJob& b) {
     return a.scene == b.scene && a.sceneSettings == b.sceneSettings && a.size == b.size;
-}
-
-std::string durationText(double seconds) {
-    char text[32];
-    if (seconds < 90.0) std::snprintf(text, sizeof(text), "%.0f s", seconds);
-    else if (seconds < 5400.0) std::snprintf(text, sizeof(text), "%.0f min %02.0f s", std::floor(seconds / 60.0), std::fmod(seconds, 60.0));
-    else std::snprintf(text, sizeof(text), "%.1f h", seconds / 3600.0);
-    return text;
 }
 
 } // namespace

@@ -128,15 +128,12 @@ bool addSweep(BenchSpec& spec, const std::string& text, std::string& error) {
         return false;
     }
     std::vector<std::string> values;
-    std::stringstream in(text.substr(equals + 1));
-    std::string value;
-    while (std::getline(in, value, ','))
-        if (!value.empty()) values.push_back(value);
-    if (values.empty()) {
-        error = "--sweep '" + text + "': no values";
+    if (!splitList(text.substr(equals + 1), "--sweep " + text.substr(0, equals) + "=...", values, error)) return false;
+    // A key swept twice would keep only the last list (a map): refused, like a JSON key given twice.
+    if (!spec.sweeps.emplace(text.substr(0, equals), values).second) {
+        error = "--sweep " + text.substr(0, equals) + "=...: the key is swept twice (give all its values in one --sweep)";
         return false;
     }
-    spec.sweeps[text.substr(0, equals)] = values;
     return true;
 }
 
@@ -155,7 +152,9 @@ bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
         }
     }
     BenchSpec result = out;
-    if (const auto it = spec.find("techniques"); it != spec.end() && !readStrings(*it, "techniques", false, result.techniques, error))
+    // An empty list would mean "every technique" (as the field left out does): refused, so that a
+    // list emptied by mistake does not silently measure everything.
+    if (const auto it = spec.find("techniques"); it != spec.end() && !readStrings(*it, "techniques", true, result.techniques, error))
         return false;
     if (const auto it = spec.find("scenes"); it != spec.end() && !readStrings(*it, "scenes", true, result.scenes, error))
         return false;
@@ -241,8 +240,9 @@ bool loadBenchSpecs(const std::filesystem::path& file, std::vector<BenchSpec>& s
     }
     for (size_t i = 0; i < root.size(); ++i) {
         BenchSpec spec;
+        spec.source = file.string() + (root.size() > 1 ? ": spec " + std::to_string(i) : "");
         if (!parseBenchSpec(root[i], spec, error)) {
-            error = file.string() + ": spec " + std::to_string(i) + ": " + error;
+            error = spec.source + ": " + error;
             return false;
         }
         specs.push_back(spec);
@@ -400,8 +400,18 @@ static bool checkBenchScenes(const BenchSpec& spec, std::optional<double> lightS
     return true;
 }
 
+static bool checkBenchSpecContent(const BenchSpec& spec, const std::vector<TechniqueInfo>& techniques, std::string& error,
+                                  std::optional<double> lightSize);
+
 bool checkBenchSpec(const BenchSpec& spec, const std::vector<TechniqueInfo>& techniques, std::string& error,
                     std::optional<double> lightSize) {
+    if (checkBenchSpecContent(spec, techniques, error, lightSize)) return true;
+    if (!spec.source.empty() && !error.starts_with(spec.source)) error = spec.source + ": " + error;
+    return false;
+}
+
+static bool checkBenchSpecContent(const BenchSpec& spec, const std::vector<TechniqueInfo>& techniques, std::string& error,
+                                  std::optional<double> lightSize) {
     if (spec.frames < 1 || spec.frames > kMaxBenchFrames || spec.warmupFrames < 0 || spec.warmupFrames > kMaxBenchFrames) {
         error = nameOf(spec, "--frames/--warmup", "frames/warmup") + ": frames must be 1 to " + std::to_string(kMaxBenchFrames) +
                 " and warm-up frames 0 to " + std::to_string(kMaxBenchFrames);

@@ -43,6 +43,9 @@ struct BenchSpec {
     bool referenceAdaptive = true;
     bool depthFloor = false;                 // add "depth-floor" rows (bare depth pass per resolution)
     bool fromCommandLine = false;            // errors name options (--sweep) rather than fields (sweep)
+    // The file it was read from ("spec.json", or "spec.json: spec 2" in an array): checkBenchSpec's
+    // errors start with it, so a bad technique in a file does not read like a command-line error.
+    std::string source;
 };
 
 constexpr int kMaxBenchFrames = 100000;

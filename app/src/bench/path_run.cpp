@@ -11,6 +11,7 @@
 #include "shadowlab/kit/focus.h"
 #include "bench/bench.h"
 #include "util/log.h"
+#include "util/progress.h"
 #include "util/stats.h"
 
 namespace shadowlab {
@@ -23,10 +24,15 @@ bool timePath(App& app, const std::string& technique, const CameraPath& path, co
         if (!app.renderFrame(technique, error)) return false;
     app.timer().drain();
     app.timer().clearHistory();
-    for (int frame = 0; frame < path.frames; ++frame) {
+    Progress progress(technique + " along path '" + path.name + "'", uint64_t(path.frames), "frames");
+    bool finished = true;
+    for (int frame = 0; frame < path.frames && finished; ++frame) {
         setPathFrame(app, path, frame, camera, light);
-        if (!app.renderFrame(technique, error)) return false;
-        out.cpuMs.push_back(app.lastCpuFrameMs());
+        // Ctrl-C: the frames timed so far are summarised (the caller writes them, marked).
+        finished = app.renderFrame(technique, error);
+        if (!finished && !interrupted()) return false;
+        if (finished) out.cpuMs.push_back(app.lastCpuFrameMs());
+        progress.step(out.cpuMs.size());
     }
     app.timer().drain();
     const auto& history = app.timer().history();
@@ -39,7 +45,7 @@ bool timePath(App& app, const std::string& technique, const CameraPath& path, co
     const auto worst = std::max_element(out.frameMs.begin(), out.frameMs.end());
     out.max = worst == out.frameMs.end() ? 0.0 : *worst;
     out.maxFrame = worst == out.frameMs.end() ? -1 : int(worst - out.frameMs.begin());
-    return true;
+    return finished;
 }
 
 // The last frame's shadow maps and light seen from another camera: its main pass again with the
@@ -92,7 +98,9 @@ bool measurePath(App& app, const std::string& technique, const CameraPath& path,
     const bool samePoints = techniqueInfo && !(techniqueInfo->flagsFor(app.params().values(*techniqueInfo)) &
                                                (kTechniqueNeedsCameraPrepass | kTechniqueNeedsCameraDepth));
     std::vector<glm::vec3> previousTechnique, previousReference;
+    Progress progress(technique + " along path '" + path.name + "' against the reference", uint64_t(path.frames), "frames");
     for (int frame = 0; frame < path.frames; ++frame) {
+        progress.step(uint64_t(frame));   // Ctrl-C stops the next renderFrame
         if (frame > 0 && samePoints) {
             // Frame t's camera, frame t-1's maps and light (the app's light is still t-1's).
             SceneCamera c = camera;
@@ -163,13 +171,21 @@ int benchPath(App& app, const PathBenchOptions& options, std::vector<nlohmann::j
             app.params().resetToDefaults(info);
             if (!app.applyAssignments(options.sets, technique, error)) return 2;
             PathTiming timing;
-            if (!timePath(app, technique, path, camera, light, options.warmupFrames, timing, error)) return 1;
+            const bool timed = timePath(app, technique, path, camera, light, options.warmupFrames, timing, error);
+            if (!timed && (!interrupted() || timing.cpuMs.empty())) return 1;
             nlohmann::json row = benchEnvironment(app);
             row.update({{"scene", app.scene().name}, {"technique", technique}, {"path", path.name}, {"frames", path.frames},
                         {"width", app.renderer().size().x}, {"height", app.renderer().size().y},
                         {"frame_ms_p5", timing.p5}, {"frame_ms_p50", timing.p50}, {"frame_ms_p95", timing.p95},
                         {"frame_ms_max", timing.max}, {"frame_ms_max_frame", timing.maxFrame},
                         {"frame_ms_per_frame", timing.frameMs}, {"cpu_ms_per_frame", timing.cpuMs}});
+            if (!timed) {
+                // Stopped by Ctrl-C: the frames timed so far, said so in the row itself.
+                row.update({{"frames", timing.cpuMs.size()}, {"path_frames", path.frames}, {"interrupted", true}});
+                rows.push_back(row);
+                if (onRow) onRow(row);
+                return 1;
+            }
             if (options.accuracy) {
                 PathAccuracyOptions accuracy;
                 accuracy.reference.mode = options.reference;
@@ -209,12 +225,20 @@ int renderPath(App& app, const std::string& technique, const std::string& pathTe
     }
     const SceneCamera camera = app.scene().camera;
     const LightInfo light = app.light();
-    ViewSelection selection;
-    if (view == "visibility") selection.kind = ViewSelection::Kind::Visibility;
-    else if (view != "lit") selection = {ViewSelection::Kind::DebugImage, view};
+    const ViewSelection selection = viewFromName(view);   // checked by the caller (App::viewProblem)
+    Progress progress("render --path '" + path.name + "'", uint64_t(path.frames), "frames");
     for (int frame = 0; frame < path.frames; ++frame) {
+        progress.step(uint64_t(frame));
         setPathFrame(app, path, frame, camera, light);
-        if (!app.renderFrame(technique, error)) return 1;
+        if (!app.renderFrame(technique, error)) {
+            // Ctrl-C: the frames written so far are the result.
+            if (interrupted())
+                error = "interrupted (Ctrl-C): " +
+                        (frame == 0 ? std::string("no frame") : "frames 0 to " + std::to_string(frame - 1)) + " of path '" +
+                        path.name + "' written to " + outDir.string() + " (" + std::to_string(frame) + " of " +
+                        std::to_string(path.frames) + ")";
+            return 1;
+        }
         if (!app.presentView(technique, selection, ~0u, {}, error)) return 2;
         char name[32];
         std::snprintf(name, sizeof(name), "frame_%05d.png", frame);

@@ -14,6 +14,7 @@
 #include "util/log.h"
 #include "util/parallel.h"
 #include "util/paths.h"
+#include "util/progress.h"
 #include "util/text_file.h"
 
 namespace shadowlab {
@@ -91,8 +92,16 @@ int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesyst
     const auto started = Clock::now();
     std::vector<nlohmann::json> rows;
     printBenchHeader();
-    for (const BenchSpec& spec : specs)
-        if (!runBench(app, spec, rows, error, printBenchRow)) return 2;
+    for (const BenchSpec& spec : specs) {
+        if (runBench(app, spec, rows, error, printBenchRow)) continue;
+        if (!interrupted()) return 2;
+        // Ctrl-C: the rows measured so far are written (no images, charts or page for a partial sweep).
+        if (!writeBenchResults(outDir / "results.csv", rows, error) || !writeBenchResults(outDir / "results.json", rows, error))
+            return 1;
+        error = "interrupted (Ctrl-C): the " + std::to_string(rows.size()) + " rows measured so far written to " +
+                (outDir / "results.json").string();
+        return kExitInterrupted;
+    }
     if (!writeBenchResults(outDir / "results.csv", rows, error) || !writeBenchResults(outDir / "results.json", rows, error))
         return 1;
 

@@ -20,6 +20,7 @@
 #include "render/light_space.h"
 #include "shadowlab/kit/focus.h"
 #include "util/log.h"
+#include "util/progress.h"
 #include "util/paths.h"
 #include "util/stats.h"
 #include "util/strings.h"
@@ -374,20 +375,21 @@ static std::string stressPage(App& app, const StressSuite& suite, const StressOp
     return page.str();
 }
 
-int runStress(App& app, const StressSuite& suite, const StressOptions& options, std::vector<StressCell>& cells,
-              std::string& error) {
-    // Everything named is checked before the first frame.
-    std::vector<std::string> techniques = options.techniques;
+// Everything runStress is asked for, checked before the first frame: the techniques, the cases
+// and every --set (a key no technique measured declares would be dropped unseen). 0, or 2 with `error`.
+static int checkStressRequest(App& app, const StressSuite& suite, const StressOptions& options,
+                              std::vector<std::string>& techniques, std::vector<const StressCase*>& cases, std::string& error) {
+    techniques = options.techniques;
     if (techniques.empty())
         for (const auto& info : app.techniques().techniques()) techniques.push_back(info.id);
+    std::string available;
+    for (const auto& info : app.techniques().techniques()) appendListItem(available, info.id);
     for (const std::string& id : techniques) {
         if (app.techniques().find(id)) continue;
-        std::string list;
-        for (const auto& info : app.techniques().techniques()) appendListItem(list, info.id);
-        error = "--techniques: no technique '" + id + "' (available: " + list + ")";
+        error = "--techniques: no technique '" + id + "' (available: " + available + ")";
         return 2;
     }
-    std::vector<const StressCase*> cases;
+    cases.clear();
     for (const StressCase& c : suite.cases)
         if (options.cases.empty() || std::find(options.cases.begin(), options.cases.end(), c.id) != options.cases.end()) cases.push_back(&c);
     for (const std::string& id : options.cases) {
@@ -401,18 +403,60 @@ int runStress(App& app, const StressSuite& suite, const StressOptions& options, 
     for (const std::string& text : options.sets) {
         const auto assignment = parseAssignment(text, error);
         if (!assignment) return 2;
-        if (!assignment->technique.empty()) {
-            const TechniqueInfo* info = app.techniques().find(assignment->technique);
+        // A key naming its technique goes to it; a bare key to each technique that declares it
+        // (applyWhereDeclared), so at least one must.
+        bool declared = false;
+        for (const std::string& id : assignment->technique.empty() ? techniques : std::vector<std::string>{assignment->technique}) {
+            const TechniqueInfo* info = app.techniques().find(id);
             if (!info) {
-                error = "--set " + text + ": no technique '" + assignment->technique + "'";
+                error = "--set " + text + ": no technique '" + id + "' (available: " + available + ")";
                 return 2;
             }
+            if (assignment->technique.empty() && !info->findParam(assignment->param)) continue;
+            declared = true;
             if (!app.params().set(*info, assignment->param, assignment->value, error)) {
-                error = "--set " + text + ": " + error;
+                error = "--set " + text + ": " + id + ": " + error;
                 return 2;
             }
         }
+        if (!declared) {
+            std::string measured;
+            for (const std::string& id : techniques) appendListItem(measured, id);
+            error = "--set " + text + ": '" + assignment->param + "' is no parameter of the techniques measured (" + measured + ")";
+            return 2;
+        }
     }
+    return 0;
+}
+
+// A cell as a row of results.json / results.csv.
+static json stressRow(const StressCase& c, const std::string& technique, const StressCell& cell) {
+    json row = {{"case", c.id}, {"technique", technique}, {"scene", c.scene}, {"metric", stressMetricName(c.metric)},
+                {"threshold", c.threshold}, {"skipped", cell.skipped}, {"settings", cell.settings},
+                {"expected_to_fail", cell.expectedFail}, {"expected_to_pass", cell.expectedPass}};
+    if (cell.skipped) {
+        row["skip_reason"] = cell.skipReason;
+        return row;
+    }
+    row.update({{"value", cell.value}, {"pass", cell.pass}, {"worst_frame", cell.worstFrame}, {"image", cell.image},
+                {"mae", cell.mae}, {"false_shadow", cell.falseShadow}, {"false_light", cell.falseLight},
+                {"mae_near_third", cell.maeNear}, {"mae_far_third", cell.maeFar}, {"flicker", cell.flicker},
+                {"popping", cell.popping}, {"noise", cell.noise}, {"pixels", cell.pixels},
+                {"frames", c.path.empty() ? 1 : c.frames}});
+    // Whether the verdict agrees with the claim: only where the claim names the technique.
+    if (cell.expectedFail || cell.expectedPass) row["agrees_with_literature"] = cell.expectedFail != cell.pass;
+    // m only where the technique reported its maps (none, planar and the references have none).
+    if (cell.footprintPixels > 0)
+        row.update({{"footprint_median", cell.footprintMedian}, {"footprint_near_third", cell.footprintNear},
+                    {"footprint_pixels", cell.footprintPixels}});
+    return row;
+}
+
+int runStress(App& app, const StressSuite& suite, const StressOptions& options, std::vector<StressCell>& cells,
+              std::string& error) {
+    std::vector<std::string> techniques;
+    std::vector<const StressCase*> cases;
+    if (const int code = checkStressRequest(app, suite, options, techniques, cases, error)) return code;
     if (!options.outDir.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(options.outDir / "images", ec);
@@ -424,39 +468,31 @@ int runStress(App& app, const StressSuite& suite, const StressOptions& options, 
     const auto start = std::chrono::steady_clock::now();
     const size_t total = cases.size() * techniques.size();
     cells.clear();
-    std::vector<nlohmann::json> rows;
+    std::vector<json> rows;
     for (const StressCase* c : cases) {
         for (const std::string& technique : techniques) {
             StressCell cell;
-            if (!runStressCell(app, suite, *c, technique, options, cell, error)) return 2;
+            if (!runStressCell(app, suite, *c, technique, options, cell, error)) {
+                if (!interrupted()) return 2;
+                // Ctrl-C: the cells done are the results (no chart or page for a partial table).
+                if (!options.outDir.empty() && (!writeBenchResults(options.outDir / "results.json", rows, error) ||
+                                                !writeBenchResults(options.outDir / "results.csv", rows, error)))
+                    return 1;
+                error = "interrupted (Ctrl-C): " + std::to_string(cells.size()) + " of " + std::to_string(total) + " cells" +
+                        (options.outDir.empty() ? std::string() : " written to " + (options.outDir / "results.json").string());
+                return kExitInterrupted;
+            }
             cells.push_back(cell);
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double left = elapsed / double(cells.size()) * double(total - cells.size());
             if (!options.quiet)
-                std::fprintf(stderr, "stress: %zu of %zu  %-22s %-20s %s  (%.0f s)\n", cells.size(), total, c->id.c_str(),
-                             technique.c_str(),
+                std::fprintf(stderr, "stress: %zu of %zu  %-22s %-20s %s  (%s elapsed, about %s left)\n", cells.size(), total,
+                             c->id.c_str(), technique.c_str(),
                              cell.skipped ? ("skipped: " + cell.skipReason).c_str()
                                           : (std::string(stressMetricName(c->metric)) + " " + fixed(cell.value, 4) + " " +
                                              (cell.pass ? "pass" : "FAIL")).c_str(),
-                             elapsed);
-            json row = {{"case", c->id}, {"technique", technique}, {"scene", c->scene}, {"metric", stressMetricName(c->metric)},
-                        {"threshold", c->threshold}, {"skipped", cell.skipped}, {"settings", cell.settings},
-                        {"expected_to_fail", cell.expectedFail}, {"expected_to_pass", cell.expectedPass}};
-            if (!cell.skipped) {
-                row.update({{"value", cell.value}, {"pass", cell.pass}, {"worst_frame", cell.worstFrame}, {"image", cell.image},
-                            {"mae", cell.mae}, {"false_shadow", cell.falseShadow}, {"false_light", cell.falseLight},
-                            {"mae_near_third", cell.maeNear}, {"mae_far_third", cell.maeFar}, {"flicker", cell.flicker},
-                            {"popping", cell.popping}, {"noise", cell.noise}, {"pixels", cell.pixels},
-                            {"frames", c->path.empty() ? 1 : c->frames}});
-                // Whether the verdict agrees with the claim: only where the claim names the technique.
-                if (cell.expectedFail || cell.expectedPass) row["agrees_with_literature"] = cell.expectedFail != cell.pass;
-                // m only where the technique reported its maps (none, planar and the references have none).
-                if (cell.footprintPixels > 0)
-                    row.update({{"footprint_median", cell.footprintMedian}, {"footprint_near_third", cell.footprintNear},
-                                {"footprint_pixels", cell.footprintPixels}});
-            } else {
-                row["skip_reason"] = cell.skipReason;
-            }
-            rows.push_back(row);
+                             durationText(elapsed).c_str(), durationText(left).c_str());
+            rows.push_back(stressRow(*c, technique, cell));
         }
     }
     if (options.outDir.empty()) return 0;

@@ -25,6 +25,7 @@
 #include "bench/tour_pages.h"
 #include "util/log.h"
 #include "util/paths.h"
+#include "util/progress.h"
 #include "util/stats.h"
 #include "util/strings.h"
 #include "util/text_file.h"
@@ -41,7 +42,7 @@ int commandBench(const CommonOptions& common, std::vector<BenchSpec> specs, cons
         std::string error;
         for (size_t i = 0; i < specs.size(); ++i) {
             if (!checkBenchSpec(specs[i], scan.techniques, error, lightSizeOption(common))) {
-                return fail(specs.size() > 1 ? "benchmark spec " + std::to_string(i) + ": " + error : error, kExitBadInput);
+                return fail(error, kExitBadInput);   // a spec file's errors name the file and the spec
             }
         }
     }
@@ -64,8 +65,14 @@ int commandBench(const CommonOptions& common, std::vector<BenchSpec> specs, cons
         std::string writeError;
         if (!writeBenchResults(out, written, writeError)) logWarning(writeError);
     };
-    for (const BenchSpec& spec : specs)
-        if (!runBench(app, spec, rows, error, onRow)) return fail(error, kExitBadInput);
+    for (const BenchSpec& spec : specs) {
+        if (runBench(app, spec, rows, error, onRow)) continue;
+        if (!interrupted()) return fail(error, kExitBadInput);
+        // Ctrl-C: the rows measured so far are the results (the row in progress is dropped).
+        if (!writeBenchResults(out, written, error)) return fail(error, kExitFailure);
+        return fail("interrupted (Ctrl-C): the " + std::to_string(written.size()) + " rows measured so far written to " + out,
+                    kExitInterrupted);
+    }
     if (!writeBenchResults(out, rows, error)) return fail(error, kExitFailure);
     logInfo("wrote " + std::to_string(rows.size()) + " rows to " + out);
     return 0;
@@ -108,7 +115,12 @@ int commandBenchPath(const CommonOptions& common, const PathBenchOptions& option
         std::string writeError;
         if (!writeBenchResults(out, rows, writeError)) logWarning(writeError);
     };
-    if (int code = benchPath(app, options, rows, onRow, error)) return fail(error, code);
+    if (int code = benchPath(app, options, rows, onRow, error)) {
+        if (!interrupted()) return fail(error, code);
+        // Ctrl-C: the rows so far, the last one with the frames timed before it (marked "interrupted").
+        if (!writeBenchResults(out, rows, error)) return fail(error, kExitFailure);
+        return fail("interrupted (Ctrl-C): " + std::to_string(rows.size()) + " rows written to " + out, kExitInterrupted);
+    }
     if (!writeBenchResults(out, rows, error)) return fail(error, kExitFailure);
     logInfo("wrote " + std::to_string(rows.size()) + " rows to " + out);
     return 0;
@@ -130,7 +142,7 @@ public:
         bench->add_option("--reference-adaptive", adaptive_,
                           "soft reference: a first batch everywhere, all --samples rays only near penumbrae: on | off (default on)");
         bench->add_flag("--depth-floor", spec_.depthFloor, "add a bare depth-only pass per shadow-map resolution");
-        bench->add_option("--spec", specFile_, "JSON spec (one object or an array); command-line lists are ignored then");
+        bench->add_option("--spec", specFile_, "JSON spec (one object or an array), which says everything the lists below would");
         bench->add_option("--out,-o", out_, "results file: .csv or .json")->required();
         bench->add_option("--path", path_,
                           "time every frame along a camera and light path (a JSON file, a path of the scene or built-in: "
@@ -138,17 +150,54 @@ public:
                           "temporal metrics");
         bench->add_option("--path-frames", pathFrames_, "with --path: frames along it (default: the path's own)")
             ->check(CLI::Range(1, 100000));
+        declareExclusions(*bench);
+        command_ = bench;
         return bench;
     }
-    int run(const CommonOptions& common) override { return path_.empty() ? runSweep(common) : runPath(common); }
+    int run(const CommonOptions& common) override {
+        auto given = [&](const char* name) { return command_->get_option(name)->count() > 0; };
+        if (!specFile_.empty() && !common.sets.empty())
+            return fail("--set: the spec (--spec) sets its parameters itself (its \"base\")", kExitBadInput);
+        for (const char* option : {"--reference", "--samples", "--reference-adaptive"})
+            if (given(option) && !spec_.accuracy)
+                return fail(std::string(option) + ": only --accuracy traces the reference", kExitBadInput);
+        std::string error;
+        if (!outputProblem("--out", out_, false, error)) return fail(error, kExitBadInput);
+        return path_.empty() ? runSweep(common) : runPath(common);
+    }
+    std::vector<Unused> unusedCommonOptions() const override {
+        std::vector<Unused> unused{{"--technique", "use --techniques"}};
+        if (specFile_.empty() && !spec_.accuracy)
+            for (const char* option : {"--translucent-layers", "--reference-device"})
+                unused.push_back({option, "only --accuracy traces the reference"});
+        if (path_.empty() || !scenes_.empty()) {
+            unused.push_back({"--scene", "use --scenes"});
+            unused.push_back({"--scene-param", "sweep scene parameters: --sweep scene.NAME=V"});
+        }
+        return unused;
+    }
 
 private:
+    // Options that mean nothing with another given (CLI11's excludes and needs: exit 2 naming both):
+    // a spec file says everything the command-line lists would, a path is timed frame by frame.
+    void declareExclusions(CLI::App& bench) {
+        CLI::Option* spec = bench.get_option("--spec");
+        CLI::Option* path = bench.get_option("--path");
+        for (const char* name : {"--techniques", "--scenes", "--sweep", "--size", "--frames", "--warmup", "--accuracy",
+                                 "--reference", "--samples", "--reference-adaptive", "--depth-floor"})
+            bench.get_option(name)->excludes(spec);
+        for (const char* name : {"--sweep", "--frames", "--samples", "--reference-adaptive", "--depth-floor"})
+            bench.get_option(name)->excludes(path);
+        bench.get_option("--path-frames")->needs(path);
+    }
+
     int runPath(const CommonOptions& common) {
         if (!specFile_.empty()) return fail("--path: with the command line's lists, not --spec", kExitBadInput);
         if (!sweeps_.empty()) return fail("--path: times one setting per technique (no --sweep)", kExitBadInput);
         PathBenchOptions options;
-        options.techniques = splitList(techniques_);
-        options.scenes = splitList(scenes_);
+        std::string error;
+        if (!optionList(techniques_, "--techniques", options.techniques, error) || !optionList(scenes_, "--scenes", options.scenes, error))
+            return fail(error, kExitBadInput);
         options.sets = common.sets;
         options.path = path_;
         options.frames = pathFrames_;
@@ -173,8 +222,8 @@ private:
         spec_.fromCommandLine = true;
         spec_.reference = reference_;
         spec_.referenceSamples = samples_;
-        spec_.techniques = splitList(techniques_);
-        if (!scenes_.empty()) spec_.scenes = splitList(scenes_);
+        if (!optionList(techniques_, "--techniques", spec_.techniques, error)) return fail(error, kExitBadInput);
+        if (!scenes_.empty() && !optionList(scenes_, "--scenes", spec_.scenes, error)) return fail(error, kExitBadInput);
         for (const auto& sweep : sweeps_)
             if (!addSweep(spec_, sweep, error)) return fail(error, kExitBadInput);
         if (!sizes_.empty()) spec_.sizes.clear();
@@ -192,6 +241,7 @@ private:
     std::string techniques_, scenes_, specFile_, out_, reference_ = "auto", adaptive_ = "on", path_;
     std::vector<std::string> sweeps_, sizes_;
     int samples_ = BenchSpec{}.referenceSamples, pathFrames_ = 0;
+    CLI::App* command_ = nullptr;
 };
 
 } // namespace

@@ -9,6 +9,7 @@
 // Every input is checked before the first frame.
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,8 +53,20 @@ std::optional<double> lightSizeOption(const CommonOptions& common);
 int fail(const std::string& error, int code);
 // Creates the App headless (or windowed) and reports errors with the right exit code (0: started).
 int startApp(App& app, const CommonOptions& common, bool windowed);
-// "a,b,,c" -> {a, b, c}
-std::vector<std::string> splitList(const std::string& text);
+// The rules every command's options follow, checked once for all of them (main.cpp):
+//   - no option takes an empty value (`--scene ''`, `--techniques ''`): an empty value would read
+//     as "unset" or "all" (CLI11 validator on every option that takes a value);
+//   - `--set` and `--scene-param` name each key once (the last would win unseen);
+//   - a common option the command does not use is refused (Command::unusedCommonOptions).
+void requireNonEmptyValues(CLI::App& app);
+int repeatedKeyProblem(const CommonOptions& common);
+// A comma-separated option's items (util/strings.h's splitList: an empty item is an error naming
+// `option`); "" (the option not given) gives no items.
+bool optionList(const std::string& text, const std::string& option, std::vector<std::string>& items, std::string& error);
+// An output checked before the first frame: `file` can be created or written (its folder is
+// created), or, with `folder`, the folder can be created and a file written in it. Exit 2 with
+// `option` and the reason otherwise; a write that fails later (a full disk) is still exit 1.
+bool outputProblem(const std::string& option, const std::filesystem::path& path, bool folder, std::string& error);
 
 // What the classroom window is asked to do (the main job with a display, or offscreen; render's
 // comparisons and probes are slides of it).
@@ -89,7 +102,9 @@ bool referenceModes(const std::string& text, const TechniqueInfo& info, std::vec
                     std::string& error);
 // The report: a sweep measured, charted and written up into `outDir` (the default spec for the
 // renderer when `specFile` is empty). Without a display this is the main job.
-int runReport(const CommonOptions& common, const std::string& specFile, const std::string& outDir);
+// `outOption` names the folder's option in messages (the main job's is --out-dir).
+int runReport(const CommonOptions& common, const std::string& specFile, const std::string& outDir,
+              const std::string& outOption = "--out");
 
 // One subcommand: declare() adds it and its options to the parser, run() runs it once parsed.
 class Command {
@@ -97,7 +112,15 @@ public:
     virtual ~Command() = default;
     virtual CLI::App* declare(CLI::App& cli) = 0;
     virtual int run(const CommonOptions& common) = 0;
+    // The common options (addCommonOptions) this command has no use for, each with what to use
+    // instead: given anyway, they are refused (exit 2) rather than silently ignored.
+    struct Unused {
+        std::string option, instead;
+    };
+    virtual std::vector<Unused> unusedCommonOptions() const { return {}; }
 };
+// Exit 2 naming the first common option given to `command` that it does not use.
+int unusedOptionProblem(const CLI::App& parser, const std::string& command, const std::vector<Command::Unused>& unused);
 std::unique_ptr<Command> listCommand();
 std::unique_ptr<Command> renderCommand();
 std::unique_ptr<Command> evalCommand();

@@ -8,7 +8,13 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <sstream>
+
+#include <fcntl.h>
+#include <unistd.h>
+#include <cerrno>
+#include <cstring>
 
 #include <nlohmann/json.hpp>
 
@@ -232,13 +238,73 @@ bool referenceModes(const std::string& text, const TechniqueInfo& info, std::vec
     return false;
 }
 
-std::vector<std::string> splitList(const std::string& text) {
-    std::vector<std::string> items;
-    std::stringstream in(text);
-    std::string item;
-    while (std::getline(in, item, ','))
-        if (!item.empty()) items.push_back(item);
-    return items;
+bool optionList(const std::string& text, const std::string& option, std::vector<std::string>& items, std::string& error) {
+    items.clear();
+    return text.empty() || splitList(text, option, items, error);
+}
+
+void requireNonEmptyValues(CLI::App& app) {
+    const CLI::Validator nonEmpty(
+        [](std::string& value) {
+            return value.empty() ? std::string("an empty value (give a value, or leave the option out for its default)")
+                                 : std::string();
+        },
+        "", "non-empty");
+    for (CLI::Option* option : app.get_options())
+        if (option->get_type_size_max() > 0 && option->get_name() != "--help") option->check(nonEmpty);
+    for (CLI::App* sub : app.get_subcommands(std::function<bool(CLI::App*)>{})) requireNonEmptyValues(*sub);
+}
+
+int repeatedKeyProblem(const CommonOptions& common) {
+    for (const auto& [option, values] : {std::pair{"--set", &common.sets}, std::pair{"--scene-param", &common.sceneParams}}) {
+        std::set<std::string> keys;
+        for (const std::string& text : *values) {
+            const std::string key = text.substr(0, text.find('='));
+            if (!keys.insert(key).second)
+                return fail(std::string(option) + " " + key + "=...: the key is given twice (the last would win unseen)",
+                            kExitBadInput);
+        }
+    }
+    return 0;
+}
+
+int unusedOptionProblem(const CLI::App& parser, const std::string& command, const std::vector<Command::Unused>& unused) {
+    for (const Command::Unused& u : unused) {
+        const CLI::Option* option = parser.get_option_no_throw(u.option);
+        if (option && option->count() > 0)
+            return fail(u.option + ": `" + command + "` does not use it (" + u.instead + ")", kExitBadInput);
+    }
+    return 0;
+}
+
+bool outputProblem(const std::string& option, const std::filesystem::path& path, bool folder, std::string& error) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path dir = folder ? path : path.parent_path();
+    if (!dir.empty()) fs::create_directories(dir, ec);
+    if (!dir.empty() && !fs::is_directory(dir, ec)) {
+        error = option + " " + path.string() + ": cannot create the folder " + dir.string() +
+                (ec ? " (" + ec.message() + ")" : " (a file is in the way)");
+        return false;
+    }
+    if (!folder && fs::is_directory(path, ec)) {
+        error = option + " " + path.string() + ": a folder, expected a file";
+        return false;
+    }
+    // Open for writing without truncating (an existing file keeps its content until the real
+    // write; /dev/full opens, and its failure to write stays exit 1 when it happens); a new file
+    // is created, then removed again.
+    const fs::path probe = folder ? path / (".shadowlab-write-test-" + std::to_string(::getpid())) : path;
+    const bool existed = !folder && fs::exists(path, ec);
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | O_NOCTTY | O_NONBLOCK, 0644);
+    if (fd < 0) {
+        error = option + " " + path.string() + ": cannot write " + (folder ? "in the folder" : "the file") + " (" +
+                std::strerror(errno) + ")";
+        return false;
+    }
+    ::close(fd);
+    if (!existed) ::unlink(probe.c_str());
+    return true;
 }
 
 } // namespace shadowlab::cli

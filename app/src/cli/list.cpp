@@ -76,6 +76,13 @@ public:
         return list;
     }
     int run(const CommonOptions&) override { return commandList(json_); }
+    std::vector<Unused> unusedCommonOptions() const override {
+        std::vector<Unused> unused;
+        for (const char* option : {"--scene", "--scene-param", "--light-dir", "--light-size", "--technique", "--set", "--backend",
+                                   "--size", "--msaa", "--depth-prepass", "--translucent-layers", "--reference-device", "--budget"})
+            unused.push_back({option, "it lists the techniques' descriptors and the built-in scenes, and draws nothing"});
+        return unused;
+    }
 
 private:
     bool json_ = false;

@@ -76,6 +76,12 @@ public:
         return reload;
     }
     int run(const CommonOptions& common) override { return commandReloadLatency(common, trials_); }
+    std::vector<Unused> unusedCommonOptions() const override {
+        const std::string nothing = "it times the reload of the library, and traces no reference";
+        return {{"--set", "it times the reload of the library with the technique's defaults"},
+                {"--translucent-layers", nothing},
+                {"--reference-device", nothing}};
+    }
 
 private:
     int trials_ = 10;

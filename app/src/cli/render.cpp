@@ -25,6 +25,7 @@
 #include "bench/tour_pages.h"
 #include "util/log.h"
 #include "util/paths.h"
+#include "util/progress.h"
 #include "util/stats.h"
 #include "util/strings.h"
 #include "util/text_file.h"
@@ -95,6 +96,8 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         if (!compare.compare.empty() || !path.empty())
             return fail("--probe: one technique, one frame (without --compare or --path)", kExitBadInput);
     }
+    std::string error;
+    if (!outputProblem("--out", out, !path.empty(), error)) return fail(error, kExitBadInput);
     App app;
     if (int code = startApp(app, common, false)) return code;
     if (!probe.empty()) {
@@ -111,8 +114,8 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         if (!compare.compare.empty()) return fail("--path: one technique at a time (without --compare)", kExitBadInput);
         if (view == "error" || view == "reference") return fail("--path: --view " + view + " is not drawn per frame", kExitBadInput);
         if (!app.techniques().find(technique)) return fail("--technique '" + technique + "': no such technique", kExitBadInput);
-        std::string error;
         if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
+        if (const std::string problem = app.viewProblem(technique, view); !problem.empty()) return fail("--" + problem, kExitBadInput);
         const int code = renderPath(app, technique, path, pathFrames, view, out, error);
         return code ? fail(error, code) : 0;
     }
@@ -133,7 +136,6 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         if (view != "lit" && view != "visibility")
             return fail("--view " + view + ": --compare shows lit or visibility", kExitBadInput);
     }
-    std::string error;
     for (const std::string& id : {technique, other}) {
         if (id.empty() || app.techniques().find(id)) continue;
         std::string known;
@@ -143,6 +145,9 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
                     kExitBadInput);
     }
     if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
+    // The one check of a view name (tours and sessions get it too), before the first frame kept.
+    if (const std::string problem = app.viewProblem(technique, view, {"reference"}); !problem.empty())
+        return fail("--" + problem, kExitBadInput);
     if (!other.empty()) {
         WindowOptions w = compare;
         w.compare = other;
@@ -157,8 +162,11 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         return code;
     }
     if (!probe.empty()) return renderProbeSlide(app, technique, view, frames, out, probePixel);
-    for (int i = 0; i < std::max(frames, 1); ++i)
+    Progress progress("render: drawing " + technique, uint64_t(std::max(frames, 1)), "frames");   // a huge scene on llvmpipe
+    for (int i = 0; i < std::max(frames, 1); ++i) {
         if (!app.renderFrame(technique, error)) return fail(error, kExitFailure);
+        progress.step(uint64_t(i + 1));
+    }
     Image image;
     if (view == "error" || view == "reference") {
         // Accuracy views: the reference traced from this frame's own G-buffer.
@@ -187,7 +195,7 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
 class RenderCommand final : public Command {
 public:
     CLI::App* declare(CLI::App& cli) override {
-        auto* render = cli.add_subcommand("render", "render one frame headless to a PNG file");
+        auto* render = command_ = cli.add_subcommand("render", "render one frame headless to a PNG file");
         render->add_option("--out,-o", out_, "PNG file to write")->required();
         render->add_option("--view", view_,
                            "lit | visibility | error (heatmap vs the reference) | reference | footprint (texel footprint m, "
@@ -203,26 +211,48 @@ public:
             ->check(CLI::Range(1, 4096));
         render->add_option("--compare", compare_.compare,
                            "A,B: both techniques in one image with their labels (B may be 'reference', the ground truth)");
-        render->add_option("--compare-layout", compare_.compareLayout, "with --compare: side-by-side (default) | wipe | difference");
+        // Options that mean something only with another are refused alone (CLI11's needs: exit 2).
+        CLI::Option* compare = render->get_option("--compare");
+        render->add_option("--compare-layout", compare_.compareLayout, "with --compare: side-by-side (default) | wipe | difference")
+            ->needs(compare);
         render->add_option("--wipe", compare_.wipe, "with --compare-layout wipe: divider position, 0..1 (default 0.5)")
-            ->check(CLI::Range(0.0, 1.0));
+            ->check(CLI::Range(0.0, 1.0))
+            ->needs(compare);
         render->add_option("--ui-scale", compare_.uiScale, "with --compare: size of the labels (default 1)")
-            ->check(CLI::Range(0.5, 4.0));
+            ->check(CLI::Range(0.5, 4.0))
+            ->needs(compare);
         render->add_option("--path", path_,
                            "camera and light path (a JSON file, a path of the scene or built-in: orbit, dolly, sweep, walk, "
                            "static): every frame to --out FOLDER/frame_NNNNN.png (and frames.mp4 with ffmpeg)");
         render->add_option("--path-frames", pathFrames_, "with --path: frames along it (default: the path's own)")
-            ->check(CLI::Range(1, 100000));
+            ->check(CLI::Range(1, 100000))
+            ->needs(render->get_option("--path"));
+        render->get_option("--frames")->excludes(render->get_option("--path"));   // a path draws its own frames
         return render;
     }
     int run(const CommonOptions& common) override {
+        // Options whose meaning depends on another's value (those that need another at all are
+        // declared with CLI11's needs).
+        auto given = [&](const char* name) { return command_->get_option(name)->count() > 0; };
+        for (const char* option : {"--reference", "--samples"})
+            if (given(option) && view_ != "error" && view_ != "reference")
+                return fail(std::string(option) + ": only the accuracy views trace the reference (--view error or --view reference)",
+                            kExitBadInput);
+        if (given("--wipe") && compare_.compareLayout != "wipe")
+            return fail("--wipe: places the divider of --compare-layout wipe", kExitBadInput);
         return commandRender(common, out_, view_, frames_, reference_, samples_, compare_, path_, pathFrames_, probe_);
+    }
+    std::vector<Unused> unusedCommonOptions() const override {
+        if (view_ == "error" || view_ == "reference") return {};
+        const std::string accuracy = "only the accuracy views (--view error or reference) trace the reference";
+        return {{"--translucent-layers", accuracy}, {"--reference-device", accuracy}};
     }
 
 private:
     std::string out_, view_ = "lit", probe_, reference_ = "auto", path_;
     int frames_ = 3, samples_ = BenchSpec{}.referenceSamples, pathFrames_ = 0;
     WindowOptions compare_;
+    CLI::App* command_ = nullptr;
 };
 
 } // namespace

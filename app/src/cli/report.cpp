@@ -40,6 +40,10 @@ public:
         return report;
     }
     int run(const CommonOptions& common) override { return runReport(common, spec_, out_); }
+    std::vector<Unused> unusedCommonOptions() const override {
+        const std::string spec = "the benchmark spec (--spec) names what the report measures: its techniques, base, sweep, scenes and sizes";
+        return {{"--technique", spec}, {"--set", spec}, {"--scene", spec}, {"--scene-param", spec}, {"--size", spec}};
+    }
 
 private:
     std::string spec_, out_ = "out";
@@ -49,14 +53,18 @@ private:
 
 // The report: the default sweep measured, charted and written up into `outDir`. Without a display
 // this is the main job.
-int runReport(const CommonOptions& common, const std::string& specFile, const std::string& outDir) {
+int runReport(const CommonOptions& common, const std::string& specFile, const std::string& outDir, const std::string& outOption) {
+    std::string error;
+    std::vector<BenchSpec> specs;
+    // The output folder and a given spec are checked before a context exists (the default spec
+    // depends on the renderer, so it is read after).
+    if (!outputProblem(outOption, outDir, true, error)) return fail(error, kExitBadInput);
+    if (!specFile.empty() && !loadBenchSpecs(specFile, specs, error)) return fail(error, kExitBadInput);
     App app;
     if (int code = startApp(app, common, false)) return code;
     const bool software = glRendererString().find("llvmpipe") != std::string::npos;
     const std::filesystem::path spec = specFile.empty() ? defaultReportSpec(software) : std::filesystem::path(specFile);
-    std::vector<BenchSpec> specs;
-    std::string error;
-    if (!loadBenchSpecs(spec, specs, error)) return fail(error, kExitBadInput);
+    if (specFile.empty() && !loadBenchSpecs(spec, specs, error)) return fail(error, kExitBadInput);
     std::printf("shadowlab report: sweep %s on %s\n", spec.string().c_str(), glRendererString().c_str());
     const int code = runReport(app, specs, outDir, error, lightSizeOption(common));
     if (code) return fail(error, code);

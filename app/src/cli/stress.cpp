@@ -41,6 +41,7 @@ int commandStress(const CommonOptions& common, const std::string& casesFile, con
         if (!parseSize(sizeText, size, error, "--stress-size")) return fail(error, kExitBadInput);
         options.size = size;
     }
+    if (!outputProblem("--out", options.outDir, true, error)) return fail(error, kExitBadInput);
     App app;
     if (int code = startApp(app, common, false)) return code;
     std::vector<StressCell> cells;
@@ -61,12 +62,19 @@ public:
     }
     int run(const CommonOptions& common) override {
         StressOptions options;
-        options.techniques = splitList(techniques_);
-        options.cases = splitList(cases_);
+        std::string error;
+        if (!optionList(techniques_, "--techniques", options.techniques, error) || !optionList(cases_, "--cases", options.cases, error))
+            return fail(error, kExitBadInput);
         options.sets = common.sets;
         options.outDir = out_;
         options.quiet = common.quiet;
         return commandStress(common, casesFile_, size_, options);
+    }
+
+    std::vector<Unused> unusedCommonOptions() const override {
+        const std::string cases = "each case of the cases file names its scene, view and light; see --cases-file";
+        return {{"--technique", "use --techniques"}, {"--scene", cases}, {"--scene-param", cases}, {"--light-dir", cases},
+                {"--light-size", cases}, {"--size", "use --stress-size"}};
     }
 
 private:

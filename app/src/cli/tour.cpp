@@ -36,8 +36,9 @@ int commandTour(const CommonOptions& common, const std::string& name, const Tour
     Tour tour;
     std::string error;
     if (!loadTour(name, describedTechniques(), tour, error)) return fail(error, kExitBadInput);
+    if (!outputProblem("--out", pageOptions.outDir, true, error)) return fail(error, kExitBadInput);
     CommonOptions first = common;
-    if (first.scene.empty()) first.scene = tour.steps.front().scene;   // loaded once at start, not twice
+    first.scene = tour.steps.front().scene;   // loaded once at start, not twice
     App app;
     if (int code = startApp(app, first, false)) return code;
     TourPageOptions options = pageOptions;
@@ -65,6 +66,10 @@ public:
     int run(const CommonOptions& common) override {
         pages_.outDir = out_;
         return commandTour(common, name_, pages_);
+    }
+    std::vector<Unused> unusedCommonOptions() const override {
+        const std::string steps = "each step of the tour names its own; edit the tour file";
+        return {{"--scene", steps}, {"--scene-param", steps}, {"--technique", steps}, {"--set", steps}};
     }
 
 private:

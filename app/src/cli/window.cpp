@@ -62,9 +62,13 @@ void MainJob::declare(CLI::App& cli) {
     windowOption(cli.add_option("--smoke-test", window_.smokeFrames, "window: draw N frames cycling every technique, then exit"))
         ->check(CLI::Range(1, 1000000));
     windowOption(cli.add_option("--compare", window_.compare, "window: compare this technique (B) with --technique (A)"));
-    windowOption(cli.add_option("--compare-layout", window_.compareLayout, "side-by-side (default) | wipe | difference"));
+    // Options that mean something only with another are refused alone (CLI11's needs: exit 2).
+    CLI::Option* compare = cli.get_option("--compare");
+    windowOption(cli.add_option("--compare-layout", window_.compareLayout, "side-by-side (default) | wipe | difference"))
+        ->needs(compare);
     windowOption(cli.add_option("--wipe", window_.wipe, "wipe divider position across the view, 0..1 (default 0.5)"))
-        ->check(CLI::Range(0.0, 1.0));
+        ->check(CLI::Range(0.0, 1.0))
+        ->needs(compare);
     windowOption(cli.add_option("--frames", window_.frames,
                                 "window: draw N frames, save --screenshot, exit (slides; offscreen without a display)"))
         ->check(CLI::Range(1, 1000000));
@@ -88,7 +92,8 @@ void MainJob::declare(CLI::App& cli) {
                                 "window: play a guided tour, a built-in name (assets/tours) or a tour file; with --frames "
                                 "a slide of one step"));
     windowOption(cli.add_option("--tour-step", window_.tourStep, "window: the tour's step to start at (from 1)"))
-        ->check(CLI::Range(1, int(kMaxTourSteps)));
+        ->check(CLI::Range(1, int(kMaxTourSteps)))
+        ->needs(cli.get_option("--tour"));
     windowOption(cli.add_option("--session", window_.session, "window: restore a saved session (a JSON tour step) at the start"));
     windowOption(cli.add_option("--session-dir", window_.sessionDir, "window: folder of saved sessions (default sessions)"));
     cli.add_option("--out-dir", outDir_, "headless main job: folder of the report (default out)");
@@ -105,6 +110,8 @@ int MainJob::run(const CommonOptions& common, const CLI::App& cli) {
         return fail("--screenshot " + window_.screenshot + ": needs --frames N (or --smoke-test N) to say when to take it",
                     kExitBadInput);
     if (window_.frames > 0 && window_.smokeFrames > 0) return fail("--frames and --smoke-test: give one of them", kExitBadInput);
+    if (cli.get_option("--wipe")->count() > 0 && window_.compareLayout != "wipe")
+        return fail("--wipe: places the divider of --compare-layout wipe", kExitBadInput);
     std::shared_ptr<const Tour> tour;
     if (int code = checkLessonOptions(window_, tour)) return code;
     const bool display = common.backend.empty() ? defaultBackend() == BackendKind::Glfw : common.backend == "glfw";
@@ -118,11 +125,17 @@ int MainJob::run(const CommonOptions& common, const CLI::App& cli) {
             logWarning(std::string(common.technique.empty() ? "--set" : "--technique") +
                        ": no display, so the main job is the report of every technique; add --frames N --screenshot "
                        "FILE to draw the window offscreen instead");
-        return runReport(common, "", outDir_);
+        return runReport(common, "", outDir_, "--out-dir");
     }
+    if (cli.get_option("--out-dir")->count() > 0)
+        return fail("--out-dir: the folder of the headless report, which this run does not write (the window is "
+                    "drawn; --screenshot names its image)",
+                    kExitBadInput);
+    std::string error;
+    if (!window_.screenshot.empty() && !outputProblem("--screenshot", window_.screenshot, false, error))
+        return fail(error, kExitBadInput);
     App app;
     if (int code = startApp(app, common, display)) return code;
-    std::string error;
     const std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;
     if (!app.techniques().find(technique)) return fail("--technique '" + technique + "': no such technique", kExitBadInput);
     if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);

@@ -11,6 +11,7 @@
 #include "host_shared/eye_blur_shared.h"
 #include "render/bvh.h"
 #include "shadowlab/frame_block.h"
+#include "util/progress.h"
 #include "host_shared/translucent_layers_shared.h"
 #include "util/log.h"
 #include "util/paths.h"
@@ -132,6 +133,45 @@ GLuint Renderer::sampler(SamplerKind kind) const {
     return index < std::size(samplers_) ? samplers_[index].get() : 0u;
 }
 
+// The meshes' vertices and indices, each straight from its mesh into one buffer (no combined copy
+// on the CPU), in chunks with progress: a 4096 x 4096 sphere is a gigabyte that llvmpipe copies
+// for tens of seconds (util/progress.h; Ctrl-C throws Interrupted between chunks).
+void Renderer::uploadSceneGeometry(const Scene& scene) {
+    size_t vertexCount = 0, indexCount = 0;
+    meshRanges_.clear();
+    for (const Mesh& mesh : scene.meshes) {
+        meshRanges_.push_back({uint32_t(indexCount), uint32_t(mesh.indices.size()), int32_t(vertexCount)});
+        vertexCount += mesh.vertices.size();
+        indexCount += mesh.indices.size();
+    }
+    constexpr size_t kChunkBytes = size_t(64) << 20;
+    const size_t totalBytes = vertexCount * sizeof(Vertex) + indexCount * sizeof(uint32_t);
+    Progress progress("uploading the scene's geometry", (totalBytes + kChunkBytes - 1) / kChunkBytes, "chunks of 64 MiB");
+    size_t uploaded = 0;
+    auto upload = [&](GlBuffer& buffer, size_t bytes, auto member) {
+        GLuint name = 0;
+        glCreateBuffers(1, &name);
+        buffer.reset(name);
+        glNamedBufferStorage(name, GLsizeiptr(std::max<size_t>(1, bytes)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+        size_t offset = 0;
+        for (const Mesh& mesh : scene.meshes) {
+            const auto& data = mesh.*member;
+            const auto* bytesOf = reinterpret_cast<const uint8_t*>(data.data());
+            const size_t size = data.size() * sizeof(data[0]);
+            for (size_t done = 0; done < size; done += kChunkBytes) {
+                const size_t chunk = std::min(kChunkBytes, size - done);
+                glNamedBufferSubData(name, GLintptr(offset + done), GLsizeiptr(chunk), bytesOf + done);
+                uploaded += chunk;
+                progress.stepOrThrow(uploaded / kChunkBytes);
+            }
+            offset += size;
+        }
+    };
+    upload(vertexBuffer_, vertexCount * sizeof(Vertex), &Mesh::vertices);
+    upload(indexBuffer_, indexCount * sizeof(uint32_t), &Mesh::indices);
+    progress.step((totalBytes + kChunkBytes - 1) / kChunkBytes);
+}
+
 void Renderer::setScene(const Scene& scene) {
     scene_ = &scene;
     overdraw_.discardPending();   // counts of the previous scene
@@ -144,23 +184,8 @@ void Renderer::setScene(const Scene& scene) {
     for (GlBuffer& buffer : rayTracingBuffers_) buffer.reset();
     rayTracing_ = {};
     rayTracingBuilt_ = false;
-    std::vector<Vertex> vertices;
-    std::vector<uint32_t> indices;
-    meshRanges_.clear();
-    for (const Mesh& mesh : scene.meshes) {
-        meshRanges_.push_back({uint32_t(indices.size()), uint32_t(mesh.indices.size()), int32_t(vertices.size())});
-        vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
-        indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
-    }
+    uploadSceneGeometry(scene);
     GLuint name = 0;
-    glCreateBuffers(1, &name);
-    vertexBuffer_.reset(name);
-    glNamedBufferStorage(name, GLsizeiptr(std::max<size_t>(1, vertices.size() * sizeof(Vertex))),
-                         vertices.empty() ? nullptr : vertices.data(), 0);
-    glCreateBuffers(1, &name);
-    indexBuffer_.reset(name);
-    glNamedBufferStorage(name, GLsizeiptr(std::max<size_t>(1, indices.size() * sizeof(uint32_t))),
-                         indices.empty() ? nullptr : indices.data(), 0);
     glCreateVertexArrays(1, &name);
     sceneVao_.reset(name);
     glVertexArrayVertexBuffer(name, 0, vertexBuffer_.get(), 0, sizeof(Vertex));

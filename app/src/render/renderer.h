@@ -187,6 +187,7 @@ public:
     void uploadDisplay(const Image& image);
 
 private:
+    void uploadSceneGeometry(const Scene& scene);   // meshRanges_, vertexBuffer_, indexBuffer_
     struct MeshRange {
         uint32_t firstIndex;
         uint32_t indexCount;

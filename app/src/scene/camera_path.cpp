@@ -118,6 +118,12 @@ void parseKeyframe(const json& key, const std::string& at, double time, CameraPa
             addKey(path.cameraOrbit, 3, time, {azimuth, elevation, distance});
         }
         if (camera->contains("target")) addKey(path.cameraTarget, 3, time, vector3((*camera)["target"], field + ".target"));
+        // A keyframe that gives both is checked here, as a scene's camera is (the frames between,
+        // and keyframes that leave the target to the scene, by pathProblem).
+        if (lookAt && camera->contains("target"))
+            if (const std::string problem = cameraProblem(path.cameraPosition.values.back(), path.cameraTarget.values.back());
+                !problem.empty())
+                fail(field, problem);
     }
     if (const auto light = key.find("light"); light != key.end()) {
         const std::string field = at + ".light";
@@ -138,7 +144,7 @@ void parseKeyframe(const json& key, const std::string& at, double time, CameraPa
         }
         if (direction) {
             const glm::dvec3 d = vector3((*light)["direction"], field + ".direction");
-            if (!(glm::length(d) > 1e-9)) fail(field + ".direction", "zero-length direction");
+            if (const std::string problem = directionProblem(d); !problem.empty()) fail(field + ".direction", problem);
             addKey(path.light, 3, time, glm::normalize(d));
         }
         if (angles) {
@@ -240,17 +246,40 @@ bool loadPathFile(const std::string& file, CameraPath& path, std::string& error)
     return true;
 }
 
-std::string pathSceneProblem(const CameraPath& path, const Scene& scene) {
-    const LightType type = scene.light.type;
+std::string pathProblem(const CameraPath& path, const std::string& sceneName, const SceneCamera& camera,
+                        const LightInfo& light) {
+    const LightType type = light.type;
     const std::string who = path.source + ": ";
     if (path.lightForm == CameraPath::LightForm::Position && type == LightType::Directional)
-        return who + "moves the light by position, but scene '" + scene.name + "' has a directional light (give direction or elevation/azimuth)";
+        return who + "moves the light by position, but scene '" + sceneName + "' has a directional light (give direction or elevation/azimuth)";
     if ((path.lightForm == CameraPath::LightForm::Direction || path.lightForm == CameraPath::LightForm::Angles) && type == LightType::Point)
-        return who + "turns the light, but scene '" + scene.name + "' has a point light (give position)";
+        return who + "turns the light, but scene '" + sceneName + "' has a point light (give position)";
     for (size_t i = 0; i < path.lightSize.values.size(); ++i)
         if (const std::string problem = lightSizeProblem(type, path.lightSize.values[i].x); !problem.empty())
             return who + "light size at time " + number(path.lightSize.times[i]) + ": " + problem;
+    // Every frame as it will be drawn: a keyframe may leave the target to the scene, and
+    // interpolation may bring the eye onto the target or turn the light through zero (between
+    // opposite directions), which no keyframe shows. At most 100,000 samples, each a few
+    // binary searches: milliseconds.
+    for (int frame = 0; frame < path.frames; ++frame) {
+        SceneCamera c = camera;
+        LightInfo l = light;
+        const PathState state = samplePath(path, path.frameTime(frame));
+        applyPathState(state, c, l);
+        const std::string at = who + "frame " + std::to_string(frame) + " (time " + number(path.frameTime(frame)) + "): ";
+        if (const std::string problem = cameraProblem(c.position, c.target, glm::dvec3(c.up)); !problem.empty())
+            return at + problem;
+        if (state.lightDirection) {
+            const glm::dvec3 direction(*state.lightDirection);
+            if (!(std::abs(glm::length(direction) - 1.0) < 1e-3))
+                return at + "the light's direction passes through zero between keyframes (opposite directions; add a keyframe between them)";
+        }
+    }
     return "";
+}
+
+std::string pathSceneProblem(const CameraPath& path, const Scene& scene) {
+    return pathProblem(path, scene.name, scene.camera, scene.light);
 }
 
 void applyPathState(const PathState& state, SceneCamera& camera, LightInfo& light) {

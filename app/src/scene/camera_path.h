@@ -75,8 +75,14 @@ PathState samplePath(const CameraPath& path, double time);
 bool parsePath(const nlohmann::json& node, const std::string& source, CameraPath& path, std::string& error);
 // The file (a regular file, at most 16 MiB of JSON) into `path`.
 bool loadPathFile(const std::string& file, CameraPath& path, std::string& error);
-// "" when `path` can drive `scene`'s light (a position needs a spot or point light, a direction
-// or angles a directional or spot light; sizes in range), else the problem naming the path.
+// "" when `path` can drive a scene's light (a position needs a spot or point light, a direction
+// or angles a directional or spot light; sizes in range) and every one of its frames, started
+// from `camera` and `light`, gives a usable camera and light direction (scene.h's cameraProblem
+// and directionProblem: the checks a scene's or a tour step's camera gets), else the problem
+// naming the path and the frame.
+std::string pathProblem(const CameraPath& path, const std::string& sceneName, const SceneCamera& camera,
+                        const LightInfo& light);
+// pathProblem from the scene's own camera and light.
 std::string pathSceneProblem(const CameraPath& path, const Scene& scene);
 
 // Built-in paths, made from the scene's camera and light:

@@ -9,9 +9,26 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/scene.h"
+#include "util/progress.h"
 
 namespace shadowlab {
 namespace {
+
+// A grid generator's progress: its vertex rows, then its index rows (util/progress.h; a 4096 x
+// 4096 sphere takes seconds on its own). Ctrl-C throws Interrupted: a half-made mesh is no result.
+class GridProgress {
+public:
+    GridProgress(const char* shape, int columns, int rows)
+        : rows_(uint64_t(rows) + 1), progress_(std::string("generating a ") + shape + " of " + std::to_string(columns) + " x " +
+                                                    std::to_string(rows),
+                                                2 * uint64_t(rows) + 1, "rows") {}
+    void vertexRow(int row) { progress_.stepOrThrow(uint64_t(row) + 1); }
+    void indexRow(uint32_t row) { progress_.stepOrThrow(rows_ + row + 1); }
+
+private:
+    uint64_t rows_;
+    Progress progress_;
+};
 
 constexpr float kTwoPi = glm::two_pi<float>();
 
@@ -79,7 +96,11 @@ void addSide(Mesh& mesh, float bottomRadius, float topRadius, float y0, float y1
 Mesh makePlane(float sizeX, float sizeZ, int subdivisions) {
     const int cells = std::max(subdivisions, 1);
     Mesh mesh;
+    mesh.vertices.reserve(size_t(cells + 1) * size_t(cells + 1));
+    mesh.indices.reserve(size_t(cells) * size_t(cells) * 6);
+    GridProgress progress("plane", cells, cells);
     for (int j = 0; j <= cells; ++j) {
+        progress.vertexRow(j);
         for (int i = 0; i <= cells; ++i) {
             const glm::vec2 uv{static_cast<float>(i) / static_cast<float>(cells),
                                static_cast<float>(j) / static_cast<float>(cells)};
@@ -88,6 +109,7 @@ Mesh makePlane(float sizeX, float sizeZ, int subdivisions) {
     }
     const uint32_t row = static_cast<uint32_t>(cells) + 1;
     for (uint32_t j = 0; j < static_cast<uint32_t>(cells); ++j) {
+        progress.indexRow(j);
         for (uint32_t i = 0; i < static_cast<uint32_t>(cells); ++i) {
             const uint32_t a = j * row + i;
             // (i, j), (i, j+1), (i+1, j) is counter-clockwise seen from +y.
@@ -126,8 +148,12 @@ Mesh makeSphere(float radius, int segments, int rings) {
     segments = std::max(segments, 3);
     rings = std::max(rings, 2);
     Mesh mesh;
+    mesh.vertices.reserve(size_t(rings + 1) * size_t(segments + 1));
+    mesh.indices.reserve(size_t(rings) * size_t(segments) * 6);
+    GridProgress progress("sphere", segments, rings);
     // theta from the north pole (+y) down, phi around y from +x towards +z.
     for (int r = 0; r <= rings; ++r) {
+        progress.vertexRow(r);
         const float theta = glm::pi<float>() * static_cast<float>(r) / static_cast<float>(rings);
         for (int s = 0; s <= segments; ++s) {
             const float phi = kTwoPi * static_cast<float>(s) / static_cast<float>(segments);
@@ -144,6 +170,7 @@ Mesh makeSphere(float radius, int segments, int rings) {
     }
     const uint32_t row = static_cast<uint32_t>(segments) + 1;
     for (uint32_t r = 0; r < static_cast<uint32_t>(rings); ++r) {
+        progress.indexRow(r);
         for (uint32_t s = 0; s < static_cast<uint32_t>(segments); ++s) {
             const uint32_t a = r * row + s;
             // Going +phi then +theta is counter-clockwise seen from outside; at the poles one of
@@ -169,7 +196,11 @@ Mesh makeTorus(float majorRadius, float minorRadius, int segments, int sides) {
     segments = std::max(segments, 3);
     sides = std::max(sides, 3);
     Mesh mesh;
+    mesh.vertices.reserve(size_t(segments + 1) * size_t(sides + 1));
+    mesh.indices.reserve(size_t(segments) * size_t(sides) * 6);
+    GridProgress progress("torus", sides, segments);
     for (int i = 0; i <= segments; ++i) {
+        progress.vertexRow(i);
         const float u = static_cast<float>(i) / static_cast<float>(segments);
         const float phi = kTwoPi * u;   // around the ring
         for (int j = 0; j <= sides; ++j) {
@@ -182,6 +213,7 @@ Mesh makeTorus(float majorRadius, float minorRadius, int segments, int sides) {
     }
     const uint32_t row = static_cast<uint32_t>(sides) + 1;
     for (uint32_t i = 0; i < static_cast<uint32_t>(segments); ++i) {
+        progress.indexRow(i);
         for (uint32_t j = 0; j < static_cast<uint32_t>(sides); ++j) {
             const uint32_t a = i * row + j;
             // +psi then +phi is counter-clockwise seen from outside the tube.

@@ -47,6 +47,7 @@
 #include <tiny_obj_loader.h>
 
 #include "scene/scene.h"
+#include "util/progress.h"
 #include "util/text_file.h"
 
 namespace shadowlab {
@@ -543,7 +544,10 @@ void generateNormals(Mesh& mesh) {
         const glm::vec3& p = mesh.vertices[v].position;
         return std::array<float, 3>{p.x, p.y, p.z};
     };
+    // Three passes (the sort is most of the time): their progress on a large mesh, and Ctrl-C.
+    Progress progress("computing the normals of " + std::to_string(mesh.vertices.size()) + " vertices", 3, "passes");
     std::sort(byPosition.begin(), byPosition.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+    progress.stepOrThrow(1);
     std::vector<uint32_t> groupOfVertex(mesh.vertices.size());
     uint32_t groups = 0;
     for (size_t i = 0; i < byPosition.size(); ++i) {
@@ -558,12 +562,14 @@ void generateNormals(Mesh& mesh) {
                                                 mesh.vertices[c].position - mesh.vertices[a].position);
         for (uint32_t corner : {a, b, c}) sums[groupOfVertex[corner]] += areaNormal;
     }
+    progress.stepOrThrow(2);
     for (size_t i = 0; i < mesh.vertices.size(); ++i) {
         const glm::vec3 sum = sums[groupOfVertex[i]];
         const float length = glm::length(sum);
         // A vertex of degenerate triangles only still needs a unit normal for lighting.
         mesh.vertices[i].normal = length > 0.0f && std::isfinite(length) ? sum / length : glm::vec3(0.0f, 1.0f, 0.0f);
     }
+    progress.step(3);
 }
 
 } // namespace shadowlab

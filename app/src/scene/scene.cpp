@@ -14,6 +14,7 @@
 #include <functional>
 #include <limits>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string_view>
 #include <utility>
@@ -23,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene.h"
+#include "util/progress.h"
 #include "util/log.h"
 #include "util/strings.h"
 #include "util/text_file.h"
@@ -448,8 +450,13 @@ Repeat readRepeat(const json& node, const std::string& path, const ParseContext&
         repeat.columns = readInteger(grid->at(0), elementPath(fields.pathOf("grid"), 0), context, 1, kMaxInstances);
         repeat.rows = readInteger(grid->at(1), elementPath(fields.pathOf("grid"), 1), context, 1, kMaxInstances);
         const long long cells = static_cast<long long>(repeat.columns) * repeat.rows;
+        // The documented limit is on the grid's cells in every form, with or without a count: a
+        // 1,000,000 x 1,000,000 grid holding 10 instances is the same typo as a count of 1e12.
+        if (cells > kMaxInstances)
+            fields.fail("grid", std::to_string(repeat.columns) + " x " + std::to_string(repeat.rows) + " = " +
+                                    std::to_string(cells) + " cells, more than " + std::to_string(kMaxInstances) +
+                                    " (the limit of a repeat block)");
         if (!count) {
-            if (cells > kMaxInstances) fields.fail("grid", "more than " + std::to_string(kMaxInstances) + " instances");
             repeat.count = static_cast<int>(cells);
         } else if (repeat.count > cells) {
             fields.fail("count", std::to_string(repeat.count) + " instances do not fit a " +
@@ -791,7 +798,11 @@ void readObject(const json& node, const std::string& path, size_t ordinal, Scene
     std::mt19937 placement(static_cast<uint32_t>(repeat.seed) ^ 0x9e3779b9u);
     auto uniformPlacement = [&placement] { return static_cast<float>(placement() >> 8) * (1.0f / 16777216.0f); };
     const bool inRegion = repeat.region != glm::vec3(0.0f);
+    // A million instances take a while (each transform is checked): progress, and Ctrl-C.
+    std::optional<Progress> progress;
+    if (repeatNode) progress.emplace(builder.context.source + ": " + path + ".repeat", uint64_t(repeat.count), "instances");
     for (int i = 0; i < repeat.count; ++i) {
+        if (progress) progress->stepOrThrow(uint64_t(i));
         const int column = i % repeat.columns, row = i / repeat.columns;
         const float gridX = static_cast<float>(column) - 0.5f * static_cast<float>(repeat.columns - 1);
         const float gridZ = static_cast<float>(row) - 0.5f * static_cast<float>(repeat.rows - 1);
@@ -836,9 +847,8 @@ glm::vec3 checkedPoint(FieldReader& fields, const std::string& key, glm::vec3 po
 
 glm::vec3 readDirection(FieldReader& fields, const std::string& key, const std::string& why) {
     const glm::vec3 direction = readVector<3>(fields.required(key, why), fields.pathOf(key), fields.context());
-    const float length = glm::length(direction);
-    if (!(length > 1e-6f)) fields.fail(key, "zero-length direction");
-    return direction / length;
+    if (const std::string problem = directionProblem(direction); !problem.empty()) fields.fail(key, problem);
+    return direction / glm::length(direction);
 }
 
 float readDegrees(FieldReader& fields, const std::string& key, float fallbackDegrees, float minimum, float maximum) {
@@ -908,11 +918,10 @@ SceneCamera readCamera(const json& node, const ParseContext& context) {
     camera.nearPlane = fields.number("near", camera.nearPlane, Range::Positive);
     camera.farPlane = fields.number("far", camera.farPlane, Range::Positive);
     if (camera.farPlane <= camera.nearPlane) fields.fail("far", "must be greater than near");
-    const glm::vec3 view = camera.target - camera.position;
-    if (!(glm::length(view) > 1e-6f)) fields.fail("target", "target is at the camera position");
-    if (!(glm::length(glm::cross(view, camera.up)) > 1e-6f * glm::length(view))) {
-        fields.fail("up", "parallel to the viewing direction (or zero)");
-    }
+    // The check tour steps, sessions, stress cases and every frame of a path get too.
+    if (const std::string problem = cameraProblem(camera.position, camera.target); !problem.empty()) fields.fail("target", problem);
+    if (const std::string problem = cameraProblem(camera.position, camera.target, glm::dvec3(camera.up)); !problem.empty())
+        fields.fail("up", problem);
     fields.finish("the camera");
     return camera;
 }
@@ -1039,7 +1048,8 @@ SceneCheck checkSceneText(const std::string& jsonText, const std::string& source
     builder.budget = sceneBudget();
     builder.checkOnly = true;
     buildScene(parseJson(jsonText, sourceName), builder, overrides);
-    return {builder.scene.name, builder.scene.light.type, builder.objects, builder.triangles, builder.gpuBytes()};
+    return {builder.scene.name,       builder.scene.light.type, builder.objects,           builder.triangles,
+            builder.gpuBytes(),       builder.scene.camera,     builder.scene.light};
 }
 
 SceneCheck checkScene(const std::string& nameOrPath, const std::map<std::string, double>& overrides) {
@@ -1059,14 +1069,17 @@ uint64_t sceneGeometryBytes(const Scene& scene) {
 
 bool parseSceneBudget(const std::string& text, SceneBudget& budget, std::string& error) {
     SceneBudget result = budget;
-    std::stringstream items(text);
-    std::string item;
-    bool any = false;
-    while (std::getline(items, item, ',')) {
-        if (item.empty()) continue;
-        any = true;
+    std::vector<std::string> items;
+    if (!splitList(text, "--budget", items, error)) return false;
+    std::set<std::string> given;
+    for (const std::string& item : items) {
         const size_t equals = item.find('=');
         const std::string key = item.substr(0, equals);
+        // Given twice, the last would win unseen: refused, as JSON files refuse a repeated key.
+        if (equals != std::string::npos && !given.insert(key).second) {
+            error = "--budget '" + text + "': the key '" + key + "' is given twice";
+            return false;
+        }
         const std::string value = equals == std::string::npos ? "" : item.substr(equals + 1);
         // Whole numbers, written plainly or as 1e8; at most 1e15 (beyond any machine).
         double number = 0.0;
@@ -1089,10 +1102,6 @@ bool parseSceneBudget(const std::string& text, SceneBudget& budget, std::string&
                     "file-mib; see " + std::string(kBudgetHelp) + ")";
             return false;
         }
-    }
-    if (!any) {
-        error = "--budget '" + text + "': expected key=N,... (keys: objects, triangles, gpu-mib, file-mib)";
-        return false;
     }
     budget = result;
     return true;
@@ -1122,6 +1131,29 @@ std::string lightSizeProblem(LightType type, double size) {
         return "a spot or point light's size is its emitter radius in world units, 0 to " +
                formatNumber(kMaxWorldCoordinate) + " (got " + formatNumber(size) + ")";
     }
+    return "";
+}
+
+std::string cameraProblem(glm::dvec3 position, glm::dvec3 target, std::optional<glm::dvec3> up) {
+    const glm::dvec3 view = target - position;
+    const double distance = glm::length(view);
+    if (!std::isfinite(distance)) return "the camera's position or target is not finite";
+    if (!(distance > kMinCameraDistance))
+        return "the target is at the camera position (" + formatNumber(distance) + " apart, at least " +
+               formatNumber(kMinCameraDistance) + " needed for a view direction)";
+    if (!up) return "";
+    const double upLength = glm::length(*up);
+    if (!(upLength > 1e-6)) return "the camera's up vector is zero";
+    // The sine of the angle between the view and up: the view matrix is built from their cross product.
+    if (!(glm::length(glm::cross(view / distance, *up / upLength)) > kMinCameraUpSine))
+        return "the camera looks straight along its up vector (the view direction and up are parallel)";
+    return "";
+}
+
+std::string directionProblem(glm::dvec3 direction) {
+    const double length = glm::length(direction);
+    if (!std::isfinite(length)) return "the direction is not finite";
+    if (!(length > 1e-6)) return "zero-length direction";
     return "";
 }
 

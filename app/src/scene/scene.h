@@ -7,6 +7,7 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 
 #include "scene/camera_path.h"
 #include "shadowlab/technique.h"
+#include "util/strings.h"
 
 namespace shadowlab {
 
@@ -172,11 +174,22 @@ constexpr double kMaxDirectionalLightSizeDegrees = 45.0;
 // range for scene files, --light-size and the light.size benchmark sweep.
 std::string lightSizeProblem(LightType type, double size);
 
+// A camera and a light direction, one check for every reader that takes them (scene files, tour
+// steps and sessions, stress cases, path keyframes and every frame of a path): "" when usable,
+// else the problem. The camera's position and target at least kMinCameraDistance apart and, when
+// `up` is given, the view not along it (the view matrix is built from their cross product).
+constexpr double kMinCameraDistance = 1e-4;
+constexpr double kMinCameraUpSine = 1e-4;
+std::string cameraProblem(glm::dvec3 position, glm::dvec3 target, std::optional<glm::dvec3> up = std::nullopt);
+std::string directionProblem(glm::dvec3 direction);
+
 // Thrown for every problem in a scene or OBJ file; what() names the file, the field or line, and
 // the problem, e.g. "scenes/x.json: objects[2].shape: unknown shape 'cone' (expected one of ...)".
+// Its text is made printable when thrown: what() is a C string, so a NUL byte quoted from a file
+// (an OBJ line, a JSON key) would otherwise end the message there.
 class SceneError : public std::runtime_error {
 public:
-    using std::runtime_error::runtime_error;
+    explicit SceneError(const std::string& message) : std::runtime_error(printable(message, true)) {}
 };
 
 // Loads a built-in scene by name, or a JSON file by path (OBJ paths resolve relative to it).
@@ -192,6 +205,8 @@ struct SceneCheck {
     uint64_t objects = 0;
     uint64_t triangles = 0;   // drawn per frame
     uint64_t gpuBytes = 0;    // sceneGeometryBytes of the loaded scene
+    SceneCamera camera;       // as read (paths and tour steps start from them)
+    LightInfo light;
 };
 // Everything loadScene checks (fields, ranges, parameters, the budget; OBJ files are read) without
 // generating procedural meshes or objects: throws the SceneError loadScene would throw. Cheap

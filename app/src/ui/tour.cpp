@@ -154,8 +154,9 @@ static bool readTourCamera(const json& object, const std::string& where, TourSte
     TourCamera c;
     if (!readVec3(camera["position"], at + ".position", c.position, error)) return false;
     if (!readVec3(camera["target"], at + ".target", c.target, error)) return false;
-    if (!(glm::length(glm::dvec3(c.position - c.target)) > 1e-4)) {
-        error = at + ": position and target are the same point";
+    // The scene's check (its up vector is known only in checkTourStep, which checks the view against it).
+    if (const std::string problem = cameraProblem(c.position, c.target); !problem.empty()) {
+        error = at + ": " + problem;
         return false;
     }
     if (camera.contains("fov")) {
@@ -182,8 +183,8 @@ static bool readTourLight(const json& object, const std::string& where, TourStep
     if (light.contains("direction")) {
         glm::vec3 direction;
         if (!readVec3(light["direction"], at + ".direction", direction, error)) return false;
-        if (!(glm::length(glm::dvec3(direction)) > 1e-6)) {
-            error = at + ".direction: must not be zero";
+        if (const std::string problem = directionProblem(direction); !problem.empty()) {
+            error = at + ".direction: " + problem;
             return false;
         }
         step.light.direction = direction;
@@ -409,6 +410,19 @@ bool checkTourStep(const TourStep& step, const std::string& where, const std::ve
         error = name + ": view: must not be empty";
         return false;
     }
+    // The step's camera and light over the scene's, as applyTourStep places them.
+    SceneCamera stepCamera = scene.camera;
+    LightInfo stepLight = scene.light;
+    if (step.camera) {
+        stepCamera.position = step.camera->position;
+        stepCamera.target = step.camera->target;
+        if (const std::string problem = cameraProblem(stepCamera.position, stepCamera.target, glm::dvec3(stepCamera.up));
+            !problem.empty()) {
+            error = name + ": camera: " + problem + " (scene '" + scene.name + "')";
+            return false;
+        }
+    }
+    if (step.light.direction) stepLight.direction = glm::normalize(*step.light.direction);
     if (!step.path.empty()) {
         const std::string at = name + ": path '" + step.path + "'";
         if (step.view == "error") {
@@ -423,21 +437,12 @@ bool checkTourStep(const TourStep& step, const std::string& where, const std::ve
                 error = at + ": " + problem;
                 return false;
             }
-            // pathSceneProblem's checks, against the scene's light type (no scene is built here).
-            if (path.lightForm == CameraPath::LightForm::Position && scene.lightType == LightType::Directional) {
-                error = at + ": moves the light by position, but scene '" + scene.name + "' has a directional light";
+            if (step.pathFrames > 0) path.frames = step.pathFrames;
+            // The path's checks from the step's camera and light, as the window will start it (no scene is built here).
+            if (const std::string pathError = pathProblem(path, scene.name, stepCamera, stepLight); !pathError.empty()) {
+                error = at + ": " + pathError.substr(pathError.rfind(path.source + ": ", 0) == 0 ? path.source.size() + 2 : 0);
                 return false;
             }
-            if ((path.lightForm == CameraPath::LightForm::Direction || path.lightForm == CameraPath::LightForm::Angles) &&
-                scene.lightType == LightType::Point) {
-                error = at + ": turns the light, but scene '" + scene.name + "' has a point light";
-                return false;
-            }
-            for (const glm::dvec3& size : path.lightSize.values)
-                if (const std::string p = lightSizeProblem(scene.lightType, size.x); !p.empty()) {
-                    error = at + ": light size: " + p;
-                    return false;
-                }
         } else {
             const auto& names = builtinPathNames();
             if (std::find(names.begin(), names.end(), step.path) == names.end()) {
@@ -491,10 +496,17 @@ bool loadTour(const std::string& nameOrPath, const std::vector<TechniqueInfo>& t
 
 bool loadSession(const std::filesystem::path& file, const std::vector<TechniqueInfo>& techniques, TourStep& step,
                  std::string& error) {
+    std::string text;
+    if (!readRegularFile(file, kMaxJsonFileBytes, text, error, "session file")) return false;
+    return parseSessionText(text, file.string(), file.parent_path(), techniques, step, error);
+}
+
+bool parseSessionText(const std::string& text, const std::string& source, const std::filesystem::path& baseDir,
+                      const std::vector<TechniqueInfo>& techniques, TourStep& step, std::string& error) {
     json object;
-    if (!readJsonFile(file, object, error, "session file")) return false;
-    if (!parseTourStep(object, file.string(), file.parent_path(), step, error)) return false;
-    return checkTourStep(step, file.string(), techniques, error);
+    if (!parseJsonText(text, source, object, error)) return false;
+    if (!parseTourStep(object, source, baseDir, step, error)) return false;
+    return checkTourStep(step, source, techniques, error);
 }
 
 std::filesystem::path uniqueSessionPath(const std::filesystem::path& folder, const std::string& scene,

@@ -89,9 +89,13 @@ std::filesystem::path builtinTourDir();
 std::vector<std::string> builtinTourNames();
 // Reads and checks a tour: a built-in name, or a path to a JSON file. Errors name the file.
 bool loadTour(const std::string& nameOrPath, const std::vector<TechniqueInfo>& techniques, Tour& tour, std::string& error);
-// A session file: one step object (a tour's step), read and checked like a tour's.
+// A session file: one step object (a tour's step), read and checked like a tour's (with the same
+// JSON reader, so a duplicate key is an error too); the window then checks its view as a tour's
+// (checkStepView). parseSessionText is the same for text in memory (the fuzzer's entry).
 bool loadSession(const std::filesystem::path& file, const std::vector<TechniqueInfo>& techniques, TourStep& step,
                  std::string& error);
+bool parseSessionText(const std::string& text, const std::string& source, const std::filesystem::path& baseDir,
+                      const std::vector<TechniqueInfo>& techniques, TourStep& step, std::string& error);
 
 // "sessions/<scene>-<technique>-YYYYMMDD-HHMMSS.json" under `folder`, never an existing name.
 std::filesystem::path uniqueSessionPath(const std::filesystem::path& folder, const std::string& scene,

@@ -73,25 +73,16 @@ bool applyTourStep(App& app, const TourStep& step, UiState& state, std::string& 
 // A debug view exists only once its technique has drawn a frame (plugins register their images
 // when they create them): one frame of each such technique, before any step is rendered, so a
 // view no technique has is refused before the first slide.
+bool checkStepView(App& app, const TourStep& step, const std::string& where, std::string& error) {
+    const std::string problem = app.viewProblem(step.technique, step.view);
+    if (problem.empty()) return true;
+    error = where + (step.title.empty() ? "" : " (\"" + step.title + "\")") + ": " + problem;
+    return false;
+}
+
 bool checkTourDebugViews(App& app, const Tour& tour, std::string& error) {
-    for (size_t i = 0; i < tour.steps.size(); ++i) {
-        const TourStep& step = tour.steps[i];
-        if (isHostViewName(step.view)) continue;
-        if (!app.renderFrame(step.technique, error)) return false;
-        LoadedTechnique* loaded = app.techniques().get(step.technique, error);
-        if (!loaded) return false;
-        std::string names = "lit, visibility, error";
-        bool found = false;
-        for (const DebugImage& image : loaded->host().debugImages()) {
-            found |= image.name == step.view;
-            names += ", " + image.name;
-        }
-        if (!found) {
-            error = tour.source + ": steps[" + std::to_string(i) + "] (\"" + step.title + "\"): view '" + step.view +
-                    "': " + step.technique + " has no such image (views: " + names + ")";
-            return false;
-        }
-    }
+    for (size_t i = 0; i < tour.steps.size(); ++i)
+        if (!checkStepView(app, tour.steps[i], tour.source + ": steps[" + std::to_string(i) + "]", error)) return false;
     return true;
 }
 

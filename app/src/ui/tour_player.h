@@ -23,6 +23,9 @@ bool applyTourStep(App& app, const TourStep& step, UiState& state, std::string& 
 // technique does not have is refused when the tour is loaded, before any step is shown (the
 // window's --tour and "Load tour", and `tour --out`). The error names the file, step and view.
 bool checkTourDebugViews(App& app, const Tour& tour, std::string& error);
+// The same check for one step (a session file has one), `where` naming the file and step: a
+// session is checked as a tour's step is (App::viewProblem, the check of `render --view` too).
+bool checkStepView(App& app, const TourStep& step, const std::string& where, std::string& error);
 
 // The step's path (step.path: a built-in path or a path file) for the app's scene, made from
 // `camera` and `light` (the step's, placed by applyTourStep), with step.pathFrames frames when

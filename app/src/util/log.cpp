@@ -3,6 +3,8 @@
 
 #include <cstdio>
 
+#include "util/strings.h"
+
 namespace shadowlab {
 namespace {
 std::mutex gLogMutex;
@@ -11,7 +13,10 @@ bool gQuiet = false;
 constexpr size_t kLogRingSize = 200;
 } // namespace
 
-void logMessage(LogLevel level, const std::string& message) {
+void logMessage(LogLevel level, const std::string& raw) {
+    // Messages quote files and options: a NUL byte would end the line early on stderr and in the
+    // UI, a carriage return or escape sequence would garble it. One place makes them printable.
+    const std::string message = printable(raw, true);
     std::lock_guard lock(gLogMutex);
     if (level != LogLevel::Info || !gQuiet) {
         const char* prefix = level == LogLevel::Error ? "error: " : level == LogLevel::Warning ? "warning: " : "";
@@ -24,6 +29,11 @@ void logMessage(LogLevel level, const std::string& message) {
 void setLogQuiet(bool quiet) {
     std::lock_guard lock(gLogMutex);
     gQuiet = quiet;
+}
+
+bool logQuiet() {
+    std::lock_guard lock(gLogMutex);
+    return gQuiet;
 }
 
 std::deque<LogEntry> recentLog() {

@@ -21,6 +21,7 @@ inline void logWarning(const std::string& message) { logMessage(LogLevel::Warnin
 inline void logError(const std::string& message) { logMessage(LogLevel::Error, message); }
 // Quiet mode drops Info lines on stderr (they still reach the UI ring).
 void setLogQuiet(bool quiet);
+bool logQuiet();
 std::deque<LogEntry> recentLog();
 
 } // namespace shadowlab

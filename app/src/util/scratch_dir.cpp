@@ -1,5 +1,6 @@
 // The scratch folder (see scratch_dir.h).
 #include "util/scratch_dir.h"
+#include "util/progress.h"
 
 #include <dirent.h>
 #include <fcntl.h>
@@ -70,6 +71,11 @@ void installHooks() {
     if (hooksInstalled) return;
     hooksInstalled = true;
     std::atexit(removeScratchDir);
+    // SIGINT is main()'s (util/progress.h: the first stops cleanly, and exit removes the folder);
+    // the second kills at once, after this.
+    setHardInterruptHook([] {
+        if (signalPath[0]) removeFolderFromSignal(signalPath);
+    });
     for (int signal : {SIGINT, SIGTERM, SIGHUP}) {
         struct sigaction previous {};
         if (::sigaction(signal, nullptr, &previous) != 0 || previous.sa_handler != SIG_DFL) continue;   // someone else's

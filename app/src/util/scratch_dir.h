@@ -3,7 +3,9 @@
 //   - created on first use, which also removes the folders of processes that are gone (a killed
 //     run cannot clean up after itself);
 //   - removed at exit, and on SIGINT, SIGTERM and SIGHUP (the signal is then re-raised, so the
-//     exit status still says what happened).
+//     exit status still says what happened). The shadowlab executable catches SIGINT itself
+//     (util/progress.h: a command stops cleanly and exits, which removes the folder); a second
+//     SIGINT removes it here before the process dies.
 // A live process holds an flock on <folder>/.lock; a folder whose lock can be taken belongs to
 // nobody, whatever its pid says (pids are reused, and other pid namespaces share /tmp).
 #pragma once

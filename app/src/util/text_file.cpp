@@ -1,5 +1,6 @@
 // Bounded reads of regular files, JSON parsing that catches everything, checked writes (see text_file.h).
 #include "util/text_file.h"
+#include "util/strings.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -9,6 +10,8 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <set>
+#include <vector>
 #include <system_error>
 
 namespace shadowlab {
@@ -66,6 +69,64 @@ size_t tooDeep(const std::string& text) {
     return std::string::npos;
 }
 
+// A key given twice in one object: nlohmann keeps the last silently, so a typo'd copy of a field
+// would override the real one unseen. Thrown from the parser callback, caught in parseJsonText.
+struct DuplicateKey {
+    std::string pointer, key;
+};
+
+// Follows the parser through the document (a stack of open objects and arrays) and throws
+// DuplicateKey, with the JSON pointer of the object, at the second occurrence of a key.
+class DuplicateKeyCheck {
+public:
+    bool operator()(int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+        using Event = nlohmann::json::parse_event_t;
+        switch (event) {
+        case Event::object_start: levels_.push_back({true, {}, {}, 0}); break;
+        case Event::array_start: levels_.push_back({false, {}, {}, 0}); break;
+        case Event::key: {
+            Level& top = levels_.back();
+            std::string key = parsed.get<std::string>();
+            if (!top.keys.insert(key).second) throw DuplicateKey{pointer(), std::move(key)};
+            top.key = std::move(key);
+            break;
+        }
+        case Event::object_end:
+        case Event::array_end:
+            levels_.pop_back();
+            elementDone();
+            break;
+        case Event::value: elementDone(); break;
+        }
+        return true;
+    }
+
+private:
+    struct Level {
+        bool object;
+        std::set<std::string> keys;
+        std::string key;   // the member being read (objects)
+        size_t index;      // the element being read (arrays)
+    };
+    void elementDone() {
+        if (!levels_.empty() && !levels_.back().object) ++levels_.back().index;
+    }
+    // RFC 6901: the innermost level is the object holding the duplicate; the others name the way to it.
+    std::string pointer() const {
+        std::string out;
+        for (size_t i = 0; i + 1 < levels_.size(); ++i) {
+            out += '/';
+            if (!levels_[i].object) {
+                out += std::to_string(levels_[i].index);
+                continue;
+            }
+            for (char c : levels_[i].key) out += c == '~' ? std::string("~0") : c == '/' ? std::string("~1") : std::string(1, c);
+        }
+        return out;
+    }
+    std::vector<Level> levels_;
+};
+
 } // namespace
 
 bool readRegularFile(const std::filesystem::path& file, size_t maxBytes, std::string& text, std::string& error,
@@ -118,8 +179,15 @@ bool parseJsonText(const std::string& text, const std::string& source, nlohmann:
         return false;
     }
     try {
-        out = nlohmann::json::parse(text);
+        DuplicateKeyCheck check;
+        out = nlohmann::json::parse(text, [&check](int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+            return check(depth, event, parsed);
+        });
         return true;
+    } catch (const DuplicateKey& duplicate) {
+        error = source + ": duplicate key " + quoteForMessage(duplicate.key) + " in " +
+                (duplicate.pointer.empty() ? std::string("the top-level object") : quoteForMessage(duplicate.pointer)) +
+                " (a key may appear once in an object; the reader would otherwise keep the last one silently)";
     } catch (const nlohmann::json::parse_error& e) {
         // Its message starts "[json.exception.parse_error.101] parse error at line 1, column 2: ".
         std::string detail = e.what();
