@@ -13,7 +13,7 @@ namespace shadowlab {
 namespace {
 
 // The results table's columns, and what each means (both pages define every column).
-const std::vector<std::string> kColumns = {"scene", "technique", "parameters", "size", "frame ms", "passes ms",
+const std::vector<std::string> kResultColumns = {"scene", "technique", "parameters", "size", "frame ms", "passes ms",
                                            "shadow term ms", "GPU MiB", "MAE hard", "false shadow hard",
                                            "false light hard", "MAE soft", "false shadow soft", "false light soft",
                                            "pre-pass"};
@@ -101,7 +101,7 @@ std::string decimals(const nlohmann::json& row, const std::string& key, int digi
     return row.contains(key) ? fixed(row[key].get<double>(), digits) : "-";
 }
 
-// One row of the results table, a cell per kColumns entry.
+// One row of the results table, a cell per kResultColumns entry.
 std::vector<std::string> resultCells(const nlohmann::json& row, const std::map<std::string, std::set<std::string>>& changing) {
     const std::string technique = row.value("technique", "");
     const auto keys = changing.find(technique);
@@ -208,9 +208,9 @@ std::string reportMarkdown(const ReportContent& c) {
             page << "Set for every row" << (c.specs->size() > 1 ? " of spec " + std::to_string(i) : std::string()) << ": "
                  << baseSettings((*c.specs)[i]) << ".\n\n";
     page << "|";
-    for (const auto& column : kColumns) page << " " << column << " |";
+    for (const auto& column : kResultColumns) page << " " << column << " |";
     page << "\n|---|---|---|---|";
-    for (size_t i = 4; i < kColumns.size(); ++i) page << (i + 1 == kColumns.size() ? "---|" : "---:|");
+    for (size_t i = 4; i < kResultColumns.size(); ++i) page << (i + 1 == kResultColumns.size() ? "---|" : "---:|");
     page << "\n";
     const auto changing = changingSettings(*c.rows);
     for (const auto& row : *c.rows) {
@@ -260,7 +260,7 @@ void htmlResults(std::ostringstream& html, const ReportContent& c) {
             html << "<p>Set for every row" << (c.specs->size() > 1 ? " of spec " + std::to_string(i) : std::string())
                  << ": " << inlineHtml(baseSettings((*c.specs)[i])) << ".</p>\n";
     html << "<div class=\"wide\"><table id=\"results-table\">\n<thead><tr>";
-    for (const auto& column : kColumns) html << "<th>" << htmlEscape(column) << "</th>";
+    for (const auto& column : kResultColumns) html << "<th>" << htmlEscape(column) << "</th>";
     html << "</tr></thead>\n<tbody>\n";
     const auto changing = changingSettings(*c.rows);
     for (const auto& row : *c.rows) {
