@@ -314,6 +314,8 @@ expect 2 "--cases ',acne-5': item 1 of the list is empty" -- stress --techniques
 expect 2 "--budget 'objects=10,,triangles=5': item 2 of the list is empty" -- "${render[@]}" --budget objects=10,,triangles=5
 expect 2 "--path-frames requires --path" -- render --path-frames 3 --out "$tmp/a.png"
 expect 2 "--path-frames requires --path" -- bench --path-frames 3 --out "$tmp/b.csv"
+expect 2 "--samples: only the soft reference has it" -- eval --reference hard --samples 64
+expect 2 "--reference-adaptive: only the soft reference has it" -- eval --reference hard --reference-adaptive off
 expect 2 "--wipe requires --compare" -- render --wipe 0.3 --out "$tmp/a.png"
 expect 2 "--wipe: places the divider of --compare-layout wipe" -- render --compare shadowmap,pcf --wipe 0.3 --out "$tmp/a.png"
 expect 2 "--samples: only the accuracy views trace the reference" -- render --samples 64 --out "$tmp/a.png"

@@ -168,8 +168,9 @@ public:
     CLI::App* declare(CLI::App& cli) override {
         auto* eval = cli.add_subcommand("eval", "accuracy against the ray-traced reference, with the frame timing of the same run");
         eval->add_option("--reference", reference_, "hard | soft | both | auto (default: hard for hard techniques, else both)");
-        eval->add_option("--samples", samples_, "soft reference: rays per pixel (default 1024)")->check(CLI::Range(1, 4096));
-        eval->add_option("--reference-adaptive", adaptive_,
+        samplesOption_ =
+            eval->add_option("--samples", samples_, "soft reference: rays per pixel (default 1024)")->check(CLI::Range(1, 4096));
+        adaptiveOption_ = eval->add_option("--reference-adaptive", adaptive_,
                          "soft reference: a first batch everywhere, all --samples rays only near penumbrae: on | off (default on)");
         eval->add_option("--frames", frames_, "timed frames (default 50)")->check(CLI::Range(1, 100000));
         eval->add_flag("--json", json_, "machine-readable output");
@@ -179,6 +180,11 @@ public:
         bool adaptive = true;
         std::string error;
         if (!parseOnOff(adaptive_, adaptive, error, "--reference-adaptive")) return fail(error, kExitBadInput);
+        // The soft reference's options mean nothing to the hard one (one ray a pixel): refused, not ignored.
+        for (const CLI::Option* option : {samplesOption_, adaptiveOption_})
+            if (reference_ == "hard" && option->count() > 0)
+                return fail(option->get_name() + ": only the soft reference has it (--reference hard traces one ray a pixel)",
+                            kExitBadInput);
         return commandEval(common, reference_, samples_, adaptive, frames_, json_);
     }
 
@@ -186,6 +192,8 @@ private:
     std::string reference_ = "auto", adaptive_ = "on";
     int samples_ = BenchSpec{}.referenceSamples, frames_ = 50;
     bool json_ = false;
+    CLI::Option* samplesOption_ = nullptr;
+    CLI::Option* adaptiveOption_ = nullptr;
 };
 
 } // namespace
