@@ -42,6 +42,46 @@ TEST(GpuTimerRing, CollectsEveryFrameLateWithoutStallingAndNests) {
     EXPECT_FALSE(timer.latest().empty());
 }
 
+// stableWithin stops a row's timing once its frame median is known well enough, never before
+// minFrames; without it every frame is timed. A loose tolerance stops at minFrames on any
+// renderer; an impossible one (exactly equal frames at 1e-9) times them all.
+TEST(Bench, StableTimingStopsBetweenMinFramesAndFrames) {
+    auto app = test::makeHeadlessApp("cube", {64, 48});
+    ASSERT_TRUE(app);
+    std::string error;
+    for (const double within : {0.5, 1e-9}) {
+        BenchSpec spec;
+        spec.techniques = {"shadowmap"};
+        spec.sizes = {{64, 48}};
+        spec.frames = 40;
+        spec.warmupFrames = 1;
+        spec.minFrames = 8;
+        spec.stableWithin = within;
+        std::vector<nlohmann::json> rows;
+        ASSERT_TRUE(runBench(*app, spec, rows, error)) << error;
+        ASSERT_EQ(rows.size(), 1u);
+        const int frames = rows[0]["frames"].get<int>();
+        if (within == 0.5) {
+            // The timer resolves queries a few frames late: the rule sees minFrames some frames after.
+            EXPECT_GE(frames, 8);
+            EXPECT_LT(frames, 40);
+            ASSERT_TRUE(rows[0].contains("frame_ms_ci95"));
+            EXPECT_LE(rows[0]["frame_ms_ci95"].get<double>(), 0.5 + 1e-12);
+        } else {
+            EXPECT_EQ(frames, 40);
+        }
+    }
+    BenchSpec bad;
+    bad.frames = 5;
+    bad.stableWithin = 0.01;   // minFrames 10 > frames
+    EXPECT_FALSE(checkBenchSpec(bad, app->techniques().techniques(), error));
+    EXPECT_NE(error.find("minFrames"), std::string::npos) << error;
+    BenchSpec alone;
+    alone.minFramesGiven = true;   // minFrames without stableWithin
+    EXPECT_FALSE(checkBenchSpec(alone, app->techniques().techniques(), error));
+    EXPECT_NE(error.find("stableWithin"), std::string::npos) << error;
+}
+
 TEST(Bench, TinySweepWritesOneWellFormedRowPerCombination) {
     auto app = test::makeHeadlessApp("cube", {64, 48});
     ASSERT_TRUE(app);

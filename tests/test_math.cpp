@@ -112,6 +112,29 @@ TEST(Stats, PercentilesInterpolateBetweenRanks) {
 }
 
 // The linear-time selection gives exactly what interpolating in a sorted copy gives, ties included.
+// The median's distribution-free 95% interval: ranks n/2 -+ 1.96 sqrt(n)/2 of the sorted set.
+TEST(Stats, MedianConfidenceHalfWidthFollowsTheOrderStatistics) {
+    EXPECT_TRUE(std::isinf(medianRelativeHalfWidth95({1, 2, 3, 4, 5})));   // too few
+    EXPECT_EQ(medianRelativeHalfWidth95(std::vector<double>(40, 2.0)), 0.0);
+    // n = 100: ranks floor(50 - 9.8) = 40 and ceil(51 + 9.8) = 61 (1-based) of 1..100, median 50.5.
+    std::vector<double> values;
+    for (int i = 100; i >= 1; --i) values.push_back(double(i));
+    EXPECT_NEAR(medianRelativeHalfWidth95(values), (61.0 - 40.0) / (2.0 * 50.5), 1e-12);
+    // More samples of the same spread narrow it (about as 1 / sqrt(n)).
+    std::mt19937 random(3);
+    std::normal_distribution<double> noise(10.0, 0.5);
+    std::vector<double> few(16), many(256);
+    for (double& v : few) v = noise(random);
+    for (double& v : many) v = noise(random);
+    EXPECT_LT(medianRelativeHalfWidth95(many), 0.5 * medianRelativeHalfWidth95(few));
+    // The stop rule: not before minFrames, and only when the interval is narrow enough.
+    const TimingStop stop{12, 0.01};
+    EXPECT_FALSE(stop.reached(std::vector<double>(11, 3.0)));
+    EXPECT_TRUE(stop.reached(std::vector<double>(12, 3.0)));
+    EXPECT_FALSE(stop.reached(few));
+    EXPECT_FALSE(TimingStop{}.reached(std::vector<double>(100, 3.0)));   // within 0: every frame
+}
+
 TEST(Stats, PercentilesEqualThoseOfASortedCopy) {
     std::mt19937 random(7);
     std::uniform_int_distribution<int> small(0, 40);   // many ties

@@ -614,7 +614,9 @@ TEST(RobustBench, JsonSpecsAreStrictAboutTypesAndRanges) {
     for (const char* bad : {R"({"frames": 1e300})", R"({"frames": 3.5})", R"({"frames": 0})", R"({"warmup": -1})",
                             R"({"referenceSamples": 0})", R"({"accuracy": "yes"})", R"({"scenes": []})", R"({"scenes": "cube"})",
                             R"({"sizes": ["64x64junk"]})", R"({"sweep": {"resolution": [[512]]}})", R"({"base": {"kernel": {}}})",
-                            R"({"reference": 3})", R"({"referenceAdaptive": "on"})", R"({"referenceAdaptive": 1})"}) {
+                            R"({"reference": 3})", R"({"referenceAdaptive": "on"})", R"({"referenceAdaptive": 1})",
+                            R"({"stableWithin": 0})", R"({"stableWithin": 0.9})", R"({"stableWithin": "1%"})",
+                            R"({"minFrames": 5})", R"({"minFrames": 12.5})"}) {
         EXPECT_FALSE(parseBenchSpec(nlohmann::json::parse(bad), spec, error)) << bad;
     }
     TempDir dir;

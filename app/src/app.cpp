@@ -560,7 +560,8 @@ double App::warmupSeconds() const {
     return pause >= kLongPauseSeconds ? kMinWarmupSeconds : kMinWarmupSecondsAfterShortPause;
 }
 
-bool App::measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error) {
+bool App::measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error,
+                  const TimingStop& stop) {
     // Silent unless it takes a while (200 frames of the forest on llvmpipe: half a minute).
     Progress progress("measuring " + technique, uint64_t(warmupFrames) + uint64_t(frames), "frames (warm-up included)");
     uint64_t warmed = 0;
@@ -580,21 +581,30 @@ bool App::measure(const std::string& technique, int warmupFrames, int frames, Me
     std::vector<double> cpu;
     cpu.reserve(size_t(frames));
     int prepassFrames = 0;
-    for (int i = 0; i < frames; ++i) {
+    int timed = 0;
+    static const std::vector<double> kNoFrames;
+    while (timed < frames) {
         if (!renderFrame(technique, error)) return false;
         cpu.push_back(lastCpuFrameMs_);
         prepassFrames += prepassThisFrame_ ? 1 : 0;
-        progress.step(uint64_t(warmupFrames) + uint64_t(i + 1));
+        progress.step(uint64_t(warmupFrames) + uint64_t(++timed));
+        // The frame times resolved so far (the timer reads queries some frames late, without
+        // waiting): the frames still in flight are drained below and count too.
+        const auto frameTimes = timer_->history().find("frame");
+        if (stop.reached(frameTimes == timer_->history().end() ? kNoFrames : frameTimes->second)) break;
     }
     timer_->drain();
     out = {};
-    for (const auto& [pass, samples] : timer_->history()) out.gpuMs[pass] = summarize(samples);
+    for (const auto& [pass, samples] : timer_->history()) {
+        out.gpuMs[pass] = summarize(samples);
+        if (pass == "frame") out.frameMedianHalfWidth = medianRelativeHalfWidth95(samples);
+    }
     out.cpuMs = summarize(cpu);
     out.cpuWaitMs = summarize(timer_->waitHistory());
     for (double wait : timer_->waitHistory()) out.framesWaited += wait > 0.0 ? 1 : 0;
     LoadedTechnique* loaded = techniques_->get(technique, error);
     out.gpuBytes = loaded ? loaded->host().gpuBytes() : 0;
-    out.frames = frames;
+    out.frames = timed;
     out.depthPrepassFrames = prepassFrames;
     out.depthComplexity = depthPrepassRule_.complexity();
     return true;
@@ -653,7 +663,10 @@ bool App::measureDepthFloor(int resolution, int warmupFrames, int frames, Measur
     timer_->drain();
     lastFrameEnd_ = std::chrono::steady_clock::now();
     out = {};
-    for (const auto& [pass, samples] : timer_->history()) out.gpuMs[pass] = summarize(samples);
+    for (const auto& [pass, samples] : timer_->history()) {
+        out.gpuMs[pass] = summarize(samples);
+        if (pass == "frame") out.frameMedianHalfWidth = medianRelativeHalfWidth95(samples);
+    }
     out.frames = frames;
     shaders_->release(program);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

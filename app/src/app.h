@@ -89,6 +89,8 @@ struct Measurement {
     int framesWaited = 0;                         // frames in which that wait was not zero
     size_t gpuBytes = 0;
     int frames = 0;
+    // The GPU frame median's relative 95% half-width (util/stats.h; infinity under 6 frames).
+    double frameMedianHalfWidth = 0.0;
     int depthPrepassFrames = 0;                   // timed frames that ran the host depth pre-pass
     std::optional<double> depthComplexity;        // the newest count at the end (DepthPrepassRule)
 };
@@ -120,6 +122,12 @@ struct Evaluation {
     std::vector<TranslucentLayerEvaluation> translucentLayers;
     AccuracyMetrics translucentMetrics;
     Image heatmap() const;              // errorHeatmap() as an RGBA image
+};
+
+// The optional parts of an Evaluation (App::evaluateCapture): footprint and positions.
+struct EvaluationParts {
+    bool footprint = true;
+    bool positions = true;
 };
 
 // What an evaluation reads from the GPU and the frame (App::captureEvaluation): everything the
@@ -217,7 +225,9 @@ public:
     std::string viewProblem(const std::string& technique, const std::string& view,
                             const std::vector<std::string>& extraViews = {});
     // Warm-up frames, then `frames` timed frames; waits for the GPU only at the end.
-    bool measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error);
+    // `stop`: stop timing early once the GPU frame time is stable (bench specs' stableWithin).
+    bool measure(const std::string& technique, int warmupFrames, int frames, Measurement& out, std::string& error,
+                 const TimingStop& stop = {});
     // The classroom window (ui/session.cpp): in the GLFW window, or with a headless backend in
     // an offscreen framebuffer of the same layout (then options.frames must be > 0). Returns the
     // exit code: 0, or 1 when a screenshot asked for could not be written.
@@ -232,7 +242,7 @@ public:
     // Compares the last frame's shadow term with the reference traced from its own G-buffer
     // (re-rendering that frame with the accuracy targets when it was a timed frame):
     // captureEvaluation() with an ImmediateReader, then evaluateCapture().
-    bool evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error);
+    bool evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error, const EvaluationParts& parts = {});
     // The GL half, GL thread: the last frame's accuracy targets (re-rendered when it was timed),
     // its translucent layers peeled, and the frame's light, camera and reported maps, read through
     // `reader` into `input` (ImmediateReader: filled on return; PixelBufferReadback: once its
@@ -242,7 +252,10 @@ public:
     // cancel) and the metrics. With the CPU reference device any thread may call it while the GL
     // thread draws, but never across loadScene() (the window joins its measurement first); with
     // the GPU device, the GL thread only.
-    bool evaluateCapture(const EvaluationInput& input, const ReferenceOptions& options, Evaluation& out, std::string& error);
+    // `parts` leaves out what a caller does not read (bench rows: the footprint after the first
+    // pass, since it depends on the capture and not on the reference; the positions' copy).
+    bool evaluateCapture(const EvaluationInput& input, const ReferenceOptions& options, Evaluation& out, std::string& error,
+                         const EvaluationParts& parts = {});
     // The traces evaluateCapture() will run for `input` (the opaque image and each layer with a
     // surface): the window's progress counts them.
     static size_t plannedTraces(const EvaluationInput& input);

@@ -43,13 +43,13 @@ size_t EvaluationInput::bytesFor(glm::ivec2 size, int layers) {
     return size_t(std::max(size.x, 0)) * size_t(std::max(size.y, 0)) * sizeof(glm::vec4) * 3 * size_t(1 + std::max(layers, 0));
 }
 
-bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error) {
+bool App::evaluate(const ReferenceOptions& options, Evaluation& out, std::string& error, const EvaluationParts& parts) {
     EvaluationInput input;
     ImmediateReader reader;
     const auto start = std::chrono::steady_clock::now();
     if (!captureEvaluation(input, reader, error)) return false;
     const double renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!evaluateCapture(input, options, out, error)) return false;
+    if (!evaluateCapture(input, options, out, error, parts)) return false;
     out.renderSeconds = renderSeconds;   // evaluateCapture() starts `out` afresh
     return true;
 }
@@ -118,7 +118,8 @@ bool App::captureTranslucentLayers(LoadedTechnique& loaded, EvaluationInput& inp
     return true;
 }
 
-bool App::evaluateCapture(const EvaluationInput& input, const ReferenceOptions& options, Evaluation& out, std::string& error) {
+bool App::evaluateCapture(const EvaluationInput& input, const ReferenceOptions& options, Evaluation& out, std::string& error,
+                          const EvaluationParts& parts) {
     const glm::ivec2 size = input.size;
     const GBufferView gbuffer{size.x, size.y, input.opaque.positions.data(), input.opaque.normals.data()};
     out = Evaluation{};
@@ -134,8 +135,8 @@ bool App::evaluateCapture(const EvaluationInput& input, const ReferenceOptions& 
     out.metrics = compareVisibility(out.technique, out.reference, out.mask, size.x, size.y);
     addViewDepthThirds(out.metrics, out.technique, out.reference, out.mask, input.opaque.positions.data(), size.x, size.y,
                        input.camera.view, input.camera.nearPlane, input.camera.farPlane);
-    out.footprint = measureTexelFootprint(gbuffer, out.mask, input.frame.camera, input.frame.light, input.shadowMaps);
-    out.positions = input.opaque.positions;
+    if (parts.footprint) out.footprint = measureTexelFootprint(gbuffer, out.mask, input.frame.camera, input.frame.light, input.shadowMaps);
+    if (parts.positions) out.positions = input.opaque.positions;
     out.referenceFloor = out.referenceStats.sampleError.empty()
                              ? 0.0
                              : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);

@@ -1,6 +1,10 @@
 // The accuracy columns shared by bench rows and eval --json (see accuracy_columns.h).
 #include "bench/accuracy_columns.h"
 
+#include <chrono>
+
+#include "render/texture_readback.h"
+
 namespace shadowlab {
 namespace {
 
@@ -77,6 +81,13 @@ bool addAccuracyColumns(App& app, const TechniqueInfo& info, const AccuracyReque
     // in hard_own_* / soft_own_* (docs/benchmarks.md, "Translucency models").
     columns["translucency_model"] = translucencyModelName(info.translucencyModel);
     const std::vector<TranslucencyModel> models = judgedModels(info.translucencyModel, app.scene());
+    // One re-render and readback serves every pass: the passes differ in the reference only.
+    EvaluationInput input;
+    ImmediateReader reader;
+    const auto captureStart = std::chrono::steady_clock::now();
+    if (!app.captureEvaluation(input, reader, error)) return false;
+    columns["seconds_accuracy_render"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - captureStart).count();
+    bool footprintDone = false;
     for (const ReferenceOptions::Mode mode : request.modes) {
         for (const TranslucencyModel model : models) {
             ReferenceOptions options;
@@ -85,9 +96,12 @@ bool addAccuracyColumns(App& app, const TechniqueInfo& info, const AccuracyReque
             options.adaptive = request.adaptive;
             options.model = model;
             Evaluation evaluation;
-            if (!app.evaluate(options, evaluation, error)) return false;
+            // The footprint depends on the capture only; addPassColumns reads it from the
+            // first physical pass.
+            const bool withFootprint = !footprintDone && model == TranslucencyModel::Physical;
+            if (!app.evaluateCapture(input, options, evaluation, error, {withFootprint, bool(each)})) return false;
+            footprintDone = footprintDone || withFootprint;
             // Where the evaluation's wall time went (docs/benchmarks.md, seconds_row).
-            columns["seconds_accuracy_render"] = columns.value("seconds_accuracy_render", 0.0) + evaluation.renderSeconds;
             columns["seconds_reference"] = columns.value("seconds_reference", 0.0) + evaluation.traceSeconds;
             columns["seconds_metrics"] = columns.value("seconds_metrics", 0.0) + evaluation.metricsSeconds;
             columns["seconds_translucent_layers"] =

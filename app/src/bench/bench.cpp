@@ -21,6 +21,8 @@ extern const char* const kBuildCommit;
 
 namespace {
 
+TimingStop timingStopOf(const BenchSpec& spec) { return TimingStop{spec.minFrames, spec.stableWithin}; }
+
 std::string columnName(std::string text) {
     for (char& c : text)
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
@@ -66,6 +68,7 @@ void addTiming(nlohmann::json& row, const Measurement& m) {
     row["cpu_wait_ms_p95"] = m.cpuWaitMs.p95;
     row["cpu_wait_frames"] = m.framesWaited;
     row["frames"] = m.frames;
+    if (std::isfinite(m.frameMedianHalfWidth)) row["frame_ms_ci95"] = m.frameMedianHalfWidth;
     row["gbuffer_every_frame"] = false;
 }
 
@@ -328,12 +331,12 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
             if (!mainFloor.count(floorKey) && none && info != none) {
                 Measurement floor;
                 app.params().resetToDefaults(*none);
-                if (!app.measure(none->id, spec.warmupFrames, spec.frames, floor, error)) return false;
+                if (!app.measure(none->id, spec.warmupFrames, spec.frames, floor, error, timingStopOf(spec))) return false;
                 mainFloor[floorKey] = floor.gpuMs["main"].median;
             }
             Measurement m;
             const auto measureStart = std::chrono::steady_clock::now();
-            if (!app.measure(info->id, spec.warmupFrames, spec.frames, m, error)) return false;
+            if (!app.measure(info->id, spec.warmupFrames, spec.frames, m, error, timingStopOf(spec))) return false;
             row["seconds_timed_frames"] = secondsSince(measureStart);
             if (info == none && !mainFloor.count(floorKey)) mainFloor[floorKey] = m.gpuMs["main"].median;
             row["technique"] = info->id;

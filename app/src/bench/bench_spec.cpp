@@ -138,7 +138,7 @@ bool addSweep(BenchSpec& spec, const std::string& text, std::string& error) {
 }
 
 bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
-    static const std::set<std::string> known{"techniques", "scenes", "sizes", "sweep", "base", "frames", "warmup",
+    static const std::set<std::string> known{"techniques", "scenes", "sizes", "sweep", "base", "frames", "warmup", "minFrames", "stableWithin",
                                              "accuracy", "reference", "referenceSamples", "referenceAdaptive", "depthFloor",
                                              "description", "tag"};
     if (!spec.is_object()) {
@@ -204,6 +204,19 @@ bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
     }
     if (const auto it = spec.find("frames"); it != spec.end() && !readWholeNumber(*it, "frames", 1, kMaxBenchFrames, result.frames, error))
         return false;
+    if (const auto it = spec.find("stableWithin"); it != spec.end()) {
+        if (!it->is_number() || !std::isfinite(it->get<double>()) || it->get<double>() <= 0.0 ||
+            it->get<double>() > kMaxStableWithin) {
+            error = "stableWithin: expected a fraction above 0 and at most " + specValueText(kMaxStableWithin) + ", got " +
+                    describe(*it);
+            return false;
+        }
+        result.stableWithin = it->get<double>();
+    }
+    if (const auto it = spec.find("minFrames"); it != spec.end()) {
+        if (!readWholeNumber(*it, "minFrames", kMinStableFrames, kMaxBenchFrames, result.minFrames, error)) return false;
+        result.minFramesGiven = true;
+    }
     if (const auto it = spec.find("warmup"); it != spec.end() &&
                                              !readWholeNumber(*it, "warmup", 0, kMaxBenchFrames, result.warmupFrames, error))
         return false;
@@ -415,6 +428,18 @@ static bool checkBenchSpecContent(const BenchSpec& spec, const std::vector<Techn
     if (spec.frames < 1 || spec.frames > kMaxBenchFrames || spec.warmupFrames < 0 || spec.warmupFrames > kMaxBenchFrames) {
         error = nameOf(spec, "--frames/--warmup", "frames/warmup") + ": frames must be 1 to " + std::to_string(kMaxBenchFrames) +
                 " and warm-up frames 0 to " + std::to_string(kMaxBenchFrames);
+        return false;
+    }
+    if (spec.minFramesGiven && spec.stableWithin <= 0.0) {
+        error = nameOf(spec, "--min-frames", "minFrames") + ": only means something with " +
+                nameOf(spec, "--stable-within", "stableWithin");
+        return false;
+    }
+    if (spec.stableWithin < 0.0 || spec.stableWithin > kMaxStableWithin ||
+        (spec.stableWithin > 0.0 && (spec.minFrames < kMinStableFrames || spec.minFrames > spec.frames))) {
+        error = nameOf(spec, "--stable-within/--min-frames", "stableWithin/minFrames") +
+                ": the fraction must be 0 to " + specValueText(kMaxStableWithin) + " and the frames " +
+                std::to_string(kMinStableFrames) + " to frames (" + std::to_string(spec.frames) + ")";
         return false;
     }
     if (spec.reference != "hard" && spec.reference != "soft" && spec.reference != "both" && spec.reference != "auto") {

@@ -32,6 +32,11 @@ struct BenchSpec {
     std::vector<std::string> base;           // key=value set before every combination
     int warmupFrames = 20;
     int frames = 200;
+    // Stop a row's timing before `frames` once its GPU frame median is known to within this
+    // fraction (util/stats.h TimingStop, "stableWithin"); 0: time every frame. minFrames at least.
+    double stableWithin = 0.0;
+    int minFrames = 10;
+    bool minFramesGiven = false;             // minFrames without stableWithin means nothing: refused
     bool accuracy = false;
     std::string reference = "auto";          // hard | soft | both | auto
     // Soft reference: N rays per pixel, sampled adaptively (ReferenceOptions::adaptive: a first
@@ -49,6 +54,8 @@ struct BenchSpec {
 };
 
 constexpr int kMaxBenchFrames = 100000;
+constexpr int kMinStableFrames = 6;          // fewer: the median's confidence ranks leave the set
+constexpr double kMaxStableWithin = 0.5;
 constexpr int kMaxReferenceSamples = 4096;
 constexpr int kMinRenderSize = 16;
 constexpr int kMaxRenderSize = 16384;

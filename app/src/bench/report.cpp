@@ -56,7 +56,7 @@ bool writeImages(App& app, const BenchSpec& spec, const std::filesystem::path& d
                 options.adaptive = spec.referenceAdaptive;
                 options.model = TranslucencyModel::Physical;   // the heatmap shows the error against the physical model
                 Evaluation evaluation;
-                if (!app.evaluate(options, evaluation, error)) return false;
+                if (!app.evaluate(options, evaluation, error, {.footprint = false, .positions = false})) return false;
                 entry.heatmap = scene + "-" + info.id + "-error.png";
                 entry.reference = hard ? "hard" : "soft";
                 entry.metrics = evaluation.metrics;

@@ -136,6 +136,10 @@ public:
         bench->add_option("--size", sizes_, "output size WxH (repeatable; default 1280x720)");
         bench->add_option("--frames", spec_.frames, "timed frames per combination (default 200)")->check(CLI::Range(1, 100000));
         bench->add_option("--warmup", spec_.warmupFrames, "warm-up frames (default 20)")->check(CLI::Range(0, 100000));
+        bench->add_option("--stable-within", spec_.stableWithin,
+                          "stop timing a combination once its GPU frame median is known to within this fraction (95%; "
+                          "e.g. 0.01), after --min-frames; default: time every --frames frame");
+        bench->add_option("--min-frames", spec_.minFrames, "with --stable-within: frames timed at least (default 10)");
         bench->add_flag("--accuracy", spec_.accuracy, "add the ground-truth metrics of each combination's last frame");
         bench->add_option("--reference", reference_, "with --accuracy: hard | soft | both | auto");
         bench->add_option("--samples", samples_, "soft reference rays per pixel (default 1024)");
@@ -184,9 +188,11 @@ private:
         CLI::Option* spec = bench.get_option("--spec");
         CLI::Option* path = bench.get_option("--path");
         for (const char* name : {"--techniques", "--scenes", "--sweep", "--size", "--frames", "--warmup", "--accuracy",
-                                 "--reference", "--samples", "--reference-adaptive", "--depth-floor"})
+                                 "--reference", "--samples", "--reference-adaptive", "--depth-floor", "--stable-within",
+                                 "--min-frames"})
             bench.get_option(name)->excludes(spec);
-        for (const char* name : {"--sweep", "--frames", "--samples", "--reference-adaptive", "--depth-floor"})
+        bench.get_option("--min-frames")->needs(bench.get_option("--stable-within"));
+        for (const char* name : {"--sweep", "--frames", "--samples", "--reference-adaptive", "--depth-floor", "--stable-within"})
             bench.get_option(name)->excludes(path);
         bench.get_option("--path-frames")->needs(path);
     }

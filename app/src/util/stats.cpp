@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace shadowlab {
@@ -28,6 +29,19 @@ TimingSummary summarize(const std::vector<double>& values) {
     s.p95 = percentile(values, 0.95);
     s.mean = std::accumulate(values.begin(), values.end(), 0.0) / double(values.size());
     return s;
+}
+
+double medianRelativeHalfWidth95(std::vector<double> values) {
+    const size_t n = values.size();
+    if (n < 6) return std::numeric_limits<double>::infinity();
+    std::sort(values.begin(), values.end());
+    const double spread = 1.96 * std::sqrt(double(n)) / 2.0;
+    // 1-based ranks floor(n/2 - spread) and ceil(n/2 + 1 + spread), clamped to the set.
+    const size_t low = size_t(std::max(std::floor(double(n) / 2.0 - spread), 1.0)) - 1;
+    const size_t high = std::min(size_t(std::ceil(double(n) / 2.0 + 1.0 + spread)), n) - 1;
+    const double median = percentile(values, 0.5);
+    if (!(median > 0.0)) return std::numeric_limits<double>::infinity();
+    return (values[high] - values[low]) / (2.0 * median);
 }
 
 } // namespace shadowlab
