@@ -84,6 +84,8 @@ print("ok: bench --path rows: per-frame times, percentiles, temporal metrics")
 PY
 printf '{"cases": [{"id": "x", "title": "t", "scene": "cube", "metric": "flicker", "threshold": 0.1, "claim": "c", "source": "s"}]}' > "$tmp/cases.json"
 expect 2 "cases.json: cases\[0\].metric: a temporal metric needs a path" -- stress --backend osmesa --cases-file "$tmp/cases.json" --out "$tmp/stress"
+printf '{"cases": [{"id": "eye-on-target", "title": "t", "scene": "cube", "camera": {"position": [0.4, 0.3, -0.3]}, "metric": "false_shadow", "threshold": 0.1, "claim": "c", "source": "s"}]}' > "$tmp/cases-camera.json"
+expect 2 "cases-camera.json: case eye-on-target: camera (with the target of scene 'cube'): the target is at the camera position" -- stress --backend osmesa --techniques shadowmap --cases-file "$tmp/cases-camera.json" --out "$tmp/stress"
 expect 2 "--techniques: no technique 'nonesuch'" -- stress --backend osmesa --techniques nonesuch --out "$tmp/stress"
 expect 2 "--cases: no case 'nonesuch'" -- stress --backend osmesa --techniques shadowmap --cases nonesuch --out "$tmp/stress"
 expect 2 "--translucent-layers: Value 9 not in range 0 to 8" -- eval --backend osmesa --scene layered-quads --translucent-layers 9

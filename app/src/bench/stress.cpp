@@ -400,6 +400,25 @@ static int checkStressRequest(App& app, const StressSuite& suite, const StressOp
             return 2;
         }
     }
+    // Each case's scene, and its camera as the case composes it with the scene's (a position
+    // alone may land on the scene's target): the check scenes, tours and paths make.
+    for (const StressCase* c : cases) {
+        if (c->requires_ && !std::filesystem::exists(sharedAssetPath(*c->requires_))) continue;   // skipped at run time
+        SceneCheck scene;
+        try {
+            scene = checkScene(sceneArgument(suite, *c));
+        } catch (const SceneError& e) {
+            error = suite.file + ": case " + c->id + ": scene: " + e.what();
+            return 2;
+        }
+        const glm::dvec3 position(c->cameraPosition.value_or(scene.camera.position));
+        const glm::dvec3 target(c->cameraTarget.value_or(scene.camera.target));
+        if (const std::string problem = cameraProblem(position, target, glm::dvec3(scene.camera.up)); !problem.empty()) {
+            error = suite.file + ": case " + c->id + ": camera (with the " + (c->cameraPosition ? "target" : "position") +
+                    " of scene '" + scene.name + "'): " + problem;
+            return 2;
+        }
+    }
     for (const std::string& text : options.sets) {
         const auto assignment = parseAssignment(text, error);
         if (!assignment) return 2;
