@@ -65,7 +65,7 @@ constexpr ParamDesc kCountEarlyOuts{"count_early_outs", "count early outs", Para
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, ADAPTIVE_PCF_PARAMS);
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFilteredMap,
     {.id = "adaptive-pcf",
      .displayName = "Adaptive PCF (jittered disc)",
      .category = "filtered",
@@ -74,9 +74,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "all agree the pixel is fully lit or fully shadowed and the rest is skipped, so only penumbra pixels "
                    "pay for the whole kernel (count early outs to see the rate). The radius sets the penumbra width, the same "
                    "everywhere: filtering, not a physically soft shadow.",
-     .shadowGlsl = "adaptive-pcf.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "kernel|footprint|texel-grid|coverage|focus-body"},
+     .shadowGlsl = "adaptive-pcf.glsl"},
     Params::table);
 
 // Counts of the main pass (shadowTerm calls, early outs) in a ring of small atomic-counter buffers,

@@ -99,7 +99,7 @@ using Id = Params::Id;
 // 4.26 of csm's 5.6 ms on an H200 when the flag held for every fit).
 constexpr FlagCondition kFlagConditions[] = {{kTechniqueNeedsCameraPrepass, "fit", "sdsm"}};
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueMap,
     {.id = "csm",
      .displayName = "Cascaded shadow maps",
      .category = "hard",
@@ -110,12 +110,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "shimmer. fit = sdsm measures the depth range the camera really sees on the GPU (sample "
                     "distribution shadow maps). Turn on the cascade colours and move the camera.",
      .shadowGlsl = "csm.glsl",
-     .flags = kTechniqueNeedsCameraPrepass,   // fit = sdsm reduces the pre-pass's depth
-     .translucencyModel = TranslucencyModel::Ignore,   // its maps hold opaque casters only
-     .flagConditions = kFlagConditions,
-     .flagConditionCount = 1,
-     .debugViews = "footprint|texel-grid|coverage"},
-    Params::table);
+     .flags = kTechniqueNeedsCameraPrepass},   // fit = sdsm reduces the pre-pass's depth
+    Params::table, kFlagConditions);
 
 class CascadedShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override {

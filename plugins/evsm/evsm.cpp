@@ -37,7 +37,7 @@ constexpr ParamDesc kNegativeExponent{"negative_exponent", "negative exponent c-
 SHADOWLAB_PARAMS(Params, EVSM_PARAMS);
 
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
     {.id = "evsm",
      .displayName = "Exponential variance shadow maps",
      .category = "filtered",
@@ -46,16 +46,10 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "the depth differences behind an occluder, so the light that bleeds through overlapping occluders "
                    "in VSM mostly disappears while the map still blurs and mipmaps like a texture. Costs four 32-bit "
                    "channels per texel; exponents are capped by float range.",
-     .shadowGlsl = "evsm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "footprint|texel-grid|coverage|focus-body"},
+     .shadowGlsl = "evsm.glsl"},
     Params::table);
 
-class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<Params, shared::evsm::EvsmUniforms> {
-public:
-    ExponentialVarianceShadowMaps() : MomentTechnique("evsm_moments.glsl") {}
-
-private:
+class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<Params, shared::evsm::EvsmUniforms, "evsm_moments.glsl"> {
     shared::evsm::EvsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
         config.format = GL_RGBA32F;
         // Depth 1 (x = 1): exp(c+), -exp(-c-), and their squares.

@@ -72,7 +72,7 @@ constexpr ParamDesc kClassify{"classify", "decide lit and shadowed by", ParamTyp
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, PCF_PARAMS);
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFilteredMap,
     {.id = "pcf",
      .displayName = "Percentage-closer filtering",
      .category = "filtered",
@@ -82,9 +82,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "banding. Sampling by gather or folded reads the same texels four at a time (Castano 2013) for the "
                     "same result (with the cone bias, a little lighter at contacts) at about a quarter of the lookups. The ramp has the same width everywhere: this is anti-aliasing, not a physically soft "
                     "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause. Classify = depth-range skips the kernel where min/max depth mips prove every tap lit or every tap shadowed, with the same image.",
-     .shadowGlsl = "pcf.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "kernel|footprint|texel-grid|coverage|focus-body"},
+     .shadowGlsl = "pcf.glsl"},
     Params::table);
 
 class PercentageCloserFiltering final : public kit::TechniqueBase {

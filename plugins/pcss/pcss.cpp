@@ -73,7 +73,7 @@ constexpr ParamDesc kSearchBound{"search_bound", "blocker search bound", ParamTy
     X(int, search_bound, kSearchBound)         \
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, PCSS_PARAMS);
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFilteredMap,
     {.id = "pcss",
      .displayName = "Percentage-closer soft shadows",
      .category = "soft",
@@ -82,9 +82,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "and then filters with a kernel of that width (PCF). Shadows are hard where a caster touches the "
                    "receiver and soften with distance (contact hardening). The light size comes from the scene "
                    "(--light-size). Plausible rather than correct: overlapping blockers at different depths are averaged.",
-     .shadowGlsl = "pcss.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "kernel|footprint|texel-grid|coverage|focus-body"},
+     .shadowGlsl = "pcss.glsl"},
     Params::table);
 
 class PercentageCloserSoftShadows final : public kit::TechniqueBase {

@@ -32,7 +32,7 @@ constexpr ParamDesc kMoveBack{"move_back", "virtual move-back", ParamType::Bool,
     X(bool, move_back, kMoveBack)
 SHADOWLAB_PARAMS(Params, PSM_PARAMS);
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
     {.id = "psm",
      .displayName = "Perspective shadow maps",
      .category = "hard",
@@ -44,9 +44,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "cannot be held in one map (it falls back to a plain focused map). Compare with lispsm, "
                     "which keeps light rays parallel and tunes the warp with n_opt; turn move_back off with the light "
                     "behind the camera to see casters lost.",
-     .shadowGlsl = "psm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "footprint|texel-grid|coverage|focus-body"},
+     .shadowGlsl = "psm.glsl"},
     Params::table);
 
 class PerspectiveShadowMaps final : public kit::TechniqueBase {

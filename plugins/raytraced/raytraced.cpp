@@ -74,10 +74,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .shadowGlsl = "raytraced.glsl",
      .flags = kTechniqueNeedsCameraPrepass,
      .translucencyModel = TranslucencyModel::Physical,
-     .flagConditions = kFlagConditions,
-     .flagConditionCount = 1,
-     .debugViews = ""},   // no map for the host's views; its own image is 'ray cost' 
-    Params::table);
+     .debugViews = ""},   // no map for the host's views; its own image is 'ray cost'
+    Params::table, kFlagConditions);
 
 // Counter read-back ring: slot i is read only once its end timestamp is available (the GPU has
 // passed it), so nothing waits; results are one to three frames old.

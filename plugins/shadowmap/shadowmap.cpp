@@ -25,7 +25,7 @@ using namespace shadowlab;
     SHADOWLAB_FIT_PARAMS(X)
 SHADOWLAB_PARAMS(Params, SHADOWMAP_PARAMS);
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
     {.id = "shadowmap",
      .displayName = "Shadow mapping",
      .category = "hard",
@@ -34,9 +34,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "one extra pass, and shows the classic artefacts: acne (self-shadowing from depth quantisation; "
                     "cured by bias), peter panning (too much bias) and blocky edges (limited resolution). Try a low "
                     "light and zero bias.",
-     .shadowGlsl = "shadowmap.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "footprint|texel-grid|coverage|focus-body"},
+     .shadowGlsl = "shadowmap.glsl"},
     Params::table);
 
 class ShadowMapping final : public kit::TechniqueBase {
