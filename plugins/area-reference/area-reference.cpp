@@ -56,7 +56,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .shadowGlsl = "area-reference.glsl",
      .flags = kTechniqueNeedsCameraPrepass,
      .translucencyModel = TranslucencyModel::Ignore,   // its maps hold opaque casters only
-     .debugViews = ""},
+     .debugViews = kit::views::kNone},
     Params::table);
 
 // Van der Corput radical inverse in base 2: the second Hammersley coordinate.

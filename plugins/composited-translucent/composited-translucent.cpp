@@ -47,7 +47,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "in front: the cost grows with the square of the mesh count (real time only for a handful).",
      .shadowGlsl = "composited-translucent.glsl",
      .translucencyModel = TranslucencyModel::ModifiedTranslucent,
-     .debugViews = "footprint|texel-grid|coverage"},
+     .debugViews = kit::views::kMap},
     kit::kTranslucentMapParams);
 
 class CompositedTranslucent final : public kit::TechniqueBase {

@@ -73,7 +73,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "overlapping glass.",
      .shadowGlsl = "cssm2.glsl",
      .translucencyModel = TranslucencyModel::Physical,
-     .debugViews = "footprint|texel-grid|coverage"},
+     .debugViews = kit::views::kMap},
     Params::table);
 
 class ColouredStochasticShadowMaps final : public kit::TechniqueBase {

@@ -55,7 +55,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "avoids z-fighting.",
      .shadowGlsl = "planar.glsl",
      .flags = kTechniqueNeedsCameraPrepass,
-     .debugViews = ""},
+     .debugViews = kit::views::kNone},
     Params::table);
 
 class PlanarShadows final : public kit::TechniqueBase {

@@ -74,7 +74,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .shadowGlsl = "raytraced.glsl",
      .flags = kTechniqueNeedsCameraPrepass,
      .translucencyModel = TranslucencyModel::Physical,
-     .debugViews = ""},   // no map for the host's views; its own image is 'ray cost'
+     .debugViews = kit::views::kNone},   // no map for the host's views; its own image is 'ray cost'
     Params::table, kFlagConditions);
 
 // Counter read-back ring: slot i is read only once its end timestamp is available (the GPU has

@@ -92,7 +92,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
      .shadowGlsl = "shadow-volumes.glsl",
      .flags = kTechniqueNeedsCameraDepth,   // the depth alone: no position, normal or id
      .translucencyModel = TranslucencyModel::Opaque,
-     .debugViews = ""},   // the host's views need a map; its own images are listed with them
+     .debugViews = kit::views::kNone},   // the host's views need a map; its own images are listed with them
     Params::table);
 
 class ShadowVolumes final : public kit::TechniqueBase {

@@ -80,7 +80,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "overlapping glass to see what shared random numbers do.",
      .shadowGlsl = "stochastic-sm.glsl",
      .translucencyModel = TranslucencyModel::Coverage,
-     .debugViews = "footprint|texel-grid|coverage"},
+     .debugViews = kit::views::kMap},
     Params::table);
 
 class StochasticShadowMaps final : public kit::TechniqueBase {

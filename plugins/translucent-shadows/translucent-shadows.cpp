@@ -42,7 +42,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "teapot-glass's green pot.",
      .shadowGlsl = "translucent-shadows.glsl",
      .translucencyModel = TranslucencyModel::ModifiedTranslucent,
-     .debugViews = "footprint|texel-grid|coverage"},
+     .debugViews = kit::views::kMap},
     kit::kTranslucentMapParams);
 
 class TranslucentShadows final : public kit::TechniqueBase {

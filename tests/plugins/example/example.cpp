@@ -13,10 +13,9 @@ using namespace shadowlab;
     X(float, darkness, {"darkness", "darkness", ParamType::Float, 0, 1, 1, "", "How much of the light a shadow removes.", nullptr})
 SHADOWLAB_PARAMS(Params, EXAMPLE_PARAMS);   // Params::table, Params::Id::darkness, Params::read(values).darkness
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueMap,   // a map of the opaque casters
     {.id = "example", .displayName = "Example", .category = "filtered",
-     .explanation = "A shadow map filtered over 3 x 3 taps.", .shadowGlsl = "example.glsl",
-     .debugViews = "footprint|texel-grid|coverage"},
+     .explanation = "A shadow map filtered over 3 x 3 taps.", .shadowGlsl = "example.glsl"},
     Params::table);
 
 class Example final : public kit::TechniqueBase {
