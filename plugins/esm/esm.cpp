@@ -29,6 +29,13 @@ constexpr ParamDesc kExponent{"exponent", "exponent c", ParamType::Float, 1, 85,
     X(float, exponent, kExponent)
 SHADOWLAB_PARAMS(Params, ESM_PARAMS);
 
+class ExponentialShadowMaps final : public kit::MomentTechnique<Params, shared::esm::EsmUniforms, "esm_moments.glsl"> {
+    shared::esm::EsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
+        config.format = GL_R32F;
+        config.clearValue = glm::vec4(1.0f);   // exp(c (1 - 1)): depth 1, nothing occludes
+        return {{}, p.exponent, 0.0f, 0.0f, 0.0f};
+    }
+};
 
 constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
     {.id = "esm",
@@ -41,14 +48,6 @@ constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
                    "penumbrae one-sided.",
      .shadowGlsl = "esm.glsl"},
     Params::table);
-
-class ExponentialShadowMaps final : public kit::MomentTechnique<Params, shared::esm::EsmUniforms, "esm_moments.glsl"> {
-    shared::esm::EsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
-        config.format = GL_R32F;
-        config.clearValue = glm::vec4(1.0f);   // exp(c (1 - 1)): depth 1, nothing occludes
-        return {{}, p.exponent, 0.0f, 0.0f, 0.0f};
-    }
-};
 
 } // namespace
 

@@ -36,6 +36,16 @@ constexpr ParamDesc kNegativeExponent{"negative_exponent", "negative exponent c-
     X(float, light_bleeding, kit::lightBleedingParam())
 SHADOWLAB_PARAMS(Params, EVSM_PARAMS);
 
+class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<Params, shared::evsm::EvsmUniforms, "evsm_moments.glsl"> {
+    shared::evsm::EvsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
+        config.format = GL_RGBA32F;
+        // Depth 1 (x = 1): exp(c+), -exp(-c-), and their squares.
+        const float positive = std::exp(p.positive_exponent);
+        const float negative = -std::exp(-p.negative_exponent);
+        config.clearValue = glm::vec4(positive, positive * positive, negative, negative * negative);
+        return {{}, {p.positive_exponent, p.negative_exponent, 0.0f, 0.0f}, p.min_variance, p.light_bleeding, 0.0f, 0.0f};
+    }
+};
 
 constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
     {.id = "evsm",
@@ -48,17 +58,6 @@ constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
                    "channels per texel; exponents are capped by float range.",
      .shadowGlsl = "evsm.glsl"},
     Params::table);
-
-class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<Params, shared::evsm::EvsmUniforms, "evsm_moments.glsl"> {
-    shared::evsm::EvsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
-        config.format = GL_RGBA32F;
-        // Depth 1 (x = 1): exp(c+), -exp(-c-), and their squares.
-        const float positive = std::exp(p.positive_exponent);
-        const float negative = -std::exp(-p.negative_exponent);
-        config.clearValue = glm::vec4(positive, positive * positive, negative, negative * negative);
-        return {{}, {p.positive_exponent, p.negative_exponent, 0.0f, 0.0f}, p.min_variance, p.light_bleeding, 0.0f, 0.0f};
-    }
-};
 
 } // namespace
 

@@ -42,6 +42,16 @@ constexpr ParamDesc kDepthBias{"depth_bias", "depth bias", ParamType::Float, 0, 
     X(float, light_bleeding, kit::lightBleedingParam())
 SHADOWLAB_PARAMS(Params, MSM_PARAMS);
 
+class MomentShadowMapping final : public kit::MomentTechnique<Params, shared::msm::MsmUniforms, "msm_moments.glsl"> {
+    shared::msm::MsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
+        const bool quantized = p.storage == 1;
+        config.format = quantized ? GL_RGBA16 : GL_RGBA32F;
+        // Depth 1: nothing occludes there.
+        const glm::vec4 farMoments = msm::momentsOfDepth(1.0f);
+        config.clearValue = quantized ? glm::clamp(msm::quantizeMoments(farMoments), 0.0f, 1.0f) : farMoments;
+        return {{}, quantized ? 1 : 0, p.moment_bias, p.depth_bias, p.light_bleeding};
+    }
+};
 
 constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
     {.id = "msm",
@@ -54,17 +64,6 @@ constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
                    "lets all four fit in 64 bits per texel. Compare with vsm on the 'overlap' scene.",
      .shadowGlsl = "msm.glsl"},
     Params::table);
-
-class MomentShadowMapping final : public kit::MomentTechnique<Params, shared::msm::MsmUniforms, "msm_moments.glsl"> {
-    shared::msm::MsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
-        const bool quantized = p.storage == 1;
-        config.format = quantized ? GL_RGBA16 : GL_RGBA32F;
-        // Depth 1: nothing occludes there.
-        const glm::vec4 farMoments = msm::momentsOfDepth(1.0f);
-        config.clearValue = quantized ? glm::clamp(msm::quantizeMoments(farMoments), 0.0f, 1.0f) : farMoments;
-        return {{}, quantized ? 1 : 0, p.moment_bias, p.depth_bias, p.light_bleeding};
-    }
-};
 
 } // namespace
 

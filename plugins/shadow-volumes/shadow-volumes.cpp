@@ -77,24 +77,6 @@ SHADOWLAB_PARAMS(Params, SHADOW_VOLUMES_PARAMS);
 enum Counting : int { kAuto = 0, kDepthPass = 1, kDepthFail = 2 };
 enum Extract : int { kGeometry = 0, kCompute = 1 };
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "shadow-volumes",
-     .displayName = "Shadow volumes (stencil)",
-     .category = "hard",
-     .explanation = "Extrudes every caster's silhouette away from the light into a volume and counts, per pixel, how "
-                    "many volume faces lie between the eye and the surface: a non-zero count means shadow. The result "
-                    "is exact to the pixel, with no shadow map, resolution, bias or acne, at the price of fill rate: "
-                    "the volumes cover the screen many times where casters are many or the light is low. Try the "
-                    "camera inside a shadow with counting = depth-pass (regions invert) against depth-fail. The "
-                    "silhouettes are found by a geometry stage or (extract = compute) a compute pass drawn "
-                    "indirectly. Translucent casters block like opaque ones. Its images (debug images on): volume "
-                    "overdraw, silhouette edges, and the volume mask.",
-     .shadowGlsl = "shadow-volumes.glsl",
-     .flags = kTechniqueNeedsCameraDepth,   // the depth alone: no position, normal or id
-     .translucencyModel = TranslucencyModel::Opaque,
-     .debugViews = kit::views::kNone},   // the host's views need a map; its own images are listed with them
-    Params::table);
-
 class ShadowVolumes final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         if (!volumes_.build(host(), {.vertexFile = "volume.vert", .geometryFile = "volume.geom", .fragmentFile = "volume_count.frag"}, error) ||
@@ -242,6 +224,24 @@ class ShadowVolumes final : public kit::TechniqueBase {
     shadow_volumes::VolumeCounters counters_;
     uint64_t frameCount_ = 0;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "shadow-volumes",
+     .displayName = "Shadow volumes (stencil)",
+     .category = "hard",
+     .explanation = "Extrudes every caster's silhouette away from the light into a volume and counts, per pixel, how "
+                    "many volume faces lie between the eye and the surface: a non-zero count means shadow. The result "
+                    "is exact to the pixel, with no shadow map, resolution, bias or acne, at the price of fill rate: "
+                    "the volumes cover the screen many times where casters are many or the light is low. Try the "
+                    "camera inside a shadow with counting = depth-pass (regions invert) against depth-fail. The "
+                    "silhouettes are found by a geometry stage or (extract = compute) a compute pass drawn "
+                    "indirectly. Translucent casters block like opaque ones. Its images (debug images on): volume "
+                    "overdraw, silhouette edges, and the volume mask.",
+     .shadowGlsl = "shadow-volumes.glsl",
+     .flags = kTechniqueNeedsCameraDepth,   // the depth alone: no position, normal or id
+     .translucencyModel = TranslucencyModel::Opaque,
+     .debugViews = kit::views::kNone},   // the host's views need a map; its own images are listed with them
+    Params::table);
 
 } // namespace
 

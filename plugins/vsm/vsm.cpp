@@ -31,6 +31,14 @@ constexpr ParamDesc kDerivativeMoment{"derivative_moment", "derivative-based M2"
     X(bool, derivative_moment, kDerivativeMoment)
 SHADOWLAB_PARAMS(Params, VSM_PARAMS);
 
+class VarianceShadowMaps final : public kit::MomentTechnique<Params, shared::vsm::VsmUniforms, "vsm_moments.glsl"> {
+    shared::vsm::VsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
+        config.format = GL_RG32F;   // 32 bits per moment: M2 - M1^2 cancels badly in 16 bits
+        config.clearValue = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);   // d = 1: M1 = 1, M2 = 1
+        config.momentsNeedDerivatives = p.derivative_moment;   // eq. 3.16 takes dFdx, dFdy
+        return {{}, p.derivative_moment ? 1 : 0, p.min_variance, p.light_bleeding, 0.0f};
+    }
+};
 
 constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
     {.id = "vsm",
@@ -43,15 +51,6 @@ constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
                    "loose and light bleeds through (try the 'overlap' scene, then raise the light-bleeding reduction).",
      .shadowGlsl = "vsm.glsl"},
     Params::table);
-
-class VarianceShadowMaps final : public kit::MomentTechnique<Params, shared::vsm::VsmUniforms, "vsm_moments.glsl"> {
-    shared::vsm::VsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
-        config.format = GL_RG32F;   // 32 bits per moment: M2 - M1^2 cancels badly in 16 bits
-        config.clearValue = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);   // d = 1: M1 = 1, M2 = 1
-        config.momentsNeedDerivatives = p.derivative_moment;   // eq. 3.16 takes dFdx, dFdy
-        return {{}, p.derivative_moment ? 1 : 0, p.min_variance, p.light_bleeding, 0.0f};
-    }
-};
 
 } // namespace
 
