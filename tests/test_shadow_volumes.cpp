@@ -1,8 +1,9 @@
 // Shadow volumes (issue 26): the geometry family's exactness against the ray-traced hard
 // reference, on the built-in scenes and on open casters, with both extractions (the geometry
 // stage and the compute pass drawn indirectly), whose images must be identical; depth-pass
-// failing and depth-fail (and auto) right with the camera inside a shadow; the adjacency the host
-// builds for them; the host's depth-only camera pre-pass the technique asks for.
+// failing and depth-fail (and auto) right with the camera inside a shadow; a caster behind the
+// camera shadowing the visible ground; the adjacency the host builds for them; the host's
+// depth-only camera pre-pass the technique asks for.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -237,6 +238,52 @@ TEST(ShadowVolumes, CameraInsideAVolumeBreaksDepthPassOnly) {
     auto outside = test::makeHeadlessApp("cube", {120, 90});
     measure(*outside, {"counting=auto"});
     EXPECT_EQ(outside->techniques().get("shadow-volumes", error)->host().statistics().at("depth-fail"), 0.0);
+}
+
+// Issue 26: a caster behind the camera, outside the view frustum, between the light and the
+// visible ground, still shadows it exactly: volumes are drawn for every caster, not only those
+// the camera sees, with either counting and either extraction. The camera itself is lit (its ray
+// to the light passes beside the caster), so depth-pass is right here too, and auto with it.
+TEST(ShadowVolumes, CasterBehindTheCameraShadowsTheVisibleGround) {
+    const glm::vec3 eye(0.0f, 1.5f, 0.0f), target(0.0f, 0.0f, -4.0f);
+    const glm::vec3 casterCentre(0.0f, 4.0f, 1.5f), casterSize(1.2f, 0.2f, 1.0f);
+    const glm::vec3 travel = glm::normalize(glm::vec3(0.0f, -1.0f, -1.2f));   // the light's direction
+    // The premise: every corner of the caster behind the camera's eye plane (so outside its
+    // frustum), and the camera's own ray to the light passing beside the caster.
+    const glm::vec3 forward = glm::normalize(target - eye);
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner = casterCentre + 0.5f * casterSize * glm::vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+        ASSERT_LT(glm::dot(corner - eye, forward), 0.0f) << "caster corner " << i << " in front of the camera";
+    }
+    const glm::vec3 eyeToLight = eye - travel * ((casterCentre.y - eye.y) / -travel.y);
+    ASSERT_GT(std::abs(eyeToLight.z - casterCentre.z), 0.5f * casterSize.z) << "the camera would be in the shadow";
+    auto v = [](glm::vec3 p) { return "[" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + "]"; };
+    const test::SceneFile scene("sv_behind", R"({
+      "name": "caster-behind-camera",
+      "camera": {"position": )" + v(eye) + R"(, "target": )" + v(target) + R"(, "fovY": 50, "near": 0.1, "far": 60},
+      "light": {"type": "directional", "direction": )" + v(travel) + R"(},
+      "materials": {"grey": {"baseColor": [0.7, 0.7, 0.7]}},
+      "objects": [
+        {"name": "ground", "shape": "plane", "size": [30, 30], "material": "grey", "castsShadow": false},
+        {"name": "behind", "shape": "box", "size": )" + v(casterSize) + R"(, "translate": )" + v(casterCentre) + R"(, "material": "grey"}
+      ]})");
+    auto app = test::makeHeadlessApp(scene.path(), {240, 160});
+    ASSERT_TRUE(app);
+    for (const char* extract : {"extract=geometry", "extract=compute"})
+        for (const char* counting : {"counting=depth-pass", "counting=depth-fail", "counting=auto"}) {
+            Evaluation e;
+            const Disagreement d = measure(*app, {counting, extract}, &e);
+            size_t shadowed = 0;   // the caster's shadow, seen: reference pixels in shadow
+            for (size_t i = 0; i < e.reference.size(); ++i) shadowed += e.mask[i] && e.reference[i].r < 0.5f;
+            EXPECT_GT(shadowed, 400u) << counting << " " << extract;
+            EXPECT_GT(d.compared, 5000u) << counting << " " << extract;
+            EXPECT_EQ(d.outsideBand, 0u) << counting << " " << extract << ": " << d.wrong << " wrong of " << d.compared;
+            EXPECT_EQ(statistic(*app, "extract compute"), std::string(extract) == "extract=compute" ? 1.0 : 0.0) << extract;
+        }
+    // The rule catches a technique that loses the caster: without shadows, the shadow's inside is wrong.
+    const Evaluation unshadowed = test::evaluateTechnique(*app, "none", {}, ReferenceOptions::Mode::Hard, 1);
+    const Disagreement lost = disagreement(unshadowed, app->renderer().readTarget(MainTarget::Normal), app->light());
+    EXPECT_GT(lost.outsideBand, 200u);
 }
 
 // The counters reach the statistics a few frames late, without stalling.

@@ -65,20 +65,6 @@ constexpr ParamDesc kCountEarlyOuts{"count_early_outs", "count early outs", Para
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, ADAPTIVE_PCF_PARAMS);
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "adaptive-pcf",
-     .displayName = "Adaptive PCF (jittered disc)",
-     .category = "filtered",
-     .explanation = "PCF with n x n jittered samples spread over a disc, a different set in each pixel of an m x m tile, "
-                   "so the penumbra becomes fine noise instead of bands. The outermost samples come first: when they "
-                   "all agree the pixel is fully lit or fully shadowed and the rest is skipped, so only penumbra pixels "
-                   "pay for the whole kernel (count early outs to see the rate). The radius sets the penumbra width, the same "
-                   "everywhere: filtering, not a physically soft shadow.",
-     .shadowGlsl = "adaptive-pcf.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "kernel|footprint|texel-grid|coverage|focus-body"},
-    Params::table);
-
 // Counts of the main pass (shadowTerm calls, early outs) in a ring of small atomic-counter buffers,
 // read back only once a fence says the frame that wrote them has finished: never a stall. Both
 // count fragments (overdraw included, helper invocations not); points outside the map count as
@@ -191,6 +177,18 @@ class AdaptivePcf final : public kit::TechniqueBase {
     EarlyOutCounters counters_;
     kit::UniformBlock<shared::adaptive_pcf::AdaptivePcfUniforms> uniforms_;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFilteredMap,
+    {.id = "adaptive-pcf",
+     .displayName = "Adaptive PCF (jittered disc)",
+     .category = "filtered",
+     .explanation = "PCF with n x n jittered samples spread over a disc, a different set in each pixel of an m x m tile, "
+                   "so the penumbra becomes fine noise instead of bands. The outermost samples come first: when they "
+                   "all agree the pixel is fully lit or fully shadowed and the rest is skipped, so only penumbra pixels "
+                   "pay for the whole kernel (count early outs to see the rate). The radius sets the penumbra width, the same "
+                   "everywhere: filtering, not a physically soft shadow.",
+     .shadowGlsl = "adaptive-pcf.glsl"},
+    Params::table);
 
 } // namespace
 

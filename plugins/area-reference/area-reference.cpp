@@ -44,21 +44,6 @@ constexpr ParamDesc kResolution{"resolution", "resolution", ParamType::Int, 256,
     X(float, slope_bias, kit::slopeBiasParam())
 SHADOWLAB_PARAMS(Params, AREA_REFERENCE_PARAMS);
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "area-reference",
-     .displayName = "Area light reference (N shadow maps)",
-     .category = "reference",
-     .explanation = "The brute-force soft shadow: renders N shadow maps from points spread over the light's area (or, for "
-                   "the sun, directions within its angular radius) and averages the N hard visibilities in every pixel. "
-                   "Physically right up to sampling: penumbrae widen with the distance between caster and receiver and "
-                   "overlapping casters combine correctly. Slow by design (N shadow passes per frame): it is the target "
-                   "that single-map techniques such as PCSS approximate. Few samples show banding.",
-     .shadowGlsl = "area-reference.glsl",
-     .flags = kTechniqueNeedsCameraPrepass,
-     .translucencyModel = TranslucencyModel::Ignore,   // its maps hold opaque casters only
-     .debugViews = ""},
-    Params::table);
-
 // Van der Corput radical inverse in base 2: the second Hammersley coordinate.
 float radicalInverse(uint32_t i) {
     i = (i << 16u) | (i >> 16u);
@@ -75,7 +60,6 @@ void perpendicularBasis(glm::vec3 axis, glm::vec3& tangent, glm::vec3& bitangent
     tangent = glm::normalize(glm::cross(helper, axis));
     bitangent = glm::cross(axis, tangent);
 }
-
 
 // Light sample i of n: the light moved to one point of its disc (spot, point) or turned to one
 // direction of its cone (directional).
@@ -178,6 +162,21 @@ class AreaReference final : public kit::TechniqueBase {
     kit::Texture accumulation_;
     glm::ivec2 viewport_{0};
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "area-reference",
+     .displayName = "Area light reference (N shadow maps)",
+     .category = "reference",
+     .explanation = "The brute-force soft shadow: renders N shadow maps from points spread over the light's area (or, for "
+                   "the sun, directions within its angular radius) and averages the N hard visibilities in every pixel. "
+                   "Physically right up to sampling: penumbrae widen with the distance between caster and receiver and "
+                   "overlapping casters combine correctly. Slow by design (N shadow passes per frame): it is the target "
+                   "that single-map techniques such as PCSS approximate. Few samples show banding.",
+     .shadowGlsl = "area-reference.glsl",
+     .flags = kTechniqueNeedsCameraPrepass,
+     .translucencyModel = TranslucencyModel::Ignore,   // its maps hold opaque casters only
+     .debugViews = kit::views::kNone},
+    Params::table);
 
 } // namespace
 

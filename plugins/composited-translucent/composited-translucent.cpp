@@ -34,22 +34,6 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "composited-translucent",
-     .displayName = "Composited translucent shadows",
-     .category = "coloured",
-     .explanation = "Translucent shadows for the opaque surfaces, then every translucent mesh shaded on its own: "
-                    "before it is drawn (back to front from the camera), the nearest translucent depth and the "
-                    "shadow colour are rebuilt from only the translucent meshes nearer the light than it, so a "
-                    "glass pane is tinted by the panes in front of it and never by itself or those behind (seed "
-                    "001's composited translucent shadows, sec. 4.2.3). Right where translucent shadows tint "
-                    "every layer alike, noise-free unlike CSSM2, but two passes per mesh, each over the meshes "
-                    "in front: the cost grows with the square of the mesh count (real time only for a handful).",
-     .shadowGlsl = "composited-translucent.glsl",
-     .translucencyModel = TranslucencyModel::ModifiedTranslucent,
-     .debugViews = "footprint|texel-grid|coverage"},
-    kit::kTranslucentMapParams);
-
 class CompositedTranslucent final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         if (!allCasters_.setup(host(), "composited: all casters", error)) return false;
@@ -125,6 +109,22 @@ class CompositedTranslucent final : public kit::TechniqueBase {
     std::vector<uint32_t> nearer_;
     uint32_t current_ = kTranslucentDrawsDone;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "composited-translucent",
+     .displayName = "Composited translucent shadows",
+     .category = "coloured",
+     .explanation = "Translucent shadows for the opaque surfaces, then every translucent mesh shaded on its own: "
+                    "before it is drawn (back to front from the camera), the nearest translucent depth and the "
+                    "shadow colour are rebuilt from only the translucent meshes nearer the light than it, so a "
+                    "glass pane is tinted by the panes in front of it and never by itself or those behind (seed "
+                    "001's composited translucent shadows, sec. 4.2.3). Right where translucent shadows tint "
+                    "every layer alike, noise-free unlike CSSM2, but two passes per mesh, each over the meshes "
+                    "in front: the cost grows with the square of the mesh count (real time only for a handful).",
+     .shadowGlsl = "composited-translucent.glsl",
+     .translucencyModel = TranslucencyModel::ModifiedTranslucent,
+     .debugViews = kit::views::kMap},
+    kit::kTranslucentMapParams);
 
 } // namespace
 

@@ -99,24 +99,6 @@ using Id = Params::Id;
 // 4.26 of csm's 5.6 ms on an H200 when the flag held for every fit).
 constexpr FlagCondition kFlagConditions[] = {{kTechniqueNeedsCameraPrepass, "fit", "sdsm"}};
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "csm",
-     .displayName = "Cascaded shadow maps",
-     .category = "hard",
-     .explanation = "The camera frustum is cut along the view depth into slices, each with its own shadow map "
-                    "fitted around it, so texels are dense near the viewer and sparse far away, the way the "
-                    "view needs them. The practical split scheme blends logarithmic and uniform splits (lambda). "
-                    "Stabilised cascades (snap) hold shadow edges still while the camera moves; without it they "
-                    "shimmer. fit = sdsm measures the depth range the camera really sees on the GPU (sample "
-                    "distribution shadow maps). Turn on the cascade colours and move the camera.",
-     .shadowGlsl = "csm.glsl",
-     .flags = kTechniqueNeedsCameraPrepass,   // fit = sdsm reduces the pre-pass's depth
-     .translucencyModel = TranslucencyModel::Ignore,   // its maps hold opaque casters only
-     .flagConditions = kFlagConditions,
-     .flagConditionCount = 1,
-     .debugViews = "footprint|texel-grid|coverage"},
-    Params::table);
-
 class CascadedShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         // One program per cascade count: the geometry stage runs `invocations` instances per
@@ -240,6 +222,20 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
     std::vector<glm::vec4> cullPlanes_;
     kit::ViewDepthBounds depthBounds_;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueMap,
+    {.id = "csm",
+     .displayName = "Cascaded shadow maps",
+     .category = "hard",
+     .explanation = "The camera frustum is cut along the view depth into slices, each with its own shadow map "
+                    "fitted around it, so texels are dense near the viewer and sparse far away, the way the "
+                    "view needs them. The practical split scheme blends logarithmic and uniform splits (lambda). "
+                    "Stabilised cascades (snap) hold shadow edges still while the camera moves; without it they "
+                    "shimmer. fit = sdsm measures the depth range the camera really sees on the GPU (sample "
+                    "distribution shadow maps). Turn on the cascade colours and move the camera.",
+     .shadowGlsl = "csm.glsl",
+     .flags = kTechniqueNeedsCameraPrepass},   // fit = sdsm reduces the pre-pass's depth
+    Params::table, kFlagConditions);
 
 } // namespace
 

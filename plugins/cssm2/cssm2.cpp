@@ -58,24 +58,6 @@ constexpr ParamDesc kSlopeBias{"slope_bias", "slope-scaled bias", ParamType::Flo
     SHADOWLAB_FIT_PARAMS(X)
 SHADOWLAB_PARAMS(Params, CSSM2_PARAMS);
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "cssm2",
-     .displayName = "Coloured stochastic shadow maps (CSSM2)",
-     .category = "coloured",
-     .explanation = "A depth map and a colour map from the light in which each channel is a depth map of its "
-                    "own: opaque casters write their depth to every channel; each translucent surface stops "
-                    "the photon of channel c with probability alpha (1 - t_c) and then writes its depth there, "
-                    "keeping the nearest (MIN blending). A point is lit in channel c where it is no farther than "
-                    "where that photon stopped, averaged over n x n texels. The result converges to the physical "
-                    "transmission, coloured and right on every layer of glass, as the kernel grows, but it is "
-                    "noisy (worst in bright, unsaturated light), the kernel blurs edges and, without hardware "
-                    "comparison on a colour map, costs n^2 fetches. Try kernel 1, and noise = per-texel under "
-                    "overlapping glass.",
-     .shadowGlsl = "cssm2.glsl",
-     .translucencyModel = TranslucencyModel::Physical,
-     .debugViews = "footprint|texel-grid|coverage"},
-    Params::table);
-
 class ColouredStochasticShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         if (!opaqueProgram_.build(host(),
@@ -124,6 +106,24 @@ class ColouredStochasticShadowMaps final : public kit::TechniqueBase {
     kit::StochasticLightPass lightPass_;
     kit::UniformBlock<shared::cssm2::Cssm2Uniforms> uniforms_;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "cssm2",
+     .displayName = "Coloured stochastic shadow maps (CSSM2)",
+     .category = "coloured",
+     .explanation = "A depth map and a colour map from the light in which each channel is a depth map of its "
+                    "own: opaque casters write their depth to every channel; each translucent surface stops "
+                    "the photon of channel c with probability alpha (1 - t_c) and then writes its depth there, "
+                    "keeping the nearest (MIN blending). A point is lit in channel c where it is no farther than "
+                    "where that photon stopped, averaged over n x n texels. The result converges to the physical "
+                    "transmission, coloured and right on every layer of glass, as the kernel grows, but it is "
+                    "noisy (worst in bright, unsaturated light), the kernel blurs edges and, without hardware "
+                    "comparison on a colour map, costs n^2 fetches. Try kernel 1, and noise = per-texel under "
+                    "overlapping glass.",
+     .shadowGlsl = "cssm2.glsl",
+     .translucencyModel = TranslucencyModel::Physical,
+     .debugViews = kit::views::kMap},
+    Params::table);
 
 } // namespace
 

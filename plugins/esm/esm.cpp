@@ -29,8 +29,15 @@ constexpr ParamDesc kExponent{"exponent", "exponent c", ParamType::Float, 1, 85,
     X(float, exponent, kExponent)
 SHADOWLAB_PARAMS(Params, ESM_PARAMS);
 
+class ExponentialShadowMaps final : public kit::MomentTechnique<Params, shared::esm::EsmUniforms, "esm_moments.glsl"> {
+    shared::esm::EsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
+        config.format = GL_R32F;
+        config.clearValue = glm::vec4(1.0f);   // exp(c (1 - 1)): depth 1, nothing occludes
+        return {{}, p.exponent, 0.0f, 0.0f, 0.0f};
+    }
+};
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
     {.id = "esm",
      .displayName = "Exponential shadow maps",
      .category = "filtered",
@@ -39,22 +46,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "with one channel. Cheaper than VSM and free of its overlap light bleeding, but shadows leak light "
                    "where receiver and occluder nearly touch (contact shadows fade in; raise c) and the clamp makes "
                    "penumbrae one-sided.",
-     .shadowGlsl = "esm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "footprint|texel-grid|coverage|focus-body"},
+     .shadowGlsl = "esm.glsl"},
     Params::table);
-
-class ExponentialShadowMaps final : public kit::MomentTechnique<Params, shared::esm::EsmUniforms> {
-public:
-    ExponentialShadowMaps() : MomentTechnique("esm_moments.glsl") {}
-
-private:
-    shared::esm::EsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
-        config.format = GL_R32F;
-        config.clearValue = glm::vec4(1.0f);   // exp(c (1 - 1)): depth 1, nothing occludes
-        return {{}, p.exponent, 0.0f, 0.0f, 0.0f};
-    }
-};
 
 } // namespace
 

@@ -36,26 +36,7 @@ constexpr ParamDesc kNegativeExponent{"negative_exponent", "negative exponent c-
     X(float, light_bleeding, kit::lightBleedingParam())
 SHADOWLAB_PARAMS(Params, EVSM_PARAMS);
 
-
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "evsm",
-     .displayName = "Exponential variance shadow maps",
-     .category = "filtered",
-     .explanation = "Warps the light depth through a positive and a negative exponential and keeps VSM's mean and "
-                   "mean square of each, then takes the tighter of the two Chebyshev bounds. The exponential stretches "
-                   "the depth differences behind an occluder, so the light that bleeds through overlapping occluders "
-                   "in VSM mostly disappears while the map still blurs and mipmaps like a texture. Costs four 32-bit "
-                   "channels per texel; exponents are capped by float range.",
-     .shadowGlsl = "evsm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "footprint|texel-grid|coverage|focus-body"},
-    Params::table);
-
-class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<Params, shared::evsm::EvsmUniforms> {
-public:
-    ExponentialVarianceShadowMaps() : MomentTechnique("evsm_moments.glsl") {}
-
-private:
+class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<Params, shared::evsm::EvsmUniforms, "evsm_moments.glsl"> {
     shared::evsm::EvsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
         config.format = GL_RGBA32F;
         // Depth 1 (x = 1): exp(c+), -exp(-c-), and their squares.
@@ -65,6 +46,18 @@ private:
         return {{}, {p.positive_exponent, p.negative_exponent, 0.0f, 0.0f}, p.min_variance, p.light_bleeding, 0.0f, 0.0f};
     }
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
+    {.id = "evsm",
+     .displayName = "Exponential variance shadow maps",
+     .category = "filtered",
+     .explanation = "Warps the light depth through a positive and a negative exponential and keeps VSM's mean and "
+                   "mean square of each, then takes the tighter of the two Chebyshev bounds. The exponential stretches "
+                   "the depth differences behind an occluder, so the light that bleeds through overlapping occluders "
+                   "in VSM mostly disappears while the map still blurs and mipmaps like a texture. Costs four 32-bit "
+                   "channels per texel; exponents are capped by float range.",
+     .shadowGlsl = "evsm.glsl"},
+    Params::table);
 
 } // namespace
 

@@ -75,23 +75,6 @@ using Id = Params::Id;
 
 enum class BiasMethod : int { Offset = 0, Midpoint = 1, SecondDepth = 2, InvertedBackFaces = 3 };
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "lispsm",
-     .displayName = "Light space perspective shadow maps",
-     .category = "hard",
-     .explanation = "Shadow mapping focused on the part of the scene that can shadow the view (the focus body), "
-                    "then warped by a perspective transform along the view direction as seen from the light, so "
-                    "texels crowd towards the viewer: sharp shadows near the camera from the same map size, at "
-                    "the cost of distant ones (seed 002 ch. 8-9). The warp distance n is n_opt times n_factor "
-                    "(try 0.2 and 5); looking along the light the warp fades to a plain focused map (duelling "
-                    "frusta). Back faces are stored by default (cull = front), the seed's best bias. snap only "
-                    "affects that uniform fallback (spot and point lights, near-parallel view and light). Debug "
-                    "views: footprint (the warp's texels per pixel, near against far), texel-grid and coverage "
-                    "(the warped map and its volume), focus-body (B, seed 002 eq. 4.2), and the depth image.",
-     .shadowGlsl = "lispsm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
-    Params::table);
-
 class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         if (!map_.create(host(), error) || !secondLayer_.create(host(), error)) return false;
@@ -213,6 +196,23 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
     kit::UniformBlock<shared::lispsm::LispsmUniforms> uniforms_;
     bool twoLayers_ = false;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "lispsm",
+     .displayName = "Light space perspective shadow maps",
+     .category = "hard",
+     .explanation = "Shadow mapping focused on the part of the scene that can shadow the view (the focus body), "
+                    "then warped by a perspective transform along the view direction as seen from the light, so "
+                    "texels crowd towards the viewer: sharp shadows near the camera from the same map size, at "
+                    "the cost of distant ones (seed 002 ch. 8-9). The warp distance n is n_opt times n_factor "
+                    "(try 0.2 and 5); looking along the light the warp fades to a plain focused map (duelling "
+                    "frusta). Back faces are stored by default (cull = front), the seed's best bias. snap only "
+                    "affects that uniform fallback (spot and point lights, near-parallel view and light). Debug "
+                    "views: footprint (the warp's texels per pixel, near against far), texel-grid and coverage "
+                    "(the warped map and its volume), focus-body (B, seed 002 eq. 4.2), and the depth image.",
+     .shadowGlsl = "lispsm.glsl",
+     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
+    Params::table);
 
 } // namespace
 

@@ -42,26 +42,7 @@ constexpr ParamDesc kDepthBias{"depth_bias", "depth bias", ParamType::Float, 0, 
     X(float, light_bleeding, kit::lightBleedingParam())
 SHADOWLAB_PARAMS(Params, MSM_PARAMS);
 
-
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "msm",
-     .displayName = "Moment shadow mapping",
-     .category = "filtered",
-     .explanation = "Stores four powers of the light depth, filters them like a texture, and reconstructs from the "
-                   "filtered moments the depth distribution that is most plausible for the shaded point (Hamburger "
-                   "4MSM): its share in front of the point is the shadow. Four moments describe overlapping occluders "
-                   "far better than VSM's two, so light bleeding mostly disappears, and an optimised quantisation "
-                   "lets all four fit in 64 bits per texel. Compare with vsm on the 'overlap' scene.",
-     .shadowGlsl = "msm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "footprint|texel-grid|coverage|focus-body"},
-    Params::table);
-
-class MomentShadowMapping final : public kit::MomentTechnique<Params, shared::msm::MsmUniforms> {
-public:
-    MomentShadowMapping() : MomentTechnique("msm_moments.glsl") {}
-
-private:
+class MomentShadowMapping final : public kit::MomentTechnique<Params, shared::msm::MsmUniforms, "msm_moments.glsl"> {
     shared::msm::MsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
         const bool quantized = p.storage == 1;
         config.format = quantized ? GL_RGBA16 : GL_RGBA32F;
@@ -71,6 +52,18 @@ private:
         return {{}, quantized ? 1 : 0, p.moment_bias, p.depth_bias, p.light_bleeding};
     }
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
+    {.id = "msm",
+     .displayName = "Moment shadow mapping",
+     .category = "filtered",
+     .explanation = "Stores four powers of the light depth, filters them like a texture, and reconstructs from the "
+                   "filtered moments the depth distribution that is most plausible for the shaded point (Hamburger "
+                   "4MSM): its share in front of the point is the shadow. Four moments describe overlapping occluders "
+                   "far better than VSM's two, so light bleeding mostly disappears, and an optimised quantisation "
+                   "lets all four fit in 64 bits per texel. Compare with vsm on the 'overlap' scene.",
+     .shadowGlsl = "msm.glsl"},
+    Params::table);
 
 } // namespace
 

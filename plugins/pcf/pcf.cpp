@@ -72,21 +72,6 @@ constexpr ParamDesc kClassify{"classify", "decide lit and shadowed by", ParamTyp
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, PCF_PARAMS);
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "pcf",
-     .displayName = "Percentage-closer filtering",
-     .category = "filtered",
-     .explanation = "Shadow mapping whose depth test is repeated over an n x n box of neighbouring texels and "
-                    "averaged, so edges become ramps instead of staircases. The kernel size sets the number of "
-                    "tests (cost grows with n^2), the offset scale their spacing; bilinear taps remove the "
-                    "banding. Sampling by gather or folded reads the same texels four at a time (Castano 2013) for the "
-                    "same result (with the cone bias, a little lighter at contacts) at about a quarter of the lookups. The ramp has the same width everywhere: this is anti-aliasing, not a physically soft "
-                    "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause. Classify = depth-range skips the kernel where min/max depth mips prove every tap lit or every tap shadowed, with the same image.",
-     .shadowGlsl = "pcf.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "kernel|footprint|texel-grid|coverage|focus-body"},
-    Params::table);
-
 class PercentageCloserFiltering final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         uniforms_.create(host(), "pcf uniforms");
@@ -124,6 +109,19 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
     kit::FilteredDepthMaps maps_;
     kit::UniformBlock<shared::pcf::PcfUniforms> uniforms_;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFilteredMap,
+    {.id = "pcf",
+     .displayName = "Percentage-closer filtering",
+     .category = "filtered",
+     .explanation = "Shadow mapping whose depth test is repeated over an n x n box of neighbouring texels and "
+                    "averaged, so edges become ramps instead of staircases. The kernel size sets the number of "
+                    "tests (cost grows with n^2), the offset scale their spacing; bilinear taps remove the "
+                    "banding. Sampling by gather or folded reads the same texels four at a time (Castano 2013) for the "
+                    "same result (with the cone bias, a little lighter at contacts) at about a quarter of the lookups. The ramp has the same width everywhere: this is anti-aliasing, not a physically soft "
+                    "shadow. Turn the cone bias off with a large kernel to see the acne that wide filters cause. Classify = depth-range skips the kernel where min/max depth mips prove every tap lit or every tap shadowed, with the same image.",
+     .shadowGlsl = "pcf.glsl"},
+    Params::table);
 
 } // namespace
 

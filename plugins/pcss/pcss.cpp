@@ -73,19 +73,6 @@ constexpr ParamDesc kSearchBound{"search_bound", "blocker search bound", ParamTy
     X(int, search_bound, kSearchBound)         \
     SHADOWLAB_PCF_COMMON_PARAMS(X)
 SHADOWLAB_PARAMS(Params, PCSS_PARAMS);
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "pcss",
-     .displayName = "Percentage-closer soft shadows",
-     .category = "soft",
-     .explanation = "Soft shadows from one shadow map: each pixel first searches the map for occluders between it and the "
-                   "light, averages their depth, estimates the penumbra width from the light's size by similar triangles, "
-                   "and then filters with a kernel of that width (PCF). Shadows are hard where a caster touches the "
-                   "receiver and soften with distance (contact hardening). The light size comes from the scene "
-                   "(--light-size). Plausible rather than correct: overlapping blockers at different depths are averaged.",
-     .shadowGlsl = "pcss.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "kernel|footprint|texel-grid|coverage|focus-body"},
-    Params::table);
 
 class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
@@ -210,6 +197,18 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     kit::UniformBlock<shared::pcss::PcssUniforms> uniforms_;
     kit::UniformBlock<shared::pcss::PcssCubeMinDepthUniforms> cubeMinDepthUniforms_;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFilteredMap,
+    {.id = "pcss",
+     .displayName = "Percentage-closer soft shadows",
+     .category = "soft",
+     .explanation = "Soft shadows from one shadow map: each pixel first searches the map for occluders between it and the "
+                   "light, averages their depth, estimates the penumbra width from the light's size by similar triangles, "
+                   "and then filters with a kernel of that width (PCF). Shadows are hard where a caster touches the "
+                   "receiver and soften with distance (contact hardening). The light size comes from the scene "
+                   "(--light-size). Plausible rather than correct: overlapping blockers at different depths are averaged.",
+     .shadowGlsl = "pcss.glsl"},
+    Params::table);
 
 } // namespace
 

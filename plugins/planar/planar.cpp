@@ -43,21 +43,6 @@ constexpr ParamDesc kStencil{"stencil", "stencil to receiver", ParamType::Bool, 
     X(bool, stencil, kStencil)
 SHADOWLAB_PARAMS(Params, PLANAR_PARAMS);
 
-
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "planar",
-     .displayName = "Planar projected shadows",
-     .category = "hard",
-     .explanation = "Flattens every caster onto each receiving plane along the rays from the light (a projection "
-                    "matrix, seed 000 eq. 3.3) and draws the flattened geometry as the shadow. Exact and cheap for a "
-                    "ground plane, but only planes receive shadows, nothing shadows itself, and the special cases "
-                    "need care: stencil keeps shadows on the receiver, clipping removes anti-shadows, a depth offset "
-                    "avoids z-fighting.",
-     .shadowGlsl = "planar.glsl",
-     .flags = kTechniqueNeedsCameraPrepass,
-     .debugViews = ""},
-    Params::table);
-
 class PlanarShadows final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         framebuffer_ = kit::makeFramebuffer(host(), "planar mask");
@@ -134,6 +119,20 @@ class PlanarShadows final : public kit::TechniqueBase {
     glm::ivec2 viewport_{0};
     kit::UniformBlock<PlanarUniforms> uniforms_;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "planar",
+     .displayName = "Planar projected shadows",
+     .category = "hard",
+     .explanation = "Flattens every caster onto each receiving plane along the rays from the light (a projection "
+                    "matrix, seed 000 eq. 3.3) and draws the flattened geometry as the shadow. Exact and cheap for a "
+                    "ground plane, but only planes receive shadows, nothing shadows itself, and the special cases "
+                    "need care: stencil keeps shadows on the receiver, clipping removes anti-shadows, a depth offset "
+                    "avoids z-fighting.",
+     .shadowGlsl = "planar.glsl",
+     .flags = kTechniqueNeedsCameraPrepass,
+     .debugViews = kit::views::kNone},
+    Params::table);
 
 } // namespace
 

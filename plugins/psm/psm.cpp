@@ -32,23 +32,6 @@ constexpr ParamDesc kMoveBack{"move_back", "virtual move-back", ParamType::Bool,
     X(bool, move_back, kMoveBack)
 SHADOWLAB_PARAMS(Params, PSM_PARAMS);
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "psm",
-     .displayName = "Perspective shadow maps",
-     .category = "hard",
-     .explanation = "The shadow map is rendered after the camera's own perspective, where the view frustum is a "
-                    "cube: near shadows get most texels (seed 002 ch. 7). Its weak points are the seed's: the "
-                    "near plane decides the distribution (half the depth range goes to the first near-distance "
-                    "in front of the camera, eq. 7.1-7.2), casters behind the viewer need a virtual move-back "
-                    "that weakens the warp and jumps as the view turns, and a light from in front of the viewer "
-                    "cannot be held in one map (it falls back to a plain focused map). Compare with lispsm, "
-                    "which keeps light rays parallel and tunes the warp with n_opt; turn move_back off with the light "
-                    "behind the camera to see casters lost.",
-     .shadowGlsl = "psm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "footprint|texel-grid|coverage|focus-body"},
-    Params::table);
-
 class PerspectiveShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override { return map_.create(host(), error); }
 
@@ -103,6 +86,21 @@ class PerspectiveShadowMaps final : public kit::TechniqueBase {
 
     kit::DepthMap map_;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
+    {.id = "psm",
+     .displayName = "Perspective shadow maps",
+     .category = "hard",
+     .explanation = "The shadow map is rendered after the camera's own perspective, where the view frustum is a "
+                    "cube: near shadows get most texels (seed 002 ch. 7). Its weak points are the seed's: the "
+                    "near plane decides the distribution (half the depth range goes to the first near-distance "
+                    "in front of the camera, eq. 7.1-7.2), casters behind the viewer need a virtual move-back "
+                    "that weakens the warp and jumps as the view turns, and a light from in front of the viewer "
+                    "cannot be held in one map (it falls back to a plain focused map). Compare with lispsm, "
+                    "which keeps light rays parallel and tunes the warp with n_opt; turn move_back off with the light "
+                    "behind the camera to see casters lost.",
+     .shadowGlsl = "psm.glsl"},
+    Params::table);
 
 } // namespace
 

@@ -62,23 +62,6 @@ SHADOWLAB_PARAMS(Params, RAYTRACED_PARAMS);
 // The camera pre-pass only feeds the compute pass.
 constexpr FlagCondition kFlagConditions[] = {{kTechniqueNeedsCameraPrepass, "pass", "compute"}};
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "raytraced",
-     .displayName = "Ray-traced shadows (GPU)",
-     .category = "soft",
-     .explanation = "Casts shadow rays from every visible point towards the light through a BVH of the scene's triangles, "
-                    "traversed in a compute shader. One ray per pixel gives an exact hard shadow (no acne, no aliasing, no "
-                    "bias to tune); N rays over the light's area give a physically right soft shadow with noise that "
-                    "falls as N grows; translucent casters colour the light they pass. Cost scales with pixels and rays, "
-                    "not with a map's resolution. Debug view: 'ray cost' (counters on) shows BVH work per pixel.",
-     .shadowGlsl = "raytraced.glsl",
-     .flags = kTechniqueNeedsCameraPrepass,
-     .translucencyModel = TranslucencyModel::Physical,
-     .flagConditions = kFlagConditions,
-     .flagConditionCount = 1,
-     .debugViews = ""},   // no map for the host's views; its own image is 'ray cost' 
-    Params::table);
-
 // Counter read-back ring: slot i is read only once its end timestamp is available (the GPU has
 // passed it), so nothing waits; results are one to three frames old.
 constexpr int kRing = 3;
@@ -241,6 +224,21 @@ class RayTraced final : public kit::TechniqueBase {
     int next_ = 0;
     uint64_t serial_ = 0;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "raytraced",
+     .displayName = "Ray-traced shadows (GPU)",
+     .category = "soft",
+     .explanation = "Casts shadow rays from every visible point towards the light through a BVH of the scene's triangles, "
+                    "traversed in a compute shader. One ray per pixel gives an exact hard shadow (no acne, no aliasing, no "
+                    "bias to tune); N rays over the light's area give a physically right soft shadow with noise that "
+                    "falls as N grows; translucent casters colour the light they pass. Cost scales with pixels and rays, "
+                    "not with a map's resolution. Debug view: 'ray cost' (counters on) shows BVH work per pixel.",
+     .shadowGlsl = "raytraced.glsl",
+     .flags = kTechniqueNeedsCameraPrepass,
+     .translucencyModel = TranslucencyModel::Physical,
+     .debugViews = kit::views::kNone},   // no map for the host's views; its own image is 'ray cost'
+    Params::table, kFlagConditions);
 
 } // namespace
 

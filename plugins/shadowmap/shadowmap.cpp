@@ -25,20 +25,6 @@ using namespace shadowlab;
     SHADOWLAB_FIT_PARAMS(X)
 SHADOWLAB_PARAMS(Params, SHADOWMAP_PARAMS);
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "shadowmap",
-     .displayName = "Shadow mapping",
-     .category = "hard",
-     .explanation = "Renders the scene's depth from the light, then compares each visible point's depth in light "
-                    "space with the stored one: farther means shadowed. Works for any geometry and receiver, costs "
-                    "one extra pass, and shows the classic artefacts: acne (self-shadowing from depth quantisation; "
-                    "cured by bias), peter panning (too much bias) and blocky edges (limited resolution). Try a low "
-                    "light and zero bias.",
-     .shadowGlsl = "shadowmap.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "footprint|texel-grid|coverage|focus-body"},
-    Params::table);
-
 class ShadowMapping final : public kit::TechniqueBase {
     bool setup(std::string& error) override { return map_.create(host(), error) && cube_.create(host(), error); }
 
@@ -57,6 +43,18 @@ class ShadowMapping final : public kit::TechniqueBase {
     kit::DepthMap map_;
     kit::CubeDepthMap cube_;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
+    {.id = "shadowmap",
+     .displayName = "Shadow mapping",
+     .category = "hard",
+     .explanation = "Renders the scene's depth from the light, then compares each visible point's depth in light "
+                    "space with the stored one: farther means shadowed. Works for any geometry and receiver, costs "
+                    "one extra pass, and shows the classic artefacts: acne (self-shadowing from depth quantisation; "
+                    "cured by bias), peter panning (too much bias) and blocky edges (limited resolution). Try a low "
+                    "light and zero bias.",
+     .shadowGlsl = "shadowmap.glsl"},
+    Params::table);
 
 } // namespace
 

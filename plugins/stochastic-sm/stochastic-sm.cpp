@@ -64,25 +64,6 @@ constexpr ParamDesc kMsaa{"msaa", "MSAA samples", ParamType::Enum, 0, 3, 0, "",
     SHADOWLAB_FIT_PARAMS(X)
 SHADOWLAB_PARAMS(Params, STOCHASTIC_SM_PARAMS);
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "stochastic-sm",
-     .displayName = "Stochastic shadow maps",
-     .category = "coloured",
-     .explanation = "One depth map from the light in which each translucent fragment is kept with probability "
-                    "alpha and thrown away otherwise (a random number per texel, surface and frame). Filtering "
-                    "the map with PCF then estimates how much light gets through every layer: 1 - alpha per "
-                    "translucent surface, right on translucent surfaces too, but without colour (a red glass "
-                    "casts a grey shadow: judged by the coverage model). The price is noise, which needs wide "
-                    "kernels that blur every edge; it changes every frame. msaa > 1 flips the coin per sample of a "
-                    "multisampled map instead (as stochastic transparency does), so the same kernel averages "
-                    "several flips per texel: less noise at the same blur, for more memory and fetches. Try "
-                    "kernel 1 to see the coin flips, then msaa 4 at the same kernel, and noise = per-texel under "
-                    "overlapping glass to see what shared random numbers do.",
-     .shadowGlsl = "stochastic-sm.glsl",
-     .translucencyModel = TranslucencyModel::Coverage,
-     .debugViews = "footprint|texel-grid|coverage"},
-    Params::table);
-
 class StochasticShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         if (!opaqueProgram_.build(host(), {.vertexFile = "depth_only.vert"}, error)) return false;
@@ -161,6 +142,25 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
     kit::StochasticLightPass lightPass_;
     kit::UniformBlock<shared::stochastic_sm::StochasticSmUniforms> uniforms_;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(
+    {.id = "stochastic-sm",
+     .displayName = "Stochastic shadow maps",
+     .category = "coloured",
+     .explanation = "One depth map from the light in which each translucent fragment is kept with probability "
+                    "alpha and thrown away otherwise (a random number per texel, surface and frame). Filtering "
+                    "the map with PCF then estimates how much light gets through every layer: 1 - alpha per "
+                    "translucent surface, right on translucent surfaces too, but without colour (a red glass "
+                    "casts a grey shadow: judged by the coverage model). The price is noise, which needs wide "
+                    "kernels that blur every edge; it changes every frame. msaa > 1 flips the coin per sample of a "
+                    "multisampled map instead (as stochastic transparency does), so the same kernel averages "
+                    "several flips per texel: less noise at the same blur, for more memory and fetches. Try "
+                    "kernel 1 to see the coin flips, then msaa 4 at the same kernel, and noise = per-texel under "
+                    "overlapping glass to see what shared random numbers do.",
+     .shadowGlsl = "stochastic-sm.glsl",
+     .translucencyModel = TranslucencyModel::Coverage,
+     .debugViews = kit::views::kMap},
+    Params::table);
 
 } // namespace
 

@@ -27,6 +27,14 @@ namespace {
 
 using namespace shadowlab;
 
+class TranslucentShadows final : public kit::TechniqueBase {
+    bool setup(std::string& error) override { return maps_.setup(host(), "translucent shadows", error); }
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override { maps_.renderAllCasters(frame, params); }
+    void bindMainPass(const FrameContext&, const ParamValues& params) override { maps_.bind(params); }
+
+    kit::TranslucentMaps maps_;
+};
+
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "translucent-shadows",
      .displayName = "Translucent shadows (StarCraft II)",
@@ -42,16 +50,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "teapot-glass's green pot.",
      .shadowGlsl = "translucent-shadows.glsl",
      .translucencyModel = TranslucencyModel::ModifiedTranslucent,
-     .debugViews = "footprint|texel-grid|coverage"},
+     .debugViews = kit::views::kMap},
     kit::kTranslucentMapParams);
-
-class TranslucentShadows final : public kit::TechniqueBase {
-    bool setup(std::string& error) override { return maps_.setup(host(), "translucent shadows", error); }
-    void renderShadows(const FrameContext& frame, const ParamValues& params) override { maps_.renderAllCasters(frame, params); }
-    void bindMainPass(const FrameContext&, const ParamValues& params) override { maps_.bind(params); }
-
-    kit::TranslucentMaps maps_;
-};
 
 } // namespace
 

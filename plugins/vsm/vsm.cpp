@@ -31,8 +31,16 @@ constexpr ParamDesc kDerivativeMoment{"derivative_moment", "derivative-based M2"
     X(bool, derivative_moment, kDerivativeMoment)
 SHADOWLAB_PARAMS(Params, VSM_PARAMS);
 
+class VarianceShadowMaps final : public kit::MomentTechnique<Params, shared::vsm::VsmUniforms, "vsm_moments.glsl"> {
+    shared::vsm::VsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
+        config.format = GL_RG32F;   // 32 bits per moment: M2 - M1^2 cancels badly in 16 bits
+        config.clearValue = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);   // d = 1: M1 = 1, M2 = 1
+        config.momentsNeedDerivatives = p.derivative_moment;   // eq. 3.16 takes dFdx, dFdy
+        return {{}, p.derivative_moment ? 1 : 0, p.min_variance, p.light_bleeding, 0.0f};
+    }
+};
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
     {.id = "vsm",
      .displayName = "Variance shadow maps",
      .category = "filtered",
@@ -41,23 +49,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "depths behind it as its visibility (seed 000 eq. 3.13-3.15). Smooth, antialiased edges for one "
                    "lookup and a cheap separable blur, but where occluders overlap at different depths the bound is "
                    "loose and light bleeds through (try the 'overlap' scene, then raise the light-bleeding reduction).",
-     .shadowGlsl = "vsm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .debugViews = "footprint|texel-grid|coverage|focus-body"},
+     .shadowGlsl = "vsm.glsl"},
     Params::table);
-
-class VarianceShadowMaps final : public kit::MomentTechnique<Params, shared::vsm::VsmUniforms> {
-public:
-    VarianceShadowMaps() : MomentTechnique("vsm_moments.glsl") {}
-
-private:
-    shared::vsm::VsmUniforms configure(const Params& p, kit::MomentMapConfig& config) const override {
-        config.format = GL_RG32F;   // 32 bits per moment: M2 - M1^2 cancels badly in 16 bits
-        config.clearValue = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);   // d = 1: M1 = 1, M2 = 1
-        config.momentsNeedDerivatives = p.derivative_moment;   // eq. 3.16 takes dFdx, dFdy
-        return {{}, p.derivative_moment ? 1 : 0, p.min_variance, p.light_bleeding, 0.0f};
-    }
-};
 
 } // namespace
 

@@ -13,12 +13,6 @@ using namespace shadowlab;
     X(float, darkness, {"darkness", "darkness", ParamType::Float, 0, 1, 1, "", "How much of the light a shadow removes.", nullptr})
 SHADOWLAB_PARAMS(Params, EXAMPLE_PARAMS);   // Params::table, Params::Id::darkness, Params::read(values).darkness
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
-    {.id = "example", .displayName = "Example", .category = "filtered",
-     .explanation = "A shadow map filtered over 3 x 3 taps.", .shadowGlsl = "example.glsl",
-     .debugViews = "footprint|texel-grid|coverage"},
-    Params::table);
-
 class Example final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         uniforms_.create(host(), "example uniforms");
@@ -34,6 +28,11 @@ class Example final : public kit::TechniqueBase {
     kit::DepthMap map_;
     kit::UniformBlock<shared::example::ExampleUniforms> uniforms_;
 };
+
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueMap,   // a map of the opaque casters
+    {.id = "example", .displayName = "Example", .category = "filtered",
+     .explanation = "A shadow map filtered over 3 x 3 taps.", .shadowGlsl = "example.glsl"},
+    Params::table);
 } // namespace
 
 SHADOWLAB_PLUGIN(Example, kDescriptor)

@@ -316,15 +316,19 @@ private:
     MomentLightSpace space_{};
 };
 
-// A technique built on one filtered moment map, its parameters `Params` (a SHADOWLAB_PARAMS struct
-// whose list starts with SHADOWLAB_MOMENT_MAP_PARAMS) and its own block `Block` (binding 2, read by
-// its moment file and its main-pass GLSL): setup, the frame's passes and bindMainPass are done here;
-// the plugin states only what is its own in configure().
-template <class Params, class Block>
-class MomentTechnique : public TechniqueBase {
-public:
-    explicit MomentTechnique(const char* momentFile) : momentFile_(momentFile) {}
+// A file name as a template argument (MomentTechnique<Params, Block, "vsm_moments.glsl">).
+template <size_t N>
+struct FileName {
+    constexpr FileName(const char (&text)[N]) { std::copy_n(text, N, name); }
+    char name[N];
+};
 
+// A technique built on one filtered moment map, its parameters `Params` (a SHADOWLAB_PARAMS struct
+// whose list starts with SHADOWLAB_MOMENT_MAP_PARAMS), its own block `Block` (binding 2, read by
+// its moment file and its main-pass GLSL) and its moment file: setup, the frame's passes and
+// bindMainPass are done here; the plugin states only what is its own in configure().
+template <class Params, class Block, FileName momentFile>
+class MomentTechnique : public TechniqueBase {
 protected:
     // The map's format and empty texel (clearValue, = momentsFromDepth(1)) and whether its moments
     // need derivatives, set in `config` (the shared parameters already read into it); returns the
@@ -333,7 +337,7 @@ protected:
 
     bool setup(std::string& error) override {
         uniforms_.create(host(), "technique uniforms");
-        return map_.create(host(), momentFile_, error) && cube_.create(host(), momentFile_, error);
+        return map_.create(host(), momentFile.name, error) && cube_.create(host(), momentFile.name, error);
     }
     // Point lights: the cube moment map (kit/cube_moment_map.h), the 2D map otherwise.
     void renderShadows(const FrameContext& frame, const ParamValues& params) final {
@@ -351,7 +355,6 @@ protected:
     }
 
 private:
-    const char* momentFile_;
     MomentMap map_;
     CubeMomentMap cube_;
     UniformBlock<Block> uniforms_;

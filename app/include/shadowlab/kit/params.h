@@ -23,6 +23,7 @@
 #include <string_view>
 #include <type_traits>
 
+#include <shadowlab/kit/descriptor.h>
 #include <shadowlab/technique.h>
 
 namespace shadowlab::kit {
@@ -33,14 +34,6 @@ consteval uint32_t paramIndex(const ParamDesc (&params)[N], std::string_view id)
     for (size_t i = 0; i < N; ++i)
         if (std::string_view(params[i].id) == id) return uint32_t(i);
     throw "no parameter with this id";   // not a constant expression: a compile error
-}
-
-// The descriptor with its parameter table filled in.
-template <size_t N>
-constexpr TechniqueDesc describe(TechniqueDesc desc, const ParamDesc (&params)[N]) {
-    desc.params = params;
-    desc.paramCount = uint32_t(N);
-    return desc;
 }
 
 // A parameter's value as the type its list declares.
