@@ -4,7 +4,7 @@
 #include "shadowlab/kit/shared.h"
 
 SHADOWLAB_SHARED_BEGIN(shadow_volumes)
-SHADOWLAB_TEXTURE_UNIT(kVolumeMaskUnit, 4)     // R8: 1 lit, 0 inside a volume (screen space)
+SHADOWLAB_TEXTURE_UNIT(kVolumeMaskUnit, 4)     // the volume count: the stencil of a D24S8 texture (screen space)
 // Uniform locations and storage-buffer bindings are integer constants like a unit.
 // The world distance the volumes start beyond each caster.
 SHADOWLAB_TEXTURE_UNIT(kPushLocation, 16)

@@ -9,6 +9,9 @@ bool VolumeTargets::allocate(IHost& host, glm::ivec2 newSize) {
     size = newSize;
     depthStencil = kit::Texture(host, host.createTexture({.internalFormat = GL_DEPTH24_STENCIL8, .width = size.x,
                                                           .height = size.y, .label = "volume depth and stencil"}));
+    // Sampled by shadowTerm() as the stencil count (usampler2D), never as depth; the parameter
+    // changes sampling only, not its use as the framebuffer's attachment.
+    glTextureParameteri(depthStencil, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
     mask = kit::Texture(host, host.createTexture({.internalFormat = GL_R8, .width = size.x, .height = size.y,
                                                   .label = "volume mask"}));
     overdraw = kit::Texture(host, host.createTexture({.internalFormat = GL_R8, .width = size.x, .height = size.y,

@@ -781,6 +781,7 @@ void Renderer::resetPipelineState() {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);   // a pass counting into depth or stencil only may leave it off
     glDisable(GL_DEPTH_CLAMP);
     glDisable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
