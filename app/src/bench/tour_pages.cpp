@@ -160,9 +160,13 @@ const char* const kColumns[][2] = {
     {"technique", "the technique measured (A, then B when the step compares two)"},
     {"reference", "what it is compared with: the hard (one ray to the light's centre) or soft (rays over the light's "
                   "area) ray-traced reference; hard for hard techniques, soft for filtered and soft ones"},
-    {"MAE", "mean absolute error of the shadow term against the reference, over the compared (lit-side) pixels"},
-    {"false shadow", "compared pixels the reference lights (>= 0.5) that the technique darkens (< 0.5): acne, over-darkening"},
-    {"false light", "compared pixels the reference shadows that the technique lights: leaks, peter panning, light bleeding"},
+    {"MAE", "mean absolute error of the shadow term against the reference, over the compared (lit-side) pixels: every "
+            "shade of difference counts, as on the error heatmap (magenta: darker than the reference, green: lighter)"},
+    {"false shadow", "the share of compared pixels the reference lights (>= 0.5) that the technique darkens below 0.5: "
+                     "acne, over-darkening. A surface darkened by less than half (a wide filter's grey) raises the MAE and "
+                     "is magenta on the heatmap, but is not counted here"},
+    {"false light", "the share of compared pixels the reference shadows (< 0.5) that the technique lights above 0.5: leaks, "
+                    "peter panning, light bleeding; a shadow only lightened is, likewise, in the MAE alone"},
     {"translucent MAE", "the same on the translucent surfaces themselves (peeled from the camera, seed 001 sec. 5.3.3); "
                         "- where the step shows none facing the light"},
     {"frame ms", "median GPU time of a whole frame over the short benchmark (" "warm-up, then timed frames)"},
