@@ -72,7 +72,7 @@ expect 2 "--screenshot x.png: needs --frames" -- --backend osmesa --screenshot x
 expect 2 "--compare-layout 'diagonal'" -- --backend osmesa --frames 2 --compare pcf --compare-layout diagonal
 expect 2 "--compare 'nosuch'" -- --backend osmesa --frames 2 --compare nosuch
 expect 2 "--measure-reference: no display" -- --backend osmesa --measure-reference soft
-expect 2 "--measure-reference 'fuzzy': expected hard or soft" -- --backend osmesa --frames 2 --measure --measure-reference fuzzy
+expect 2 "--measure-reference 'fuzzy': expected auto, hard or soft" -- --backend osmesa --frames 2 --measure --measure-reference fuzzy
 expect 2 "--measure-samples: Value 1000 not in range 4 to 256" -- --backend osmesa --frames 2 --measure --measure-samples 1000
 expect 2 "--compare 'pcss,'" -- render --backend osmesa --compare pcss, --out x.png
 expect 2 "no such technique" -- render --backend osmesa --compare pcss,nosuch --out x.png

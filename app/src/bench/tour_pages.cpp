@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 
+#include "bench/accuracy_columns.h"
 #include "bench/path_run.h"
 #include "ui/session.h"
 #include "ui/tour_player.h"
@@ -67,8 +68,8 @@ bool measureTechnique(App& app, const std::string& id, const TourPageOptions& op
     out.gpuMiB = double(m.gpuBytes) / (1024.0 * 1024.0);
     if (id == "reference") return true;   // the ground truth itself: nothing to compare
     ReferenceOptions reference;
-    const bool hard = info->category == "hard" || info->category == "baseline";
-    reference.mode = hard ? ReferenceOptions::Mode::Hard : ReferenceOptions::Mode::Soft;
+    reference.mode = ownReferenceMode(*info);
+    const bool hard = reference.mode == ReferenceOptions::Mode::Hard;
     reference.samplesPerPixel = options.referenceSamples;
     reference.adaptive = true;
     reference.model = TranslucencyModel::Physical;
@@ -129,8 +130,7 @@ bool measurePathTemporal(App& app, const std::string& id, const CameraPath& path
     first.frames = std::min(path.frames, options.pathMeasureFrames);
     first.endTime = path.frameTime(first.frames - 1);
     PathAccuracyOptions accuracy;
-    const bool hard = info->category == "hard" || info->category == "baseline";
-    accuracy.reference.mode = hard ? ReferenceOptions::Mode::Hard : ReferenceOptions::Mode::Soft;
+    accuracy.reference.mode = ownReferenceMode(*info);
     accuracy.reference.samplesPerPixel = options.referenceSamples;
     accuracy.reference.adaptive = true;
     accuracy.reference.model = TranslucencyModel::Physical;
