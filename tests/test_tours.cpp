@@ -575,7 +575,7 @@ TEST(TourExpect, ABadExpectationIsNamedWithItsFileStepAndKey) {
         {{{"expect", {{"mae", json::array({"< 0.1", 3})}}}}, "expect.mae: '': expected a comparison"},
         {{{"expect", json::object()}}, "steps[1].expect: expected a non-empty object"},
         {{{"expect", "< 0.1"}}, "steps[1].expect: expected a non-empty object"},
-        {{{"expect", {{"mae", "< previous.B"}}}}, "steps[1].expect: compares with previous.B, and the previous step has no 'compare'"},
+        {{{"expect", {{"mae", "< previous.B"}}}}, "steps[1].expect.mae: '< previous.B': compares with previous.B, and the previous step has no 'compare'"},
         {{{"compare", nullptr}, {"layout", nullptr}, {"parameters", {{"shadowmap.depth_format", nullptr}}},
           {"expect", {{"B.mae", "< 0.1"}}}},
          "expect.B.mae: B is the compared technique and this step has no 'compare'"},
@@ -597,11 +597,11 @@ TEST(TourExpect, ABadExpectationIsNamedWithItsFileStepAndKey) {
     Tour parsed;
     std::string error;
     EXPECT_FALSE(parseTour(tour, "t.json", {}, parsed, error));
-    EXPECT_NE(error.find("t.json: steps[0].expect: compares with the previous step, and this is the first"), std::string::npos)
+    EXPECT_NE(error.find("t.json: steps[0].expect.mae: '< previous': compares with the previous step, and this is the first"), std::string::npos)
         << error;
     TourStep step;
     EXPECT_FALSE(parseSessionText(tour["steps"][0].dump(), "s.json", {}, realTechniques(), step, error));
-    EXPECT_NE(error.find("s.json.expect: compares with the previous step, and a session is one step"), std::string::npos) << error;
+    EXPECT_NE(error.find("s.json.expect.mae: '< previous': compares with the previous step, and a session is one step"), std::string::npos) << error;
 }
 
 TEST(TourExpect, ExpectationsAreJudgedOnTheMeasuredFigures) {

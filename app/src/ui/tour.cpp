@@ -356,10 +356,13 @@ bool parseTour(const json& object, const std::string& source, const std::filesys
         const std::string where = source + ": steps[" + std::to_string(i) + "]";
         if (!parseTourStep(steps[i], where, baseDir, step, error)) return false;
         // "previous" names the step before: the first has none, and B of a step without compare is nothing.
-        bool usesB = false;
-        if (usesPreviousStep(step.expect, &usesB) && (i == 0 || (usesB && tour.steps.back().compare.empty()))) {
-            error = where + ".expect: compares with " + (i == 0 ? std::string("the previous step, and this is the first")
-                                                                 : "previous.B, and the previous step has no 'compare'");
+        const TourExpectation* first = firstUseOfPreviousStep(step.expect);
+        const TourExpectation* firstB = firstUseOfPreviousStep(step.expect, true);
+        if ((i == 0 && first) || (i > 0 && firstB && tour.steps.back().compare.empty())) {
+            const TourExpectation& e = i == 0 ? *first : *firstB;
+            error = where + ".expect." + e.key + ": '" + e.text + "': " +
+                    (i == 0 ? "compares with the previous step, and this is the first"
+                            : "compares with previous.B, and the previous step has no 'compare'");
             return false;
         }
         tour.steps.push_back(std::move(step));
@@ -526,8 +529,8 @@ bool parseSessionText(const std::string& text, const std::string& source, const 
     json object;
     if (!parseJsonText(text, source, object, error)) return false;
     if (!parseTourStep(object, source, baseDir, step, error)) return false;
-    if (usesPreviousStep(step.expect)) {
-        error = source + ".expect: compares with the previous step, and a session is one step";
+    if (const TourExpectation* e = firstUseOfPreviousStep(step.expect)) {
+        error = source + ".expect." + e->key + ": '" + e->text + "': compares with the previous step, and a session is one step";
         return false;
     }
     return checkTourStep(step, source, techniques, error);

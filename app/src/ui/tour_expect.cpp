@@ -220,15 +220,10 @@ json tourExpectJson(const std::vector<TourExpectation>& expect) {
     return out;
 }
 
-bool usesPreviousStep(const std::vector<TourExpectation>& expect, bool* usesB) {
-    bool any = false;
-    if (usesB) *usesB = false;
-    for (const TourExpectation& e : expect) {
-        if (!e.previous || e.absolute) continue;
-        any = true;
-        if (usesB && e.operandSide == 1) *usesB = true;
-    }
-    return any;
+const TourExpectation* firstUseOfPreviousStep(const std::vector<TourExpectation>& expect, bool onlyB) {
+    for (const TourExpectation& e : expect)
+        if (e.previous && !e.absolute && (!onlyB || e.operandSide == 1)) return &e;
+    return nullptr;
 }
 
 std::vector<TourExpectResult> evaluateTourExpectations(const std::vector<TourExpectation>& expect,

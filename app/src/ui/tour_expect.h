@@ -46,8 +46,9 @@ const std::vector<TourExpectMetric>& tourExpectMetrics();
 bool parseTourExpect(const nlohmann::json& object, const std::string& where, bool hasCompare, bool hasPath,
                      std::vector<TourExpectation>& out, std::string& error);
 nlohmann::json tourExpectJson(const std::vector<TourExpectation>& expect);
-// Whether any expectation needs the previous step (refused on a tour's first step and in sessions).
-bool usesPreviousStep(const std::vector<TourExpectation>& expect, bool* usesB = nullptr);
+// The first expectation that needs the previous step (onlyB: its B side), or null: refused on a
+// tour's first step, after a step without compare, and in sessions.
+const TourExpectation* firstUseOfPreviousStep(const std::vector<TourExpectation>& expect, bool onlyB = false);
 
 // What was measured on a step: per side (0 A, 1 B), metric name -> value; a side or metric that
 // was not measured (the reference itself, no translucent receiver in view) is absent.
