@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <utility>
 
 #include "util/strings.h"
 
@@ -46,7 +47,7 @@ bool readNumber(const std::string& text, double& value, bool* percent) {
     return rest.empty() || (percent && rest == "%");
 }
 
-// "[previous.][A.|B.][metric]" into the expectation's operand; `keyMetric` when no metric is named.
+// "[previous.][A.|B.][metric]" into the expectation's operand: the key's side and metric where none is named.
 bool readReference(const std::string& text, TourExpectation& e, std::string& problem) {
     std::vector<std::string> tokens;
     for (size_t start = 0;;) {
@@ -62,8 +63,7 @@ bool readReference(const std::string& text, TourExpectation& e, std::string& pro
     if (i < tokens.size() && (tokens[i] == "A" || tokens[i] == "B")) e.operandSide = tokens[i++] == "B" ? 1 : 0;
     e.operandMetric = e.metric;
     if (i < tokens.size()) e.operandMetric = tokens[i++];
-    const bool named = e.previous || tokens.size() > 1 || tokens[0] == "A" || tokens[0] == "B" || findMetric(tokens[0]);
-    if (i != tokens.size() || !named || !findMetric(e.operandMetric)) {
+    if (i != tokens.size() || !findMetric(e.operandMetric)) {
         problem = "expected a number or [factor *] [previous.][A.|B.][metric] (metrics: " + metricNames() + ")";
         return false;
     }
@@ -73,12 +73,17 @@ bool readReference(const std::string& text, TourExpectation& e, std::string& pro
 // One comparison: "OP OPERAND".
 bool readComparison(const std::string& written, TourExpectation& e, std::string& problem) {
     const std::string text = trimmed(written);
-    size_t opLength = 1;
-    if (text.rfind("<=", 0) == 0) e.op = TourExpectation::Op::LessEqual, opLength = 2;
-    else if (text.rfind(">=", 0) == 0) e.op = TourExpectation::Op::GreaterEqual, opLength = 2;
-    else if (text.rfind("<", 0) == 0) e.op = TourExpectation::Op::Less;
-    else if (text.rfind(">", 0) == 0) e.op = TourExpectation::Op::Greater;
-    else {
+    using Op = TourExpectation::Op;
+    static const std::pair<const char*, Op> operators[] = {
+        {"<=", Op::LessEqual}, {">=", Op::GreaterEqual}, {"<", Op::Less}, {">", Op::Greater}};   // longest first
+    size_t opLength = 0;
+    for (const auto& [symbol, op] : operators) {
+        if (text.rfind(symbol, 0) != 0) continue;
+        e.op = op;
+        opLength = std::char_traits<char>::length(symbol);
+        break;
+    }
+    if (opLength == 0) {
         problem = "expected a comparison starting with <, <=, > or >=";
         return false;
     }
