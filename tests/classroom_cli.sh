@@ -72,7 +72,7 @@ expect 2 "--screenshot x.png: needs --frames" -- --backend osmesa --screenshot x
 expect 2 "--compare-layout 'diagonal'" -- --backend osmesa --frames 2 --compare pcf --compare-layout diagonal
 expect 2 "--compare 'nosuch'" -- --backend osmesa --frames 2 --compare nosuch
 expect 2 "--measure-reference: no display" -- --backend osmesa --measure-reference soft
-expect 2 "--measure-reference 'fuzzy': expected hard or soft" -- --backend osmesa --frames 2 --measure --measure-reference fuzzy
+expect 2 "--measure-reference 'fuzzy': expected auto, hard or soft" -- --backend osmesa --frames 2 --measure --measure-reference fuzzy
 expect 2 "--measure-samples: Value 1000 not in range 4 to 256" -- --backend osmesa --frames 2 --measure --measure-samples 1000
 expect 2 "--compare 'pcss,'" -- render --backend osmesa --compare pcss, --out x.png
 expect 2 "no such technique" -- render --backend osmesa --compare pcss,nosuch --out x.png
@@ -109,4 +109,25 @@ hue = (np.abs(difference[..., 0] - difference[..., 2]) > 60).mean()
 assert 0.0005 < hue < 0.5, f'difference view: {hue:.4f} of pixels coloured'
 print('ok: side by side equal for one technique, labels, wipe, difference and reference images')
 PY
+# Issue 29: without --measure-reference the window judges each technique against its own kind of
+# reference, as the tour pages: PCSS against eval's soft figure, shadow mapping against the hard one.
+for pair in pcss:soft shadowmap:hard; do
+  technique=${pair%:*} kind=${pair#*:}
+  "$shadowlab" --backend osmesa --size 320x180 --hide-ui -t "$technique" --scene contact --frames 6 --measure \
+    --measure-samples 64 --screenshot "own-$technique.png" 2>"own-$technique.log" || { cat "own-$technique.log"; fail "window $technique"; }
+  "$shadowlab" eval --backend osmesa -t "$technique" --scene contact --size 320x180 --frames 3 --reference both \
+    --samples 64 --reference-adaptive off --json >"own-$technique.json" 2>/dev/null || fail "eval $technique"
+  "$python" - "own-$technique.log" "own-$technique.json" "$technique" "$kind" <<'PY'
+import json, re, sys
+log, figures, technique, kind = open(sys.argv[1]).read(), json.load(open(sys.argv[2]))['accuracy'], sys.argv[3], sys.argv[4]
+mae = re.findall(rf'accuracy of {technique} [^:]*: MAE ([0-9.]+)', log)
+assert len(mae) == 1, f'one measurement expected:\n{log}'
+other = 'hard' if kind == 'soft' else 'soft'
+expected, wrong = figures[kind]['mae'], figures[other]['mae']
+assert abs(float(mae[0]) - expected) <= 2e-6 + 1e-3 * expected, f'{technique}: window MAE {mae[0]}, eval {kind} {expected}'
+assert abs(expected - wrong) > 1e-5, f'{technique}: hard and soft figures too close to tell ({expected}, {wrong})'
+print(f'ok: {technique} measured against the {kind} reference by default: {mae[0]} ({other}: {wrong:.6f})')
+PY
+done
+
 echo "classroom_cli: all passed"

@@ -7,9 +7,11 @@
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 
 #include <unistd.h>
 
+#include "bench/accuracy_columns.h"
 #include "groundtruth/reference_technique.h"
 #include "plugin/plugin_library.h"
 #include "test_support.h"
@@ -518,4 +520,143 @@ TEST(Tours, LargeScenesShowsLispsmsBestCaseAndTheDuellingFrusta) {
     const double perpendicular = nearThirdM("LiSPSM's best case"), duelling = nearThirdM("Duelling frusta");
     EXPECT_GT(perpendicular, 0.0);
     EXPECT_LT(perpendicular * 2.0, duelling);
+}
+
+// Issue 29: a step's "expect", what its caption claims as data.
+TEST(TourExpect, AStepsExpectationsParseAndRoundTrip) {
+    json tour = validTour();
+    tour["steps"][1]["expect"] = {{"mae", "< 0.01"},
+                                  {"B.false_shadow", json::array({"< 1%", ">= 0.5 * A"})},
+                                  {"frame_ms", "< 2 * previous"},
+                                  {"mae_near", "> 3 * mae_far"}};
+    Tour parsed;
+    std::string error;
+    ASSERT_TRUE(parseTour(tour, "t.json", {}, parsed, error)) << error;
+    ASSERT_TRUE(checkTour(parsed, realTechniques(), error)) << error;
+    const std::vector<TourExpectation>& expect = parsed.steps[1].expect;
+    ASSERT_EQ(expect.size(), 5u);
+    // nlohmann::json keeps keys sorted: B.false_shadow (2), frame_ms, mae, mae_near.
+    EXPECT_EQ(expect[0].key, "B.false_shadow");
+    EXPECT_EQ(expect[0].side, 1);
+    EXPECT_TRUE(expect[0].absolute);
+    EXPECT_DOUBLE_EQ(expect[0].value, 0.01) << "1% is a rate of 0.01";
+    EXPECT_FALSE(expect[1].absolute);
+    EXPECT_EQ(expect[1].op, TourExpectation::Op::GreaterEqual);
+    EXPECT_DOUBLE_EQ(expect[1].factor, 0.5);
+    EXPECT_EQ(expect[1].operandSide, 0);
+    EXPECT_EQ(expect[1].operandMetric, "false_shadow");
+    EXPECT_TRUE(expect[2].previous);
+    EXPECT_EQ(expect[2].operandMetric, "frame_ms");
+    EXPECT_EQ(expect[4].operandMetric, "mae_far");
+    EXPECT_FALSE(expect[4].previous);
+    // Written back (a session, a tool editing tours) it reads back the same.
+    TourStep again;
+    ASSERT_TRUE(parseTourStep(tourStepJson(parsed.steps[1]), "again", {}, again, error)) << error;
+    EXPECT_EQ(tourStepJson(again), tourStepJson(parsed.steps[1]));
+    EXPECT_EQ(tourStepJson(again)["expect"]["B.false_shadow"], json::array({"< 1%", ">= 0.5 * A"}));
+}
+
+TEST(TourExpect, ABadExpectationIsNamedWithItsFileStepAndKey) {
+    const std::pair<json, std::string> cases[] = {
+        {{{"expect", {{"mea", "< 0.1"}}}}, "steps[1].expect.mea: unknown metric 'mea'"},
+        {{{"expect", {{"C.mae", "< 0.1"}}}}, "steps[1].expect.C.mae: unknown metric 'C.mae'"},
+        {{{"expect", {{"mae", "about 0.1"}}}}, "steps[1].expect.mae: 'about 0.1': expected a comparison starting with <"},
+        {{{"expect", {{"mae", "< lots"}}}}, "expect.mae: '< lots': expected a number or [factor *]"},
+        {{{"expect", {{"mae", "< previous.C"}}}}, "expect.mae: '< previous.C': expected a number or"},
+        {{{"expect", {{"mae", "< -2 * B"}}}}, "the factor before '*' must be a positive number"},
+        {{{"expect", {{"mae", "< mae"}}}}, "compares mae with itself"},
+        {{{"expect", {{"mae", "< 5%"}}}}, "'%' is for rates"},
+        {{{"expect", {{"frame_ms", "< 10"}}}}, "expect.frame_ms: '< 10': frame_ms depends on the machine or the image size"},
+        {{{"expect", {{"footprint_near", "< 1"}}}}, "footprint_near depends on the machine or the image size"},
+        {{{"expect", {{"flicker", "< 0.1"}}}}, "expect.flicker: flicker is measured along the step's path"},
+        {{{"expect", {{"mae", "< previous.flicker"}}}}, "flicker is measured along the step's path"},
+        {{{"expect", {{"mae", 0.1}}}}, "expect.mae: expected a comparison (\"< 0.01\") or an array of them"},
+        {{{"expect", {{"mae", json::array()}}}}, "expect.mae: expected a comparison"},
+        {{{"expect", {{"mae", json::array({"< 0.1", 3})}}}}, "expect.mae: '': expected a comparison"},
+        {{{"expect", json::object()}}, "steps[1].expect: expected a non-empty object"},
+        {{{"expect", "< 0.1"}}, "steps[1].expect: expected a non-empty object"},
+        {{{"expect", {{"mae", "< previous.B"}}}}, "steps[1].expect.mae: '< previous.B': compares with previous.B, and the previous step has no 'compare'"},
+        {{{"compare", nullptr}, {"layout", nullptr}, {"parameters", {{"shadowmap.depth_format", nullptr}}},
+          {"expect", {{"B.mae", "< 0.1"}}}},
+         "expect.B.mae: B is the compared technique and this step has no 'compare'"},
+        {{{"compare", nullptr}, {"layout", nullptr}, {"parameters", {{"shadowmap.depth_format", nullptr}}},
+          {"expect", {{"mae", "< B"}}}},
+         "expect.mae: '< B': B is the compared technique"},
+        {{{"compare", "reference"}, {"parameters", {{"shadowmap.depth_format", nullptr}}}, {"expect", {{"B.mae", "< 0.1"}}}},
+         "expect.B.mae: reference is the ground truth itself; it has no mae"},
+    };
+    for (const auto& [patch, expected] : cases) {
+        SCOPED_TRACE(patch.dump());
+        const std::string error = errorOf(patch);
+        EXPECT_NE(error.find("t.json: steps[1]"), std::string::npos) << error;
+        EXPECT_NE(error.find(expected), std::string::npos) << error;
+    }
+    // "previous" on the first step, and in a session (one step: nothing before it).
+    json tour = validTour();
+    tour["steps"][0]["expect"] = {{"mae", "< previous"}};
+    Tour parsed;
+    std::string error;
+    EXPECT_FALSE(parseTour(tour, "t.json", {}, parsed, error));
+    EXPECT_NE(error.find("t.json: steps[0].expect.mae: '< previous': compares with the previous step, and this is the first"), std::string::npos)
+        << error;
+    TourStep step;
+    EXPECT_FALSE(parseSessionText(tour["steps"][0].dump(), "s.json", {}, realTechniques(), step, error));
+    EXPECT_NE(error.find("s.json.expect.mae: '< previous': compares with the previous step, and a session is one step"), std::string::npos) << error;
+}
+
+TEST(TourExpect, ExpectationsAreJudgedOnTheMeasuredFigures) {
+    json tour = validTour();
+    tour["steps"][1]["expect"] = {{"mae", json::array({"< 0.01", "> previous"})},
+                                  {"B.mae", "< 0.5 * A"},
+                                  {"false_shadow", "< 1%"},
+                                  {"translucent_mae", "< 0.1"},
+                                  {"B.penumbra", "> previous.A.penumbra"}};
+    Tour parsed;
+    std::string error;
+    ASSERT_TRUE(parseTour(tour, "t.json", {}, parsed, error)) << error;
+    TourStepFigures previous, now;
+    previous.side[0] = {{"mae", 0.002}, {"penumbra", 0.05}};
+    now.side[0] = {{"mae", 0.004}, {"false_shadow", 0.02}};
+    now.side[1] = {{"mae", 0.003}, {"penumbra", 0.01}};
+    const auto results = evaluateTourExpectations(parsed.steps[1].expect, now, &previous);
+    ASSERT_EQ(results.size(), 6u);
+    std::map<std::string, const TourExpectResult*> byText;
+    for (const auto& r : results) byText[r.expectation->key + " " + r.expectation->text] = &r;
+    EXPECT_TRUE(byText["mae < 0.01"]->passed);
+    EXPECT_TRUE(byText["mae > previous"]->passed);
+    EXPECT_DOUBLE_EQ(byText["mae > previous"]->against, 0.002);
+    // 0.003 is not below half of A's 0.004: the deliberately wrong claim fails, its figures named.
+    const TourExpectResult& half = *byText["B.mae < 0.5 * A"];
+    EXPECT_FALSE(half.passed);
+    EXPECT_DOUBLE_EQ(half.against, 0.002);
+    EXPECT_EQ(tourExpectLine(half), "B.mae < 0.5 * A: measured 0.0030, bound 0.0020 (0.500 * A.mae 0.0040)");
+    EXPECT_FALSE(byText["false_shadow < 1%"]->passed);
+    EXPECT_NE(byText["false_shadow < 1%"]->detail.find("measured 2.00%"), std::string::npos) << "rates in percent, as the page";
+    // Nothing measured (no translucent receiver in view) is a failure, not a pass.
+    EXPECT_FALSE(byText["translucent_mae < 0.1"]->passed);
+    EXPECT_NE(byText["translucent_mae < 0.1"]->detail.find("not measured"), std::string::npos);
+    EXPECT_FALSE(byText["B.penumbra > previous.A.penumbra"]->passed) << "B's 0.01 against the previous step's A 0.05";
+    // Without a previous step's figures a relative expectation cannot pass either.
+    const auto alone = evaluateTourExpectations(parsed.steps[1].expect, now, nullptr);
+    for (const auto& r : alone)
+        if (r.expectation->previous) {
+            EXPECT_FALSE(r.passed) << r.detail;
+        }
+}
+
+// The window's default reference and the tour pages' are one rule (issue 29).
+TEST(TourExpect, TheWindowAndTheToursJudgeATechniqueAgainstTheSameReference) {
+    const auto techniques = realTechniques();
+    std::map<std::string, ReferenceOptions::Mode> seen;
+    for (const TechniqueInfo& info : techniques) seen[info.id] = ownReferenceMode(info);
+    EXPECT_EQ(seen.at("shadowmap"), ReferenceOptions::Mode::Hard);
+    EXPECT_EQ(seen.at("shadow-volumes"), ReferenceOptions::Mode::Hard);
+    for (const char* soft : {"pcf", "pcss", "vsm", "adaptive-pcf", "raytraced"}) EXPECT_EQ(seen.at(soft), ReferenceOptions::Mode::Soft) << soft;
+    for (const TechniqueInfo& info : techniques) {
+        const bool hard = info.category == "hard" || info.category == "baseline";
+        EXPECT_EQ(seen.at(info.id) == ReferenceOptions::Mode::Hard, hard) << info.id << " (" << info.category << ")";
+    }
+    // The window starts on that rule (0: each technique's own), unless --measure-reference says hard or soft.
+    EXPECT_EQ(UiState{}.referenceMode, 0);
+    EXPECT_EQ(InteractiveOptions{}.referenceMode, 0);
 }

@@ -5,7 +5,7 @@
 # once the page has loaded, each image's naturalWidth; --dump-dom prints the DOM after it. Every
 # image must have loaded (naturalWidth > 0, the PNG decoded) and every caption of the tour file
 # must be on the page, in order. A copy with one image pointing at a missing file must fail the
-# same check, so the check can tell.
+# same check, so the check can tell. Every step's expectations must hold (exit 0) and be on the page.
 #   tour_html.sh SHADOWLAB CHROMIUM
 set -euo pipefail
 shadowlab=$1
@@ -29,7 +29,8 @@ for tour in shadow-mapping soft-shadows large-scenes coloured-shadows; do
   start=$(date +%s)
   "$shadowlab" tour "$tour" --backend osmesa --size 256x144 --frames 2 --warmup 1 --bench-frames 3 --samples 16 \
     --out "$tmp/$tour" --quiet >"$tmp/$tour.log"
-  echo "$tour: drawn in $(( $(date +%s) - start )) s"
+  # Exit 0 (set -e) means every step's "expect" held (issue 29: a failed one exits 3).
+  echo "$tour: drawn in $(( $(date +%s) - start )) s; $(grep -o '[0-9]* expectations passed' "$tmp/$tour.log")"
   page="$tmp/$tour/index.html"
   ! grep -qi "<script" "$page" || { echo "FAIL: $page has a script"; exit 1; }
   # The checking copy: the page plus a load handler that writes what it found into the DOM.
@@ -103,7 +104,11 @@ if tour['title'] == 'Large scenes':
     snapped = flicker['The same dolly with snapping']
     assert unsnapped > 1e-4 and unsnapped > 2 * snapped, f'dolly flicker: unsnapped {unsnapped}, snapped {snapped}'
     print(f'dolly: temporal error unsnapped {unsnapped}, snapped {snapped}')
-print(f'ok: {os.path.basename(folder)}: {len(good.images)} images loaded in Chromium, {len(captions)} captions, '
+# Every expectation of the tour file is on the page beside its caption, none of them failed.
+expectations = sum(len(v) if isinstance(v, list) else 1 for s in tour['steps'] for v in s.get('expect', {}).values())
+assert 'class="failed"' not in page_text, 'an expectation failed on the page'
+assert page_text.count('<li class="passed">') == expectations, f'{page_text.count("<li class=")} marks, {expectations} expectations'
+print(f'ok: {os.path.basename(folder)}: {expectations} expectations passed; {len(good.images)} images loaded in Chromium, {len(captions)} captions, '
       f'{len(rows)} rows of figures')
 PY
 done

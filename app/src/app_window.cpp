@@ -22,6 +22,7 @@
 #include <GLFW/glfw3.h>
 
 #include "app_paths.h"
+#include "bench/accuracy_columns.h"
 #include "render/view_compositor.h"
 #include "ui/async_measurement.h"
 #include "ui/session.h"
@@ -81,7 +82,7 @@ private:
         state_.view = options_.view;
         if (options_.probe) app_.setProbePixel(options_.probe);
         state_.uiScale = options_.uiScale;
-        state_.referenceMode = options_.softReference ? 1 : 0;
+        state_.referenceMode = options_.referenceMode;
         state_.referenceSamples = options_.referenceSamples;
         state_.msaaSamples = app_.renderer().msaaSamples();
         app_.camera().setFramingAspect(kSceneFramingAspect);
@@ -353,7 +354,8 @@ private:
         for (int s = 0; s < (state_.compareTechnique.empty() ? 1 : 2); ++s) {
             const TechniqueInfo* info = app_.techniques().find(sides[s]);
             AsyncMeasurement::Side side{sides[s], {}, 0.0};
-            side.options.mode = state_.referenceMode == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
+            side.options.mode = state_.referenceMode == 2 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
+            if (state_.referenceMode == 0 && info) side.options.mode = ownReferenceMode(*info);   // as the tour pages
             side.options.samplesPerPixel = state_.referenceSamples;
             side.options.model = state_.referenceModel == 1 && info ? info->translucencyModel : TranslucencyModel::Physical;
             // One core stays with the frame loop (the thread count changes no sample).

@@ -63,14 +63,18 @@ void addPassColumns(const AccuracyPass& pass, const Evaluation& evaluation, nloh
 
 } // namespace
 
+ReferenceOptions::Mode ownReferenceMode(const TechniqueInfo& info) {
+    const bool hard = info.category == "hard" || info.category == "baseline";
+    return hard ? ReferenceOptions::Mode::Hard : ReferenceOptions::Mode::Soft;
+}
+
 bool referenceModesFor(const std::string& reference, const TechniqueInfo& info, std::vector<ReferenceOptions::Mode>& modes) {
     using Mode = ReferenceOptions::Mode;
     if (reference == "hard") modes = {Mode::Hard};
     else if (reference == "soft") modes = {Mode::Soft};
     else if (reference == "both") modes = {Mode::Hard, Mode::Soft};
     else if (reference == "auto")
-        modes = (info.category == "hard" || info.category == "baseline") ? std::vector<Mode>{Mode::Hard}
-                                                                         : std::vector<Mode>{Mode::Hard, Mode::Soft};
+        modes = ownReferenceMode(info) == Mode::Hard ? std::vector<Mode>{Mode::Hard} : std::vector<Mode>{Mode::Hard, Mode::Soft};
     else return false;
     return true;
 }

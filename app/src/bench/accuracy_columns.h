@@ -16,6 +16,10 @@ namespace shadowlab {
 
 // "hard" | "soft" | "both" | "auto" (hard for the hard and baseline techniques, else both), the
 // meaning of bench's and eval's --reference; false for anything else.
+// The one rule for which reference a technique is judged against by default (tour pages, the
+// report's heatmaps, the window's "Measure accuracy"): hard for hard and baseline techniques, soft
+// for filtered, soft, coloured and reference ones, whose model is a penumbra.
+ReferenceOptions::Mode ownReferenceMode(const TechniqueInfo& info);
 bool referenceModesFor(const std::string& reference, const TechniqueInfo& info, std::vector<ReferenceOptions::Mode>& modes);
 
 struct AccuracyRequest {

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "app.h"
+#include "bench/accuracy_columns.h"
 #include "bench/report_page.h"
 #include "util/log.h"
 #include "util/parallel.h"
@@ -49,9 +50,9 @@ bool writeImages(App& app, const BenchSpec& spec, const std::filesystem::path& d
             ReportImage entry{scene, info.id, info.displayName, scene + "-" + info.id + ".png", "", "", {}};
             pending.emplace_back(dir / entry.image, app.readDisplay());
             if (info.id != "reference") {   // the ray-traced ground truth itself; area-reference is measured
-                const bool hard = info.category == "hard" || info.category == "baseline";
                 ReferenceOptions options;
-                options.mode = hard ? ReferenceOptions::Mode::Hard : ReferenceOptions::Mode::Soft;
+                options.mode = ownReferenceMode(info);
+                const bool hard = options.mode == ReferenceOptions::Mode::Hard;
                 options.samplesPerPixel = spec.referenceSamples;
                 options.adaptive = spec.referenceAdaptive;
                 options.model = TranslucencyModel::Physical;   // the heatmap shows the error against the physical model

@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 
+#include "bench/accuracy_columns.h"
 #include "bench/path_run.h"
 #include "ui/session.h"
 #include "ui/tour_player.h"
@@ -27,6 +28,7 @@ struct TechniqueFigures {
     // A step with a path: the temporal error (flicker, docs/stability.md) over its first frames.
     int temporalFrames = 0;
     TemporalSummary temporal;
+    TexelFootprint footprint;     // medians and undersampled rate only (the per-pixel vectors dropped)
 };
 
 struct StepPage {
@@ -34,6 +36,7 @@ struct StepPage {
     std::vector<std::pair<std::string, int>> strip;   // a path step: (image, path frame) of its first, middle and last frame
     int pathFrames = 0;
     std::vector<TechniqueFigures> figures;
+    std::vector<TourExpectResult> expectations;   // the step's "expect", checked after measuring
 };
 
 std::string stepImageName(size_t index, const char* suffix) {
@@ -65,8 +68,8 @@ bool measureTechnique(App& app, const std::string& id, const TourPageOptions& op
     out.gpuMiB = double(m.gpuBytes) / (1024.0 * 1024.0);
     if (id == "reference") return true;   // the ground truth itself: nothing to compare
     ReferenceOptions reference;
-    const bool hard = info->category == "hard" || info->category == "baseline";
-    reference.mode = hard ? ReferenceOptions::Mode::Hard : ReferenceOptions::Mode::Soft;
+    reference.mode = ownReferenceMode(*info);
+    const bool hard = reference.mode == ReferenceOptions::Mode::Hard;
     reference.samplesPerPixel = options.referenceSamples;
     reference.adaptive = true;
     reference.model = TranslucencyModel::Physical;
@@ -75,7 +78,41 @@ bool measureTechnique(App& app, const std::string& id, const TourPageOptions& op
     out.reference = hard ? "hard" : "soft";
     out.metrics = evaluation.metrics;
     out.translucent = evaluation.translucentMetrics;
+    out.footprint = evaluation.footprint;
+    out.footprint.m.clear();
+    out.footprint.projection.clear();
+    out.footprint.depthError.clear();
     return true;
+}
+
+// The figures an expectation can name (ui/tour_expect.h), per side; what was not measured is left out.
+TourStepFigures expectFigures(const StepPage& page) {
+    TourStepFigures out;
+    for (size_t s = 0; s < page.figures.size() && s < 2; ++s) {
+        const TechniqueFigures& f = page.figures[s];
+        auto& m = out.side[s];
+        m["frame_ms"] = f.frameMs;
+        m["gpu_mib"] = f.gpuMiB;
+        if (f.reference.empty()) continue;   // the reference itself: no error
+        const AccuracyMetrics& a = f.metrics;
+        m["mae"] = a.mae;
+        m["false_shadow"] = a.falseShadowRate;
+        m["false_light"] = a.falseLightRate;
+        m["mae_penumbra"] = a.maePenumbra;
+        m["penumbra"] = a.techniquePenumbraFraction;
+        m["noise"] = a.noiseEnergy;
+        const char* thirds[] = {"mae_near", "mae_mid", "mae_far"};
+        for (int t = 0; t < 3; ++t)
+            if (a.pixelsByViewDepth[size_t(t)] > 0) m[thirds[t]] = a.maeByViewDepth[size_t(t)];
+        if (f.translucent.comparedPixels > 0) m["translucent_mae"] = f.translucent.mae;
+        if (f.temporalFrames >= 2) m["flicker"] = f.temporal.meanFlicker;
+        if (f.footprint.measuredPixels > 0) {
+            m["footprint_near"] = f.footprint.medianByViewDepth[0];
+            m["footprint_far"] = f.footprint.medianByViewDepth[2];
+            m["undersampled"] = f.footprint.undersampledFraction;
+        }
+    }
+    return out;
 }
 
 // The temporal error of `id` along the first `frames` frames of the step's path (the path's own
@@ -93,8 +130,7 @@ bool measurePathTemporal(App& app, const std::string& id, const CameraPath& path
     first.frames = std::min(path.frames, options.pathMeasureFrames);
     first.endTime = path.frameTime(first.frames - 1);
     PathAccuracyOptions accuracy;
-    const bool hard = info->category == "hard" || info->category == "baseline";
-    accuracy.reference.mode = hard ? ReferenceOptions::Mode::Hard : ReferenceOptions::Mode::Soft;
+    accuracy.reference.mode = ownReferenceMode(*info);
     accuracy.reference.samplesPerPixel = options.referenceSamples;
     accuracy.reference.adaptive = true;
     accuracy.reference.model = TranslucencyModel::Physical;
@@ -124,9 +160,13 @@ const char* const kColumns[][2] = {
     {"technique", "the technique measured (A, then B when the step compares two)"},
     {"reference", "what it is compared with: the hard (one ray to the light's centre) or soft (rays over the light's "
                   "area) ray-traced reference; hard for hard techniques, soft for filtered and soft ones"},
-    {"MAE", "mean absolute error of the shadow term against the reference, over the compared (lit-side) pixels"},
-    {"false shadow", "compared pixels the reference lights (>= 0.5) that the technique darkens (< 0.5): acne, over-darkening"},
-    {"false light", "compared pixels the reference shadows that the technique lights: leaks, peter panning, light bleeding"},
+    {"MAE", "mean absolute error of the shadow term against the reference, over the compared (lit-side) pixels: every "
+            "shade of difference counts, as on the error heatmap (magenta: darker than the reference, green: lighter)"},
+    {"false shadow", "the share of compared pixels the reference lights (>= 0.5) that the technique darkens below 0.5: "
+                     "acne, over-darkening. A surface darkened by less than half (a wide filter's grey) raises the MAE and "
+                     "is magenta on the heatmap, but is not counted here"},
+    {"false light", "the share of compared pixels the reference shadows (< 0.5) that the technique lights above 0.5: leaks, "
+                    "peter panning, light bleeding; a shadow only lightened is, likewise, in the MAE alone"},
     {"translucent MAE", "the same on the translucent surfaces themselves (peeled from the camera, seed 001 sec. 5.3.3); "
                         "- where the step shows none facing the light"},
     {"frame ms", "median GPU time of a whole frame over the short benchmark (" "warm-up, then timed frames)"},
@@ -150,6 +190,20 @@ std::string figureCell(const TechniqueFigures& f, int column) {
 
 constexpr int kColumnCount = int(sizeof(kColumns) / sizeof(kColumns[0]));
 
+const char* const kExpectNote =
+    "Under a caption, what it claims as data (the step's \"expect\", docs/classroom.md), each checked against the "
+    "figures of its table: passed, or FAILED in red with the figure measured.";
+
+// The step's expectations under its caption, a failed one marked in red and in words.
+std::string expectHtml(const StepPage& page) {
+    if (page.expectations.empty()) return "";
+    std::string out = "<ul class=\"expect\">\n";
+    for (const TourExpectResult& r : page.expectations)
+        out += std::string("<li class=\"") + (r.passed ? "passed\">passed: " : "failed\">FAILED: ") +
+               htmlEscape(tourExpectLine(r)) + "</li>\n";
+    return out + "</ul>\n";
+}
+
 std::string htmlPage(const Tour& tour, const std::vector<StepPage>& pages, const TourPageOptions& options) {
     std::ostringstream html;
     html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << htmlEscape(tour.title)
@@ -157,13 +211,14 @@ std::string htmlPage(const Tour& tour, const std::vector<StepPage>& pages, const
          << "px;margin:2em auto;line-height:1.45;color:#222}\nfigure{margin:0 0 1em}\nimg{max-width:100%;height:auto;"
             "border:1px solid #ccc}\nfigcaption{margin-top:.5em}\ntable{border-collapse:collapse;margin:.5em 0 2em}\n"
             "td,th{border:1px solid #ccc;padding:.2em .5em;text-align:right}\ntd:first-child,th:first-child{text-align:left}\n"
-            "dt{font-weight:bold}\n</style>\n</head>\n<body>\n<h1>"
+            "dt{font-weight:bold}\nul.expect{margin:.3em 0;padding-left:1.2em;font-size:90%}\nli.passed{color:#2a6a2a}\n"
+            "li.failed{color:#b00000;font-weight:bold}\n</style>\n</head>\n<body>\n<h1>"
          << htmlEscape(tour.title) << "</h1>\n";
     if (!tour.description.empty()) html << "<p>" << htmlEscape(tour.description) << "</p>\n";
     html << "<p>" << tour.steps.size() << " steps, drawn at " << options.size.x << "x" << options.size.y
          << ". Columns of the tables:</p>\n<dl>\n";
     for (const auto& column : kColumns) html << "<dt>" << column[0] << "</dt><dd>" << htmlEscape(column[1]) << "</dd>\n";
-    html << "</dl>\n";
+    html << "</dl>\n<p>" << htmlEscape(kExpectNote) << "</p>\n";
     for (size_t i = 0; i < tour.steps.size(); ++i) {
         const TourStep& step = tour.steps[i];
         html << "<section id=\"step-" << i + 1 << "\">\n<h2>" << i + 1 << ". " << htmlEscape(step.title) << "</h2>\n"
@@ -174,7 +229,7 @@ std::string htmlPage(const Tour& tour, const std::vector<StepPage>& pages, const
             html << "<img src=\"" << pages[i].strip[k].first << "\" width=\"" << options.size.x / 2 << "\" height=\""
                  << options.size.y / 2 << "\" alt=\"" << htmlEscape(step.title) << ", path frame " << pages[i].strip[k].second + 1
                  << "\">\n";
-        html << "<figcaption>" << htmlEscape(step.caption) << "</figcaption>\n</figure>\n";
+        html << "<figcaption>" << htmlEscape(step.caption) << "</figcaption>\n" << expectHtml(pages[i]) << "</figure>\n";
         if (!step.path.empty()) html << "<p class=\"path\">" << htmlEscape(temporalLine(pages[i], step)) << "</p>\n";
         html << "<table>\n<tr>";
         for (const auto& column : kColumns) html << "<th>" << column[0] << "</th>";
@@ -197,13 +252,16 @@ std::string markdownPage(const Tour& tour, const std::vector<StepPage>& pages, c
     md << tour.steps.size() << " steps, drawn at " << options.size.x << "x" << options.size.y
        << " (`shadowlab tour`). Columns of the tables:\n\n";
     for (const auto& column : kColumns) md << "- **" << column[0] << "**: " << column[1] << "\n";
-    md << "\n";
+    md << "\n" << kExpectNote << "\n\n";
     for (size_t i = 0; i < tour.steps.size(); ++i) {
         const TourStep& step = tour.steps[i];
         md << "## " << i + 1 << ". " << step.title << "\n\n![" << step.title << "](" << pages[i].image << ")";
         for (size_t k = 1; k < pages[i].strip.size(); ++k)
             md << " ![" << step.title << ", path frame " << pages[i].strip[k].second + 1 << "](" << pages[i].strip[k].first << ")";
         md << "\n\n" << step.caption << "\n\n";
+        for (const TourExpectResult& r : pages[i].expectations)
+            md << "- " << (r.passed ? "passed: " : "**FAILED**: ") << tourExpectLine(r) << "\n";
+        if (!pages[i].expectations.empty()) md << "\n";
         if (!step.path.empty()) md << temporalLine(pages[i], step) << "\n\n";
         md << "|";
         for (const auto& column : kColumns) md << " " << column[0] << " |";
@@ -218,6 +276,24 @@ std::string markdownPage(const Tour& tour, const std::vector<StepPage>& pages, c
         md << "\n";
     }
     return md.str();
+}
+
+// Every step's expectations against its figures (and the previous step's); the failures, one line
+// each naming tour, step, expectation and figure, into `failures`.
+int checkStepExpectations(const Tour& tour, std::vector<StepPage>& pages, std::string& failures) {
+    int failed = 0;
+    for (size_t i = 0; i < tour.steps.size(); ++i) {
+        const TourStepFigures now = expectFigures(pages[i]);
+        const TourStepFigures before = i > 0 ? expectFigures(pages[i - 1]) : TourStepFigures{};
+        pages[i].expectations = evaluateTourExpectations(tour.steps[i].expect, now, i > 0 ? &before : nullptr);
+        for (const TourExpectResult& r : pages[i].expectations) {
+            if (r.passed) continue;
+            ++failed;
+            failures += "\n  " + tour.source + ": steps[" + std::to_string(i) + "] (\"" + tour.steps[i].title +
+                        "\"): expect " + tourExpectLine(r);
+        }
+    }
+    return failed;
 }
 
 } // namespace
@@ -304,12 +380,21 @@ int writeTourPages(App& app, const Tour& tour, const TourPageOptions& options, s
         std::printf("\n");
         std::fflush(stdout);
     }
+    std::string failures;
+    const int failed = checkStepExpectations(tour, pages, failures);
     if (!writeWholeFile(options.outDir / "index.html", htmlPage(tour, pages, options), error)) return 1;
     if (!writeWholeFile(options.outDir / "README.md", markdownPage(tour, pages, options), error)) return 1;
     size_t images = 0;
     for (const StepPage& page : pages) images += std::max<size_t>(1, page.strip.size());
     logInfo("tour: " + std::to_string(tour.steps.size()) + " steps, " + std::to_string(images) + " images, index.html and "
             "README.md in " + options.outDir.string());
+    if (failed > 0) {
+        size_t total = 0;
+        for (const TourStep& step : tour.steps) total += step.expect.size();
+        error = tour.source + ": " + std::to_string(failed) + " of " + std::to_string(total) +
+                " expectations failed (marked FAILED on the pages in " + options.outDir.string() + "):" + failures;
+        return kExitTourExpectation;
+    }
     return 0;
 }
 

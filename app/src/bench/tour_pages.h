@@ -25,7 +25,11 @@ struct TourPageOptions {
     int pathMeasureFrames = 8;    // a path step: its first frames measured for the temporal error (0: none)
 };
 
-// Returns the exit code: 0, 1 (the machine: a write, GL), 2 (the tour: a view no technique has).
+// `shadowlab tour`'s exit code when every page was written but an expectation of a step failed.
+constexpr int kExitTourExpectation = 3;
+
+// Returns the exit code: 0, 1 (the machine: a write, GL), 2 (the tour: a view no technique has),
+// 3 (kExitTourExpectation: a step's "expect" failed; the pages are written with it marked).
 int writeTourPages(App& app, const Tour& tour, const TourPageOptions& options, std::string& error);
 
 // For the HTML page: & < > " escaped.

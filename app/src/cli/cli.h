@@ -80,7 +80,7 @@ struct WindowOptions {
     double uiScale = 1.0;
     bool hideUi = false;
     bool measure = false;
-    std::string measureReference = "hard";   // the reference of "Measure accuracy": hard | soft
+    std::string measureReference = "auto";   // the reference of "Measure accuracy": auto (each technique's own) | hard | soft
     int measureSamples = 64;                 // its rays per pixel when soft
     std::string screenshotDir = "screenshots";
     std::string tour;            // a built-in tour's name or a tour file

@@ -201,9 +201,9 @@ int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& te
     out.uiScale = float(w.uiScale);
     out.showUi = !w.hideUi;
     out.measure = w.measure;
-    if (w.measureReference != "hard" && w.measureReference != "soft")
-        return fail("--measure-reference '" + w.measureReference + "': expected hard or soft", kExitBadInput);
-    out.softReference = w.measureReference == "soft";
+    if (w.measureReference != "auto" && w.measureReference != "hard" && w.measureReference != "soft")
+        return fail("--measure-reference '" + w.measureReference + "': expected auto, hard or soft", kExitBadInput);
+    out.referenceMode = w.measureReference == "hard" ? 1 : w.measureReference == "soft" ? 2 : 0;
     out.referenceSamples = w.measureSamples;
     out.screenshotFolder = w.screenshotDir;
     out.screenshot = w.screenshot;

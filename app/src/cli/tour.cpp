@@ -45,7 +45,10 @@ int commandTour(const CommonOptions& common, const std::string& name, const Tour
     if (!parseSize(common.size, options.size, error)) return fail(error, kExitBadInput);
     const int code = writeTourPages(app, tour, options, error);
     if (code) return fail(error, code);
-    std::printf("tour: %zu steps written to %s (index.html, README.md)\n", tour.steps.size(), options.outDir.string().c_str());
+    size_t expectations = 0;
+    for (const TourStep& step : tour.steps) expectations += step.expect.size();
+    std::printf("tour: %zu steps written to %s (index.html, README.md), %zu expectations passed\n", tour.steps.size(),
+                options.outDir.string().c_str(), expectations);
     return 0;
 }
 

@@ -83,7 +83,8 @@ void MainJob::declare(CLI::App& cli) {
                               "window: measure accuracy after a few frames, each side of a comparison for its own "
                               "technique, and show the heatmap (with --frames: a slide of it)"));
     windowOption(cli.add_option("--measure-reference", window_.measureReference,
-                                "window: the reference \"Measure accuracy\" traces: hard (default) | soft"));
+                                "window: the reference \"Measure accuracy\" traces: auto (default: hard for hard techniques, soft for "
+                                "filtered and soft ones, as the tour pages) | hard | soft"));
     windowOption(cli.add_option("--measure-samples", window_.measureSamples,
                                 "window: rays per pixel of the soft reference (4-256, default 64)"))
         ->check(CLI::Range(4, 256));

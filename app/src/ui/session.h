@@ -29,7 +29,7 @@ struct InteractiveOptions {
     std::vector<std::pair<int, std::string>> screenshotsAt;   // with frames: also (frame from 0, file), a path's strip
     bool cycle = false;                            // smoke test: every technique and view in turn
     bool measure = false;                          // measure accuracy after a few frames (slides of the heatmap)
-    bool softReference = false;                    // the panel's reference at the start: soft (else hard)
+    int referenceMode = 0;                         // the panel's reference at the start: 0 own, 1 hard, 2 soft (UiState)
     int referenceSamples = 64;                     // its rays per pixel
     bool showUi = true;                            // false: the view (and comparison labels) only
     ViewSelection view;                            // the image shown at the start (lit, visibility, ...)

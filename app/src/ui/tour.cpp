@@ -209,7 +209,7 @@ bool parseTourStep(const json& object, const std::string& where, const std::file
     }
     if (!rejectUnknownKeys(object,
                            {"title", "scene", "sceneParameters", "technique", "compare", "layout", "wipe", "parameters",
-                            "camera", "light", "view", "path", "pathFrames", "caption"},
+                            "camera", "light", "view", "path", "pathFrames", "caption", "expect"},
                            where, error))
         return false;
     if (!readString(object, "title", where, step.title, error, true, 200)) return false;
@@ -285,6 +285,9 @@ bool parseTourStep(const json& object, const std::string& where, const std::file
         step.pathFrames = int(frames.get<long long>());
     }
     if (!readString(object, "caption", where, step.caption, error, true, kMaxCaptionBytes)) return false;
+    if (object.contains("expect") &&
+        !parseTourExpect(object["expect"], where, !step.compare.empty(), !step.path.empty(), step.expect, error))
+        return false;
     return true;
 }
 
@@ -324,6 +327,7 @@ json tourStepJson(const TourStep& step) {
     if (!step.path.empty()) out["path"] = step.path;
     if (step.pathFrames > 0) out["pathFrames"] = step.pathFrames;
     out["caption"] = step.caption;
+    if (!step.expect.empty()) out["expect"] = tourExpectJson(step.expect);
     return out;
 }
 
@@ -349,7 +353,18 @@ bool parseTour(const json& object, const std::string& source, const std::filesys
     }
     for (size_t i = 0; i < steps.size(); ++i) {
         TourStep step;
-        if (!parseTourStep(steps[i], source + ": steps[" + std::to_string(i) + "]", baseDir, step, error)) return false;
+        const std::string where = source + ": steps[" + std::to_string(i) + "]";
+        if (!parseTourStep(steps[i], where, baseDir, step, error)) return false;
+        // "previous" names the step before: the first has none, and B of a step without compare is nothing.
+        const TourExpectation* first = firstUseOfPreviousStep(step.expect);
+        const TourExpectation* firstB = firstUseOfPreviousStep(step.expect, true);
+        if ((i == 0 && first) || (i > 0 && firstB && tour.steps.back().compare.empty())) {
+            const TourExpectation& e = i == 0 ? *first : *firstB;
+            error = where + ".expect." + e.key + ": '" + e.text + "': " +
+                    (i == 0 ? "compares with the previous step, and this is the first"
+                            : "compares with previous.B, and the previous step has no 'compare'");
+            return false;
+        }
         tour.steps.push_back(std::move(step));
     }
     return true;
@@ -389,6 +404,14 @@ bool checkTourStep(const TourStep& step, const std::string& where, const std::ve
         std::string problem;
         if (!parseParamValue(*spec, text, problem)) {
             error = name + ": parameters." + key + ": " + info->id + " " + problem;
+            return false;
+        }
+    }
+    for (const TourExpectation& e : step.expect) {
+        const std::string& id = e.side == 1 ? step.compare : step.technique;
+        const bool errorMetric = e.metric != "frame_ms" && e.metric != "gpu_mib";
+        if (id == "reference" && errorMetric) {
+            error = name + ": expect." + e.key + ": " + id + " is the ground truth itself; it has no " + e.metric;
             return false;
         }
     }
@@ -506,6 +529,10 @@ bool parseSessionText(const std::string& text, const std::string& source, const 
     json object;
     if (!parseJsonText(text, source, object, error)) return false;
     if (!parseTourStep(object, source, baseDir, step, error)) return false;
+    if (const TourExpectation* e = firstUseOfPreviousStep(step.expect)) {
+        error = source + ".expect." + e->key + ": '" + e->text + "': compares with the previous step, and a session is one step";
+        return false;
+    }
     return checkTourStep(step, source, techniques, error);
 }
 

@@ -19,6 +19,7 @@
 
 #include "plugin/params.h"
 #include "ui/classroom.h"
+#include "ui/tour_expect.h"
 
 namespace shadowlab {
 
@@ -54,6 +55,8 @@ struct TourStep {
     std::string path;                                         // "": no path
     int pathFrames = 0;                                       // 0: the path's own number of frames
     std::string caption;
+    // What the caption claims, checked by `shadowlab tour` after measuring (ui/tour_expect.h).
+    std::vector<TourExpectation> expect;
 };
 
 struct Tour {

@@ -503,15 +503,18 @@ void Ui::drawViewSection(App& app, UiState& state) {
 // The panel's "Accuracy" section.
 void Ui::drawAccuracySection(App& app, UiState& state) {
     if (ImGui::CollapsingHeader("Accuracy", ImGuiTreeNodeFlags_DefaultOpen)) {
-        const char* modes[] = {"hard reference", "soft reference"};
+        const char* modes[] = {"each technique's own (hard or soft)", "hard reference", "soft reference"};
         fieldLabel("against", "Traces the ray-traced reference (Embree, CPU) from the G-buffer of the frame on screen and "
                               "compares the technique's shadow term per pixel; in a comparison each side is measured for "
-                              "its own technique. The trace runs beside the frame loop, so the view keeps drawing; "
+                              "its own technique. By default each technique against its own kind of reference, as "
+                              "the tour pages: hard for hard shadow maps, soft (rays over the light's area) for "
+                              "filtered and soft ones, whose penumbrae a hard reference would count as error. The trace "
+                              "runs beside the frame loop, so the view keeps drawing; "
                               "changing the scene or the technique cancels it. The heatmap shows false shadow (acne, "
                               "over-darkening) in magenta and false light (leaks, peter panning) in green over the dimmed "
                               "scene.");
-        ImGui::Combo("##against", &state.referenceMode, modes, 2);
-        if (state.referenceMode == 1) {
+        ImGui::Combo("##against", &state.referenceMode, modes, 3);
+        if (state.referenceMode != 1) {
             fieldLabel("rays per pixel");
             ImGui::SliderInt("##rays", &state.referenceSamples, 4, 256);
         }

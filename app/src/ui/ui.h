@@ -73,7 +73,9 @@ struct UiState {
 
     // Accuracy measured on demand ("Measure accuracy"): one result per side of the view, and
     // every measurement of this session for the error-against-milliseconds plot.
-    int referenceMode = 0;            // 0 hard, 1 soft
+    // 0: each side's technique's own reference (ownReferenceMode: hard for hard techniques, soft for
+    // filtered and soft ones, as the tour pages measure), 1: hard, 2: soft.
+    int referenceMode = 0;
     int referenceSamples = 64;
     int referenceModel = 0;           // 0 physical, 1 each side's technique's own translucency model
     std::vector<SideMeasurement> measurement;
