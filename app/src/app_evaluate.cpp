@@ -136,6 +136,12 @@ bool App::evaluateCapture(const EvaluationInput& input, const ReferenceOptions& 
                        input.camera.view, input.camera.nearPlane, input.camera.farPlane);
     out.footprint = measureTexelFootprint(gbuffer, out.mask, input.frame.camera, input.frame.light, input.shadowMaps);
     out.positions = input.opaque.positions;
+    if (options.mode == ReferenceOptions::Mode::Hard) {
+        if (const auto bvh = contactBvhFor(input.sceneGeneration)) {
+            out.contactBand = contactBand(*bvh, gbuffer, out.mask, input.light);
+            out.contact = contactBandMetrics(out.contactBand, out.technique, out.reference);
+        }
+    }
     out.referenceFloor = out.referenceStats.sampleError.empty()
                              ? 0.0
                              : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);
@@ -172,6 +178,17 @@ bool App::evaluateLayers(const EvaluationInput& input, const ReferenceOptions& o
         out.translucentMetrics = compareVisibility(allTechnique, allReference, allMask, size.x,
                                                    size.y * int(out.translucentLayers.size()));
     return true;
+}
+
+std::shared_ptr<const bvh::Bvh> App::contactBvhFor(uint64_t sceneGeneration) {
+    std::lock_guard lock(contactBvhMutex_);
+    if (contactBvhGeneration_ != sceneGeneration) {
+        // Another thread's evaluation of an older scene gets no band rather than a wrong one.
+        if (sceneGeneration != sceneGeneration_ || !scene_) return nullptr;
+        contactBvh_ = std::make_shared<const bvh::Bvh>(bvh::build(*scene_));
+        contactBvhGeneration_ = sceneGeneration;
+    }
+    return contactBvh_;
 }
 
 size_t App::plannedTraces(const EvaluationInput& input) {
