@@ -121,10 +121,9 @@ struct Evaluation {
     std::vector<TranslucentLayerEvaluation> translucentLayers;
     AccuracyMetrics translucentMetrics;
     // Against the hard reference only (issue 30; groundtruth/contact_band.h): each compared pixel's
-    // class (1 in the contact band, 2 far from contact, 0 between; empty with a soft reference) and
-    // the band's false-light rate.
+    // class (1 in the contact band, 2 far from contact, 0 between; empty with a soft reference);
+    // the band's false-light rate is in metrics.
     std::vector<uint8_t> contactBand;
-    ContactBandMetrics contact;
     Image heatmap() const;              // errorHeatmap() as an RGBA image
 };
 

@@ -139,7 +139,9 @@ bool App::evaluateCapture(const EvaluationInput& input, const ReferenceOptions& 
     if (options.mode == ReferenceOptions::Mode::Hard) {
         if (const auto bvh = contactBvhFor(input.sceneGeneration)) {
             out.contactBand = contactBand(*bvh, gbuffer, out.mask, input.light);
-            out.contact = contactBandMetrics(out.contactBand, out.technique, out.reference);
+            const ContactBandMetrics contact = contactBandMetrics(out.contactBand, out.technique, out.reference);
+            out.metrics.contactFalseLightRate = contact.falseLightRate;
+            out.metrics.contactBandPixels = contact.bandPixels;
         }
     }
     out.referenceFloor = out.referenceStats.sampleError.empty()

@@ -35,6 +35,6 @@ SHADOWLAB_SHARED_END
 #define kContactStartPixels 1.5
 // A sample is occluded only when it lies more than this many pixel footprints (the world size of
 // one pixel at the sample's view depth) behind the surface: the same slope error one pixel away.
-#define kContactBiasPixels 1.0
+#define kContactBiasPixels 0.25
 
 #endif

@@ -93,8 +93,8 @@ nlohmann::json evaluationJson(const AccuracyPass& pass, const Evaluation& evalua
         out["translucent_receivers"] = receivers;
     }
     if (!evaluation.contactBand.empty()) {
-        out["contact_false_light"] = evaluation.contact.falseLightRate;
-        out["contact_band_pixels"] = evaluation.contact.bandPixels;
+        out["contact_false_light"] = evaluation.metrics.contactFalseLightRate;
+        out["contact_band_pixels"] = evaluation.metrics.contactBandPixels;
     }
     if (pass.mode == ReferenceOptions::Mode::Soft) {
         // The reference's own penumbra error: soft figures below about 4x it are not resolved.
