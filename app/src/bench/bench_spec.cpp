@@ -349,8 +349,10 @@ static bool checkSweeps(const BenchSpec& spec, const std::vector<const Technique
             }
         }
         if (!used) {
-            error = sweepName(spec, key) + ": '" + key +
-                    "' is no parameter of the techniques measured (nor scene.*, light.size, host.depth_prepass, host.shadow_blur, host.shadow_blur_depth, host.lighting)";
+            std::string hostKeys;
+            for (const auto& p : hostParams().params) hostKeys += ", host." + p.id;
+            error = sweepName(spec, key) + ": '" + key + "' is no parameter of the techniques measured (nor scene.*, light.size" +
+                    hostKeys + ")";
             return false;
         }
     }

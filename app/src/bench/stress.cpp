@@ -102,6 +102,15 @@ std::string settingsOf(App& app, const TechniqueInfo& info) {
     return text;
 }
 
+// The technique's settings that differ from its defaults, then the host's (host.contact_shadows=...).
+std::string cellSettings(App& app, const TechniqueInfo& info) {
+    std::string text = settingsOf(app, info);
+    std::istringstream host(settingsOf(app, hostParams()));
+    std::string item;
+    while (host >> item) text += (text.empty() ? "host." : " host.") + item;
+    return text;
+}
+
 // The texel footprint m over the pixels of `region` the measure served: its median, and the median
 // over the nearest third of the visible depth range (nearest to farthest compared pixel of the
 // region, as regionMetrics' thirds), so it describes the same pixels as mae_near_third.
@@ -265,12 +274,7 @@ static bool runStressCellWithHost(App& app, const StressSuite& suite, const Stre
             !app.params().set(*info, "samples", std::to_string(c.referenceSamples), error))
             return false;
     }
-    cell.settings = settingsOf(app, *info);
-    if (const std::string host = settingsOf(app, hostParams()); !host.empty()) {
-        std::istringstream items(host);
-        std::string item;
-        while (items >> item) cell.settings += (cell.settings.empty() ? "host." : " host.") + item;
-    }
+    cell.settings = cellSettings(app, *info);
 
     // The path; the dolly moves by a fraction of this technique's own map texel (its fit, crop and
     // resolution at the first frame; 2048 texels over the scene fit without a map).
