@@ -72,9 +72,11 @@ void main() {
     float stepLength = rayLength / float(steps);
     float jitter = uContact.w * gradientNoise(gl_FragCoord.xy);
     vec3 origin = p + n * pixelFootprint(viewDepthOf(d));
+    // Clip coordinates are linear in the world position: the samples' are stepped, not projected.
+    vec4 clipOrigin = uViewProjection * vec4(origin, 1.0);
+    vec4 clipStep = uViewProjection * vec4(toLight * stepLength, 0.0);
     for (int i = 0; i < steps; ++i) {
-        vec3 q = origin + toLight * (stepLength * (float(i) + 1.0 - jitter));
-        vec4 clip = uViewProjection * vec4(q, 1.0);
+        vec4 clip = clipOrigin + clipStep * (float(i) + 1.0 - jitter);
         if (clip.w <= 0.0) return;
         vec3 ndc = clip.xyz / clip.w;
         if (any(greaterThan(abs(ndc), vec3(1.0)))) return;   // outside the view: nothing known
@@ -82,7 +84,7 @@ void main() {
         if (distance(screen, gl_FragCoord.xy) < kContactStartPixels) continue;
         float sceneDepth = texelFetch(uCameraDepth, ivec2(screen), 0).r;
         if (sceneDepth >= 1.0) continue;   // background there
-        float rayZ = viewDepthOf(ndc.z * 0.5 + 0.5);
+        float rayZ = perspective() ? clip.w : viewDepthOf(ndc.z * 0.5 + 0.5);
         float behind = rayZ - viewDepthOf(sceneDepth);
         if (behind > kContactBiasPixels * pixelFootprint(rayZ) && behind < uContact.y) {
             outContact = vec4(0.0);
