@@ -245,6 +245,11 @@ bool loadBenchSpecs(const std::filesystem::path& file, std::vector<BenchSpec>& s
             error = spec.source + ": " + error;
             return false;
         }
+        // A scene file is relative to the spec's folder (as a stress case's is to its cases file),
+        // so a spec measures the same scenes from whatever folder it is run.
+        for (std::string& scene : spec.scenes)
+            if (scene.ends_with(".json") && std::filesystem::path(scene).is_relative())
+                scene = (file.parent_path() / scene).lexically_normal().string();
         specs.push_back(spec);
     }
     return true;
