@@ -185,7 +185,9 @@ bool App::evaluateLayers(const EvaluationInput& input, const ReferenceOptions& o
 std::shared_ptr<const bvh::Bvh> App::contactBvhFor(uint64_t sceneGeneration) {
     std::lock_guard lock(contactBvhMutex_);
     if (contactBvhGeneration_ != sceneGeneration) {
-        // Another thread's evaluation of an older scene gets no band rather than a wrong one.
+        // loadScene swaps the scene under the exclusive lock: read it under the shared one. An
+        // evaluation of an older scene (the window's worker) gets no band rather than a wrong one.
+        std::shared_lock sceneLock(groundTruthMutex_);
         if (sceneGeneration != sceneGeneration_ || !scene_) return nullptr;
         contactBvh_ = std::make_shared<const bvh::Bvh>(bvh::build(*scene_));
         contactBvhGeneration_ = sceneGeneration;
