@@ -11,6 +11,11 @@
 // shadowTerm() for the opaque surfaces (sec. 9.4.2: "no shadow calculations are necessary"), and
 // calls it for translucent surfaces, which the term texture does not hold.
 //
+// Contact shadows (issue 30; host_shared/contact_shadows_shared.h): every main pass but the term
+// and peel variants can take the minimum of the shadow term and the host's contact term at the
+// pixel. uContactRead is 0 when contact shadows are off (the term is then exactly shadowTerm()'s)
+// and for translucent surfaces, which the camera depth the contact term comes from does not hold.
+//
 // SHADOWLAB_TRANSLUCENT_PEEL (with the accuracy targets; evaluation frames only,
 // host_shared/translucent_layers_shared.h) draws one translucent layer: fragments at or in front of
 // the previous layer's depth, or at or behind the opaque depth, are discarded at the end (so
@@ -23,6 +28,12 @@
 // specular: the projection aliasing the lighting would hide stays visible (Fig. 6.7, left).
 #include "common.glsl"
 #include "host_shared/eye_blur_shared.h"
+#include "host_shared/contact_shadows_shared.h"
+#if !defined(SHADOWLAB_EYE_BLUR_TERM) && !defined(SHADOWLAB_TRANSLUCENT_PEEL)
+#define SHADOWLAB_CONTACT_READ 1
+layout(binding = kContactTermUnit) uniform sampler2D uContactTerm;
+layout(location = SHADOWLAB_CONTACT_READ_LOCATION) uniform int uContactRead;
+#endif
 #ifdef SHADOWLAB_TRANSLUCENT_PEEL
 #include "host_shared/translucent_layers_shared.h"
 layout(binding = kPeelPreviousDepthUnit) uniform sampler2D uPeelPreviousDepth;
@@ -69,6 +80,9 @@ void main() {
 #else
     // Called in uniform control flow, so techniques may use derivatives.
     vec3 shadow = shadowTerm(s);
+#endif
+#ifdef SHADOWLAB_CONTACT_READ
+    if (uContactRead != 0) shadow = min(shadow, vec3(texelFetch(uContactTerm, ivec2(gl_FragCoord.xy), 0).r));
 #endif
 
 #ifdef SHADOWLAB_EYE_BLUR_TERM

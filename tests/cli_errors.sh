@@ -35,6 +35,11 @@ expect 2 "has no parameter 'kernel'" -- render --backend osmesa -t shadowmap --s
 expect 2 "parameter 'shadow_blur': 99 is out of range" -- render --backend osmesa -t shadowmap --set host.shadow_blur=99 --out "$tmp/a.png"
 expect 2 "'flat' is not one of phong, none" -- render --backend osmesa -t shadowmap --set host.lighting=flat --out "$tmp/a.png"
 expect 2 "host.shadow_blur=...: parameter 'shadow_blur': 40 is out of range" -- bench --backend osmesa --techniques shadowmap --sweep host.shadow_blur=0,40 --out "$tmp/b.json"
+# Contact shadows (issue 30): every host.contact_* key checked, in --set, sweeps and stress --set.
+expect 2 "parameter 'contact_shadows': -1 is out of range" -- render --backend osmesa -t shadowmap --set host.contact_shadows=-1 --out "$tmp/a.png"
+expect 2 "host.contact_steps=...: parameter 'contact_steps': 65 is out of range" -- bench --backend osmesa --techniques shadowmap --sweep host.contact_steps=16,65 --out "$tmp/b.json"
+expect 2 "host.contact_thickness=0: parameter 'contact_thickness': 0 is out of range" -- stress --backend osmesa --techniques shadowmap --cases contact-shadows-plate --set host.contact_thickness=0 --out "$tmp/stress-contact"
+expect 2 "parameter 'contact_jitter': 1.5 is out of range" -- eval --backend osmesa -t shadowmap --set host.contact_jitter=1.5
 # The depth pre-pass (issue 32): auto | on | off, 0/1 and the bare flag of older command lines.
 expect 2 "--depth-prepass 'sometimes': expected auto, on or off" -- render --backend osmesa -t shadowmap --depth-prepass sometimes --out "$tmp/a.png"
 expect 2 "host.depth_prepass=...: parameter 'depth_prepass': 'maybe' is not one of off, on, auto" -- bench --backend osmesa --techniques shadowmap --sweep host.depth_prepass=auto,maybe --out "$tmp/b.json"

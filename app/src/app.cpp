@@ -224,6 +224,10 @@ void App::beginSharedView(const std::vector<std::string>& techniques) {
 
 void App::cameraPrepassFor(uint32_t flags) {
     constexpr uint32_t kPrepassFlags = kTechniqueNeedsCameraPrepass | kTechniqueNeedsCameraDepth;
+    // Contact shadows march through the camera's depth: the depth-only pre-pass when the technique
+    // asks for none, timed apart so that its cost is the contact shadows', not the technique's.
+    const bool forContactOnly = contactShadowsOn() && !(flags & kPrepassFlags);
+    if (contactShadowsOn()) flags |= kTechniqueNeedsCameraDepth;
     if (!(flags & kPrepassFlags)) return;
     SharedPrepass& shared = sharedView_;
     if (shared.active) {
@@ -234,7 +238,7 @@ void App::cameraPrepassFor(uint32_t flags) {
         shared.viewProjection = viewProjection;
         shared.size = renderer_->size();
     }
-    timer_->begin("camera pre-pass");
+    timer_->begin(forContactOnly ? "contact pre-pass" : "camera pre-pass");
     renderer_->cameraPrepass((flags & kTechniqueNeedsCameraPrepass) ? Renderer::PrepassKind::Full
                                                                     : Renderer::PrepassKind::Depth);
     timer_->end();
@@ -281,6 +285,13 @@ bool App::runMainPasses(LoadedTechnique& loaded, const FrameContext& frame, cons
         renderer_->eyeBlur(blur, float(host[kHostShadowBlurDepth]));
         end();
     }
+    const bool contact = host[kHostContactShadows] > 0.0;
+    if (contact) {
+        begin("contact shadows");
+        renderer_->contactShadows({float(host[kHostContactShadows]), float(host[kHostContactThickness]),
+                                   int(host[kHostContactSteps]), float(host[kHostContactJitter])});
+        end();
+    }
     // Timed frames count the opaque fragments for the depth pre-pass's auto rule.
     if (timed) renderer_->countOverdrawNextPass();
     if (prepassThisFrame_) {
@@ -289,6 +300,7 @@ bool App::runMainPasses(LoadedTechnique& loaded, const FrameContext& frame, cons
         end();
     }
     renderer_->setEyeBlurRead(blur > 0.0f);
+    renderer_->setContactRead(contact);
     renderer_->setLighting(int(host[kHostLighting]));
     begin("main");
     // SHADOWLAB_EXT_TRANSLUCENT_DRAWS: the technique's hook before each translucent object; the
@@ -311,6 +323,7 @@ bool App::runMainPasses(LoadedTechnique& loaded, const FrameContext& frame, cons
     renderer_->setTranslucentHook({});
     end();
     renderer_->setEyeBlurRead(false);
+    renderer_->setContactRead(false);
     return true;
 }
 

@@ -13,6 +13,7 @@
 
 #include "backend/backend.h"
 #include "camera.h"
+#include "groundtruth/contact_band.h"
 #include "groundtruth/groundtruth.h"
 #include "groundtruth/metrics.h"
 #include "groundtruth/reference_cache.h"
@@ -121,6 +122,10 @@ struct Evaluation {
     // compares all layers at once (their images stacked); comparedPixels 0 when there are none.
     std::vector<TranslucentLayerEvaluation> translucentLayers;
     AccuracyMetrics translucentMetrics;
+    // Against the hard reference only (issue 30; groundtruth/contact_band.h): each compared pixel's
+    // class (1 in the contact band, 2 far from contact, 0 between; empty with a soft reference);
+    // the band's false-light rate is in metrics.
+    std::vector<uint8_t> contactBand;
     Image heatmap() const;              // errorHeatmap() as an RGBA image
 };
 
@@ -128,6 +133,7 @@ struct Evaluation {
 struct EvaluationParts {
     bool footprint = true;
     bool positions = true;
+    bool contactBand = true;   // hard passes: the contact band's false light (groundtruth/contact_band.h)
 };
 
 // What an evaluation reads from the GPU and the frame (App::captureEvaluation): everything the
@@ -186,6 +192,8 @@ public:
     // (render/depth_prepass_rule.h), stored as the host parameter host.depth_prepass.
     void setDepthPrepassMode(DepthPrepassMode mode) { params_.values(hostParams())[kHostDepthPrepass] = double(mode); }
     DepthPrepassMode depthPrepassMode() { return DepthPrepassMode(int(hostValues()[kHostDepthPrepass])); }
+    // host.contact_shadows > 0: the frame runs the camera depth pre-pass and the contact march.
+    bool contactShadowsOn() { return hostValues()[kHostContactShadows] > 0.0; }
     // Whether the last frame ran the pre-pass (what `auto` decided, or what on/off imposed).
     bool depthPrepassActive() const { return prepassThisFrame_; }
     // The depth complexity measured so far and auto's decision (updated in every renderFrame()).
@@ -195,9 +203,11 @@ public:
     int translucentLayers() const { return translucentLayers_; }
     // After the technique's shadow pass, everything up to and including the main pass: the depth
     // pre-pass when on, the eye-space blur's term and blur passes when host.shadow_blur > 0 (seed
-    // 002 sec. 6.3, 9.4.2; render/renderer.h), then the main pass (reading the blurred term when
-    // blurred), with host.lighting. `timed`: each pass in its timer scope ("depth pre-pass", "eye
-    // blur term", "eye blur", "main"). path_run.cpp uses it for its untimed passes too.
+    // 002 sec. 6.3, 9.4.2; render/renderer.h), the contact shadows' march when
+    // host.contact_shadows > 0 (issue 30), then the main pass (reading the blurred term when
+    // blurred, taking the minimum with the contact term when on), with host.lighting. `timed`: each
+    // pass in its timer scope ("depth pre-pass", "eye blur term", "eye blur", "contact shadows",
+    // "main"). path_run.cpp uses it for its untimed passes too.
     bool runMainPasses(LoadedTechnique& loaded, const FrameContext& frame, const ParamValues& params, FrameOutputs outputs,
                        bool timed, std::string& error);
     // The host's parameters (plugin/host_params.h) as stored: host.shadow_blur, ...
@@ -349,6 +359,11 @@ private:
     ReferenceCache referenceCache_;
     uint64_t sceneGeneration_ = 0;         // bumped when the scene changes
     uint64_t groundTruthGeneration_ = ~0ull;
+    // The casters' BVH for the contact band (groundtruth/contact_band.h), built once per scene.
+    std::shared_ptr<const bvh::Bvh> contactBvhFor(uint64_t sceneGeneration);
+    std::mutex contactBvhMutex_;
+    std::shared_ptr<const bvh::Bvh> contactBvh_;
+    uint64_t contactBvhGeneration_ = ~0ull;
 };
 
 } // namespace shadowlab

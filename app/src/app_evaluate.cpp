@@ -137,6 +137,14 @@ bool App::evaluateCapture(const EvaluationInput& input, const ReferenceOptions& 
                        input.camera.view, input.camera.nearPlane, input.camera.farPlane);
     if (parts.footprint) out.footprint = measureTexelFootprint(gbuffer, out.mask, input.frame.camera, input.frame.light, input.shadowMaps);
     if (parts.positions) out.positions = input.opaque.positions;
+    if (parts.contactBand && options.mode == ReferenceOptions::Mode::Hard) {
+        if (const auto bvh = contactBvhFor(input.sceneGeneration)) {
+            out.contactBand = contactBand(*bvh, gbuffer, out.mask, input.light);
+            const ContactBandMetrics contact = contactBandMetrics(out.contactBand, out.technique, out.reference);
+            out.metrics.contactFalseLightRate = contact.falseLightRate;
+            out.metrics.contactBandPixels = contact.bandPixels;
+        }
+    }
     out.referenceFloor = out.referenceStats.sampleError.empty()
                              ? 0.0
                              : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);
@@ -173,6 +181,19 @@ bool App::evaluateLayers(const EvaluationInput& input, const ReferenceOptions& o
         out.translucentMetrics = compareVisibility(allTechnique, allReference, allMask, size.x,
                                                    size.y * int(out.translucentLayers.size()));
     return true;
+}
+
+std::shared_ptr<const bvh::Bvh> App::contactBvhFor(uint64_t sceneGeneration) {
+    std::lock_guard lock(contactBvhMutex_);
+    if (contactBvhGeneration_ != sceneGeneration) {
+        // loadScene swaps the scene under the exclusive lock: read it under the shared one. An
+        // evaluation of an older scene (the window's worker) gets no band rather than a wrong one.
+        std::shared_lock sceneLock(groundTruthMutex_);
+        if (sceneGeneration != sceneGeneration_ || !scene_) return nullptr;
+        contactBvh_ = std::make_shared<const bvh::Bvh>(bvh::build(*scene_));
+        contactBvhGeneration_ = sceneGeneration;
+    }
+    return contactBvh_;
 }
 
 size_t App::plannedTraces(const EvaluationInput& input) {

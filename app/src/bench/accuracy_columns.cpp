@@ -50,6 +50,11 @@ void addPassColumns(const AccuracyPass& pass, const Evaluation& evaluation, nloh
         row["shadow_maps"] = f.maps;
     }
     row["technique_penumbra_fraction"] = a.techniquePenumbraFraction;
+    if (!evaluation.contactBand.empty()) {
+        // Issue 30: the false light within kContactBandDistance of a caster (groundtruth/contact_band.h).
+        row[prefix + "contact_false_light"] = a.contactFalseLightRate;
+        row[prefix + "contact_band_pixels"] = a.contactBandPixels;
+    }
     if (pass.mode == ReferenceOptions::Mode::Soft) {
         // The soft reference's own error: soft figures (and differences between them) below
         // about 4x the floor are not resolved.

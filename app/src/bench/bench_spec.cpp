@@ -258,6 +258,11 @@ bool loadBenchSpecs(const std::filesystem::path& file, std::vector<BenchSpec>& s
             error = spec.source + ": " + error;
             return false;
         }
+        // A scene file is relative to the spec's folder (as a stress case's is to its cases file),
+        // so a spec measures the same scenes from whatever folder it is run.
+        for (std::string& scene : spec.scenes)
+            if (scene.ends_with(".json") && std::filesystem::path(scene).is_relative())
+                scene = (file.parent_path() / scene).lexically_normal().string();
         specs.push_back(spec);
     }
     return true;
@@ -362,8 +367,10 @@ static bool checkSweeps(const BenchSpec& spec, const std::vector<const Technique
             }
         }
         if (!used) {
-            error = sweepName(spec, key) + ": '" + key +
-                    "' is no parameter of the techniques measured (nor scene.*, light.size, host.depth_prepass, host.shadow_blur, host.shadow_blur_depth, host.lighting)";
+            std::string hostKeys;
+            for (const auto& p : hostParams().params) hostKeys += ", host." + p.id;
+            error = sweepName(spec, key) + ": '" + key + "' is no parameter of the techniques measured (nor scene.*, light.size" +
+                    hostKeys + ")";
             return false;
         }
     }

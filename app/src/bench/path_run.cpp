@@ -67,6 +67,14 @@ AccuracyMetrics regionMetrics(const Evaluation& e, const std::vector<uint8_t>& r
     std::vector<uint8_t> mask = e.mask;
     for (size_t i = 0; i < mask.size() && i < region.size(); ++i) mask[i] = mask[i] && region[i];
     AccuracyMetrics m = compareVisibility(e.technique, e.reference, mask, e.width, e.height);
+    if (!e.contactBand.empty()) {
+        // The contact band inside the region (issue 30).
+        std::vector<uint8_t> band = e.contactBand;
+        for (size_t i = 0; i < band.size(); ++i) band[i] = mask[i] ? band[i] : 0;
+        const ContactBandMetrics contact = contactBandMetrics(band, e.technique, e.reference);
+        m.contactFalseLightRate = contact.falseLightRate;
+        m.contactBandPixels = contact.bandPixels;
+    }
     // Thirds of the visible depth range: with a far plane of 10 000 every visible pixel of a
     // scene would fall into the first third of [near, far].
     float nearest = camera.farPlane, farthest = camera.nearPlane;

@@ -73,6 +73,14 @@ Image temporalImage(const TemporalChanges& changes, const std::vector<uint8_t>& 
 bool applyWhereDeclared(App& app, const TechniqueInfo& info, const std::string& text, std::string& error) {
     const auto assignment = parseAssignment(text, error);
     if (!assignment) return false;
+    if (assignment->technique == hostParams().id) {
+        // host.* (contact shadows, the eye-space blur, ...): for every technique alike.
+        if (!app.params().set(hostParams(), assignment->param, assignment->value, error)) {
+            error = "--set " + text + ": " + error;
+            return false;
+        }
+        return true;
+    }
     if (!assignment->technique.empty() && assignment->technique != info.id) return true;
     if (!info.findParam(assignment->param)) return true;
     if (!app.params().set(info, assignment->param, assignment->value, error)) {
@@ -91,6 +99,15 @@ std::string settingsOf(App& app, const TechniqueInfo& info) {
         if (!text.empty()) text += " ";
         text += p.id + "=" + formatParamValue(p, values[i]);
     }
+    return text;
+}
+
+// The technique's settings that differ from its defaults, then the host's (host.contact_shadows=...).
+std::string cellSettings(App& app, const TechniqueInfo& info) {
+    std::string text = settingsOf(app, info);
+    std::istringstream host(settingsOf(app, hostParams()));
+    std::string item;
+    while (host >> item) text += (text.empty() ? "host." : " host.") + item;
     return text;
 }
 
@@ -171,6 +188,8 @@ static void foldPathResult(const StressCase& c, const PathAccuracy& result, Stre
         cell.falseLight = std::max(cell.falseLight, frame.metrics.falseLightRate);
         cell.maeNear = std::max(cell.maeNear, frame.metrics.maeByViewDepth[0]);
         cell.maeFar = std::max(cell.maeFar, frame.metrics.maeByViewDepth[2]);
+        cell.contactFalseLight = std::max(cell.contactFalseLight, frame.metrics.contactFalseLightRate);
+        cell.contactBandPixels = std::max(cell.contactBandPixels, frame.metrics.contactBandPixels);
         cell.pixels = std::max(cell.pixels, frame.metrics.comparedPixels);
     }
     cell.flicker = result.temporal.meanFlicker;
@@ -188,11 +207,24 @@ static void foldPathResult(const StressCase& c, const PathAccuracy& result, Stre
         if (result.temporal.poppingFrame >= 0) cell.worstFrame = result.temporal.poppingFrame;
         break;
     case StressMetric::Noise: cell.value = cell.noise; break;
+    case StressMetric::ContactFalseLight: cell.value = cell.contactFalseLight; break;
     }
 }
 
+static bool runStressCellWithHost(App& app, const StressSuite& suite, const StressCase& c, const std::string& technique,
+                                  const StressOptions& options, StressCell& cell, std::string& error);
+
 bool runStressCell(App& app, const StressSuite& suite, const StressCase& c, const std::string& technique,
                    const StressOptions& options, StressCell& cell, std::string& error) {
+    // A case's host.* settings (contact shadows, ...) hold for its cells only.
+    const std::vector<double> savedHost = app.hostValues();
+    const bool ran = runStressCellWithHost(app, suite, c, technique, options, cell, error);
+    app.params().values(hostParams()) = savedHost;
+    return ran;
+}
+
+static bool runStressCellWithHost(App& app, const StressSuite& suite, const StressCase& c, const std::string& technique,
+                                  const StressOptions& options, StressCell& cell, std::string& error) {
     cell = {};
     cell.technique = technique;
     cell.caseId = c.id;
@@ -242,7 +274,7 @@ bool runStressCell(App& app, const StressSuite& suite, const StressCase& c, cons
             !app.params().set(*info, "samples", std::to_string(c.referenceSamples), error))
             return false;
     }
-    cell.settings = settingsOf(app, *info);
+    cell.settings = cellSettings(app, *info);
 
     // The path; the dolly moves by a fraction of this technique's own map texel (its fit, crop and
     // resolution at the first frame; 2048 texels over the scene fit without a map).
@@ -270,6 +302,7 @@ bool runStressCell(App& app, const StressSuite& suite, const StressCase& c, cons
         case StressMetric::FalseLight: return m.falseLightRate;
         case StressMetric::MaeNearThird: return m.maeByViewDepth[0];
         case StressMetric::MaeFarThird: return m.maeByViewDepth[2];
+        case StressMetric::ContactFalseLight: return m.contactFalseLightRate;
         default: return m.mae;
         }
     };
@@ -422,6 +455,17 @@ static int checkStressRequest(App& app, const StressSuite& suite, const StressOp
     for (const std::string& text : options.sets) {
         const auto assignment = parseAssignment(text, error);
         if (!assignment) return 2;
+        if (assignment->technique == hostParams().id) {
+            // Checked here on a copy; each cell applies it (applyWhereDeclared).
+            const std::vector<double> saved = app.hostValues();
+            const bool valid = app.params().set(hostParams(), assignment->param, assignment->value, error);
+            app.params().values(hostParams()) = saved;
+            if (!valid) {
+                error = "--set " + text + ": " + error;
+                return 2;
+            }
+            continue;
+        }
         // A key naming its technique goes to it; a bare key to each technique that declares it
         // (applyWhereDeclared), so at least one must.
         bool declared = false;
@@ -461,6 +505,7 @@ static json stressRow(const StressCase& c, const std::string& technique, const S
                 {"mae", cell.mae}, {"false_shadow", cell.falseShadow}, {"false_light", cell.falseLight},
                 {"mae_near_third", cell.maeNear}, {"mae_far_third", cell.maeFar}, {"flicker", cell.flicker},
                 {"popping", cell.popping}, {"noise", cell.noise}, {"pixels", cell.pixels},
+                {"contact_false_light", cell.contactFalseLight}, {"contact_band_pixels", cell.contactBandPixels},
                 {"frames", c.path.empty() ? 1 : c.frames}});
     // Whether the verdict agrees with the claim: only where the claim names the technique.
     if (cell.expectedFail || cell.expectedPass) row["agrees_with_literature"] = cell.expectedFail != cell.pass;

@@ -20,7 +20,9 @@ namespace shadowlab {
 
 class App;
 
-enum class StressMetric { FalseShadow, FalseLight, Mae, MaeNearThird, MaeFarThird, Flicker, Popping, Noise };
+// ContactFalseLight: the false-light rate in the contact band (groundtruth/contact_band.h; hard
+// reference), where maps leak at a caster's foot and contact shadows should close the gap.
+enum class StressMetric { FalseShadow, FalseLight, Mae, MaeNearThird, MaeFarThird, Flicker, Popping, Noise, ContactFalseLight };
 
 struct StressCase {
     std::string id, title;
@@ -76,6 +78,8 @@ struct StressCell {
     std::string settings;                    // the parameters it ran with
     // Details beside the cell's metric.
     double mae = 0, falseShadow = 0, falseLight = 0, maeNear = 0, maeFar = 0, flicker = 0, popping = 0, noise = 0;
+    double contactFalseLight = 0;
+    size_t contactBandPixels = 0;
     size_t pixels = 0;
     // Texel footprint m (texel_footprint.h) over the region's pixels, worst frame: the median over
     // all of them and over the nearest third of the visible depth range (the thirds of maeNear).

@@ -68,7 +68,8 @@ const std::map<std::string, StressMetric>& metricNames() {
         {"false_shadow", StressMetric::FalseShadow}, {"false_light", StressMetric::FalseLight},
         {"mae", StressMetric::Mae}, {"mae_near_third", StressMetric::MaeNearThird},
         {"mae_far_third", StressMetric::MaeFarThird}, {"flicker", StressMetric::Flicker},
-        {"popping", StressMetric::Popping}, {"noise", StressMetric::Noise}};
+        {"popping", StressMetric::Popping}, {"noise", StressMetric::Noise},
+        {"contact_false_light", StressMetric::ContactFalseLight}};
     return names;
 }
 
@@ -148,6 +149,8 @@ StressCase parseCase(const json& node, const std::string& at) {
     c.metric = found->second;
     const bool temporal = c.metric == StressMetric::Flicker || c.metric == StressMetric::Popping || c.metric == StressMetric::Noise;
     if (temporal && c.path.empty()) fail(at + ".metric", "a temporal metric needs a path");
+    if (c.metric == StressMetric::ContactFalseLight && c.reference != ReferenceOptions::Mode::Hard)
+        fail(at + ".metric", "contact_false_light is measured against the hard reference");
     if (!node.contains("threshold")) fail(at + ".threshold", "missing");
     c.threshold = numberField(node, "threshold", at, 0.0, 1.0);
     auto idList = [&](const char* key, std::vector<std::string>& out) {

@@ -67,6 +67,10 @@ void printAccuracy(const std::string& name, const nlohmann::json& metrics) {
             std::printf(" %.4f (%zu px)", layer["mae"].get<double>(), layer["comparedPixels"].get<size_t>());
         std::printf("\n");
     }
+    if (metrics.contains("contact_false_light"))
+        std::printf("    contact band (shadow ray meets a caster within %.2f units; %zu px): false light %.3f%%\n",
+                    double(kContactBandDistance), metrics["contact_band_pixels"].get<size_t>(),
+                    100.0 * metrics["contact_false_light"].get<double>());
     if (metrics.contains("reference_floor"))
         std::printf("    soft reference: %d rays per pixel%s (%.1f%% of pixels refined), traced in %.2f s; its own "
                     "penumbra error (floor) %.4f\n",
@@ -87,6 +91,10 @@ nlohmann::json evaluationJson(const AccuracyPass& pass, const Evaluation& evalua
         for (const TranslucentLayerEvaluation& layer : evaluation.translucentLayers)
             receivers["layers"].push_back(nlohmann::json::parse(metricsToJson(layer.metrics)));
         out["translucent_receivers"] = receivers;
+    }
+    if (!evaluation.contactBand.empty()) {
+        out["contact_false_light"] = evaluation.metrics.contactFalseLightRate;
+        out["contact_band_pixels"] = evaluation.metrics.contactBandPixels;
     }
     if (pass.mode == ReferenceOptions::Mode::Soft) {
         // The reference's own penumbra error: soft figures below about 4x it are not resolved.

@@ -47,6 +47,10 @@ struct AccuracyMetrics {
     // as a large near-third error; focusing and warping the map should lower it. Zero until added.
     std::array<double, 3> maeByViewDepth{};
     std::array<size_t, 3> pixelsByViewDepth{};
+    // Issue 30, against the hard reference only (groundtruth/contact_band.h): the false-light rate
+    // over the contact band's compared pixels, and how many there are. Zero until added.
+    double contactFalseLightRate = 0.0;
+    size_t contactBandPixels = 0;
 };
 
 // Penumbra (reference side only): compared pixels with 0.02 < reference < 0.98, plus compared

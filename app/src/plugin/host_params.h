@@ -5,7 +5,8 @@
 //
 // The eye-space depth-dependent blur of the shadow term and the lighting rules of seed 002
 // ch. 6 (sec. 6.2, 6.3, 9.4; host_shared/eye_blur_shared.h, render/renderer.h eyeBlur*), and the
-// depth pre-pass (off | on | auto: render/depth_prepass_rule.h).
+// depth pre-pass (off | on | auto: render/depth_prepass_rule.h), and screen-space contact shadows
+// (issue 30; host_shared/contact_shadows_shared.h, docs/contact-shadows.md).
 #pragma once
 
 #include <cstdio>
@@ -15,7 +16,16 @@
 
 namespace shadowlab {
 
-enum HostParam : uint32_t { kHostShadowBlur = 0, kHostShadowBlurDepth = 1, kHostLighting = 2, kHostDepthPrepass = 3 };
+enum HostParam : uint32_t {
+    kHostShadowBlur = 0,
+    kHostShadowBlurDepth = 1,
+    kHostLighting = 2,
+    kHostDepthPrepass = 3,
+    kHostContactShadows = 4,
+    kHostContactThickness = 5,
+    kHostContactSteps = 6,
+    kHostContactJitter = 7,
+};
 
 inline const TechniqueInfo& hostParams() {
     static const TechniqueInfo info = [] {
@@ -33,7 +43,10 @@ inline const TechniqueInfo& hostParams() {
             "N.L darkens exactly the surfaces grazed by the light, where projection aliasing (eq. 6.1) is worst; "
             "with none the term lies on unlit surfaces and every artefact shows. Depth pre-pass: the opaque depth laid "
             "down first, so the main pass shades each visible pixel once instead of every overdrawn fragment; auto "
-            "turns it on where the frame's depth complexity is high (forest) and off where it is not.";
+            "turns it on where the frame's depth complexity is high (forest) and off where it is not. Contact shadows: a "
+            "short ray marched from each pixel towards the light through the camera's depth buffer finds the "
+            "casters right next to the receiver, where a map's bias lifts the shadow off (peter panning); the main "
+            "pass takes the minimum of it and the technique's term. It cannot see casters outside the view.";
         t.params.push_back({"shadow_blur", "Eye-space blur", ParamType::Float, 0.0, 16.0, 0.0, "px",
                             "Seed 002 sec. 6.3 / 9.4.2: the shadow term of the opaque surfaces is written to a screen "
                             "texture and blurred with a box W pixels wide at the reference depth, W z_b / z beyond it "
@@ -64,6 +77,28 @@ inline const TechniqueInfo& hostParams() {
                                         "geometry pass. ") +
                                 autoRule + " 0/1 are accepted as off/on.",
                             {"off", "on", "auto"}});
+        // World units, not pixels: the gap a map's bias opens at a caster's foot is a length in the
+        // scene (bias times depth slope), the same at any resolution and distance; a ray in pixels
+        // would cover a different part of it at every distance (docs/contact-shadows.md).
+        t.params.push_back({"contact_shadows", "Contact shadows", ParamType::Float, 0.0, 100.0, 0.0, "units",
+                            "Screen-space contact shadows: the length (world units) of the ray marched from each "
+                            "pixel towards the light through the camera's depth; the main pass takes min(technique's "
+                            "term, contact term). 0: off (the frame as without it). Forces the camera depth "
+                            "pre-pass. 0.5 closes the bias gap of the test scenes.",
+                            {}});
+        t.params.push_back({"contact_thickness", "Contact thickness", ParamType::Float, 0.001, 100.0, 0.25, "units",
+                            "How deep (world units, along the view) every surface the camera sees is assumed to be: "
+                            "a ray sample at most this far behind the depth buffer is occluded. Too thin misses "
+                            "casters seen edge on; too thick shadows the space behind thin casters.",
+                            {}});
+        t.params.push_back({"contact_steps", "Contact steps", ParamType::Int, 1.0, 64.0, 16.0, "",
+                            "Samples along the contact ray (cost grows with it; a caster thinner than length / steps "
+                            "can fall between two samples).",
+                            {}});
+        t.params.push_back({"contact_jitter", "Contact jitter", ParamType::Float, 0.0, 1.0, 1.0, "",
+                            "Each pixel's samples move back by jitter x a per-pixel noise of one step (fixed over "
+                            "frames): steps' banding becomes noise. 0: samples at whole steps.",
+                            {}});
         return t;
     }();
     return info;

@@ -8,6 +8,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "host_shared/contact_shadows_shared.h"
 #include "host_shared/eye_blur_shared.h"
 #include "render/bvh.h"
 #include "shadowlab/frame_block.h"
@@ -124,8 +125,10 @@ bool Renderer::init(std::string& error) {
     depthOnlyProgram_ = shaders_.build(hostShaderRequest("main.vert", "", "host depth pre-pass"), error);
     if (!depthOnlyProgram_) return false;
     eyeBlurProgram_ = shaders_.build(hostShaderRequest("fullscreen.vert", "eye_blur.frag", "host eye-space blur"), error);
+    if (!eyeBlurProgram_) return false;
+    contactProgram_ = shaders_.build(hostShaderRequest("fullscreen.vert", "contact_shadows.frag", "host contact shadows"), error);
     overdraw_.create();
-    return eyeBlurProgram_ != 0;
+    return contactProgram_ != 0;
 }
 
 GLuint Renderer::sampler(SamplerKind kind) const {
@@ -309,6 +312,7 @@ bool Renderer::resize(glm::ivec2 size, int msaaSamples, std::string& error) {
     }
     if (prepassDepthFbo_) allocatePrepassTargets(prepassFull_);
     if (eyeBlurTermFbo_) allocateEyeBlurTargets();
+    if (contactFbo_) allocateContactTargets();
     if (layerFbo_[0]) allocateLayerTargets();
     displayColor_ = makeTexture(GL_RGBA8, size, 0, "display");
     glCreateFramebuffers(1, &name);
@@ -567,6 +571,42 @@ void Renderer::beginMainPass(GLuint program, FrameOutputs outputs) {
         glBindSampler(shared::eye_blur::kEyeBlurTermUnit, 0);
         glUniform1i(SHADOWLAB_EYE_BLUR_READ_LOCATION, 1);
     }
+    // Set every pass, on or off: the value is the program's, and stays from an earlier frame.
+    glUniform1i(SHADOWLAB_CONTACT_READ_LOCATION, contactRead_ ? 1 : 0);
+    if (contactRead_) {
+        glBindTextureUnit(shared::contact_shadows::kContactTermUnit, contactTerm_.get());
+        glBindSampler(shared::contact_shadows::kContactTermUnit, 0);
+    }
+}
+
+void Renderer::allocateContactTargets() {
+    contactTerm_ = makeTexture(GL_R8, size_, 0, "contact shadows: term");
+    GLuint name = 0;
+    glCreateFramebuffers(1, &name);
+    contactFbo_.reset(name);
+    glObjectLabel(GL_FRAMEBUFFER, name, -1, "contact shadows");
+    glNamedFramebufferTexture(name, GL_COLOR_ATTACHMENT0, contactTerm_.get(), 0);
+    const GLenum status = glCheckNamedFramebufferStatus(name, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) logError("contact shadows framebuffer is " + framebufferStatusName(status));
+}
+
+void Renderer::contactShadows(const ContactSettings& settings) {
+    if (!contactFbo_) allocateContactTargets();
+    applyDefaultState();
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glBindFramebuffer(GL_FRAMEBUFFER, contactFbo_.get());
+    glViewport(0, 0, size_.x, size_.y);
+    glUseProgram(shaders_.program(contactProgram_));
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, frameUniforms_.get());
+    const glm::mat4 inverseViewProjection = glm::inverse(camera_.viewProjection);
+    glUniformMatrix4fv(SHADOWLAB_CONTACT_INVERSE_VP_LOCATION, 1, GL_FALSE, glm::value_ptr(inverseViewProjection));
+    glUniform4f(SHADOWLAB_CONTACT_PARAMS_LOCATION, settings.length, settings.thickness, float(settings.steps), settings.jitter);
+    glBindTextureUnit(shared::contact_shadows::kContactDepthUnit, prepassDepth_.get());
+    glBindSampler(shared::contact_shadows::kContactDepthUnit, 0);
+    drawFullscreenTriangle();
+    glBindTextureUnit(shared::contact_shadows::kContactDepthUnit, 0);
+    resetPipelineState();
 }
 
 void Renderer::allocateEyeBlurTargets() {
@@ -681,6 +721,8 @@ void Renderer::setMainTranslucentState(GLuint program, FrameOutputs outputs) {
     glUniform1i(SHADOWLAB_LIGHTING_LOCATION, lighting_);
     // The blurred term holds the opaque surfaces only: translucent ones call shadowTerm().
     if (eyeBlurRead_) glUniform1i(SHADOWLAB_EYE_BLUR_READ_LOCATION, 0);
+    // The contact term, too: it comes from the opaque depth.
+    glUniform1i(SHADOWLAB_CONTACT_READ_LOCATION, 0);
 }
 
 void Renderer::drawTranslucent(GLuint program, const std::function<void()>& setState) {

@@ -174,6 +174,22 @@ public:
     // The blurred term of the last eyeBlur() (tests read it), 0 before the first.
     GLuint eyeBlurTexture() const { return eyeBlurTerm_[0].get(); }
 
+    // Screen-space contact shadows (issue 30; host_shared/contact_shadows_shared.h): contactShadows()
+    // marches from every pixel of the camera pre-pass's depth (cameraPrepass() must have run this
+    // frame) towards the light, into an R8 screen texture (1 lit, 0 occluded); main passes after
+    // setContactRead(true) take min(their term, it) for their opaque surfaces. The texture and its
+    // framebuffer are made on first use and on resize, the program once in init().
+    struct ContactSettings {
+        float length = 0.0f;      // world units
+        float thickness = 0.25f;  // world units
+        int steps = 16;
+        float jitter = 1.0f;
+    };
+    void contactShadows(const ContactSettings& settings);
+    void setContactRead(bool on) { contactRead_ = on; }
+    // The contact term of the last contactShadows() (tests read it), 0 before the first.
+    GLuint contactTexture() const { return contactTerm_.get(); }
+
     // Present pass into `framebuffer` (0 = window) or, with framebuffer = ~0u, the display texture.
     void present(PresentMode mode, GLuint texture, GLuint framebuffer, glm::ivec2 viewport, glm::vec2 range = {0, 1});
     GLuint target(MainTarget which) const;
@@ -204,6 +220,7 @@ private:
     void beginEyeBlurTerm(GLuint program);
     void drawOpaque(GLuint program);
     void allocateEyeBlurTargets();
+    void allocateContactTargets();
     void drawMainPassObjects(GLuint program, FrameOutputs outputs);
     // The translucent objects, back to front from the camera: one request, or one by one with the
     // hook (setState() runs before the draw, and after each hook call).
@@ -279,6 +296,12 @@ private:
     GlFramebuffer eyeBlurTermFbo_, eyeBlurFbo_[2];
     ProgramId eyeBlurProgram_ = 0;
     bool eyeBlurRead_ = false;
+
+    // Contact shadows (contactShadows): the term, its framebuffer and the march.
+    GlTexture contactTerm_;
+    GlFramebuffer contactFbo_;
+    ProgramId contactProgram_ = 0;
+    bool contactRead_ = false;
 
     // Translucent layers (translucentLayer): shadow term, position and normal as the accuracy
     // targets, and two 32F depths, this layer's and the previous one's, alternating.
