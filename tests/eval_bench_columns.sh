@@ -17,7 +17,7 @@ compare() {   # NAME SCENE TECHNIQUE REFERENCE-ARGS...
   "$shadowlab" eval --backend osmesa --scene "$scene" -t "$technique" --size 160x90 --frames 3 "$@" --json \
     >"$name-eval.json" 2>"$name-eval.log" || { cat "$name-eval.log"; echo "FAIL: eval $name"; exit 1; }
   "$shadowlab" bench --backend osmesa --scenes "$scene" --techniques "$technique" --size 160x90 --frames 3 --warmup 1 \
-    --accuracy "$@" --out "$name-bench.json" >"$name-bench.log" 2>&1 || { cat "$name-bench.log"; echo "FAIL: bench $name"; exit 1; }
+    --accuracy --contact-band "$@" --out "$name-bench.json" >"$name-bench.log" 2>&1 || { cat "$name-bench.log"; echo "FAIL: bench $name"; exit 1; }
   python3 - "$name" "$name-eval.json" "$name-bench.json" <<'PY'
 import json, re, sys
 name, eval_file, bench_file = sys.argv[1:]

@@ -26,6 +26,9 @@ struct AccuracyRequest {
     std::vector<ReferenceOptions::Mode> modes;
     int samples = 1024;      // soft reference rays per pixel
     bool adaptive = true;    // soft reference sampled adaptively
+    // The contact band's false light (hard passes, groundtruth/contact_band.h): a shadow ray a
+    // pixel more, so bench rows have it only where their spec asks ("contactBand").
+    bool contactBand = true;
 };
 
 // An evaluation as it is measured: its column prefix ("hard_", "soft_own_"), mode and model.

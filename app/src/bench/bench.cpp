@@ -242,6 +242,7 @@ static bool addRowAccuracy(App& app, const BenchSpec& spec, const TechniqueInfo*
     }
     request.samples = spec.referenceSamples;
     request.adaptive = spec.referenceAdaptive;
+    request.contactBand = spec.contactBand;
     return addAccuracyColumns(app, *info, request, row, error);
 }
 

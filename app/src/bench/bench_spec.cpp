@@ -139,7 +139,7 @@ bool addSweep(BenchSpec& spec, const std::string& text, std::string& error) {
 
 bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
     static const std::set<std::string> known{"techniques", "scenes", "sizes", "sweep", "base", "frames", "warmup", "minFrames", "stableWithin",
-                                             "accuracy", "reference", "referenceSamples", "referenceAdaptive", "depthFloor",
+                                             "accuracy", "reference", "referenceSamples", "referenceAdaptive", "depthFloor", "contactBand",
                                              "description", "tag"};
     if (!spec.is_object()) {
         error = "a benchmark spec is a JSON object, got " + describe(spec);
@@ -222,6 +222,8 @@ bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
         return false;
     if (const auto it = spec.find("referenceSamples"); it != spec.end() &&
         !readWholeNumber(*it, "referenceSamples", 1, kMaxReferenceSamples, result.referenceSamples, error))
+        return false;
+    if (const auto it = spec.find("contactBand"); it != spec.end() && !readBool(*it, "contactBand", result.contactBand, error))
         return false;
     if (const auto it = spec.find("referenceAdaptive");
         it != spec.end() && !readBool(*it, "referenceAdaptive", result.referenceAdaptive, error))

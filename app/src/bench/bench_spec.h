@@ -47,6 +47,7 @@ struct BenchSpec {
     int referenceSamples = 1024;
     bool referenceAdaptive = true;
     bool depthFloor = false;                 // add "depth-floor" rows (bare depth pass per resolution)
+    bool contactBand = false;                // hard_contact_* columns (one more shadow ray a pixel)
     bool fromCommandLine = false;            // errors name options (--sweep) rather than fields (sweep)
     // The file it was read from ("spec.json", or "spec.json: spec 2" in an array): checkBenchSpec's
     // errors start with it, so a bad technique in a file does not read like a command-line error.

@@ -146,6 +146,8 @@ public:
         bench->add_option("--reference-adaptive", adaptive_,
                           "soft reference: a first batch everywhere, all --samples rays only near penumbrae: on | off (default on)");
         bench->add_flag("--depth-floor", spec_.depthFloor, "add a bare depth-only pass per shadow-map resolution");
+        bench->add_flag("--contact-band", spec_.contactBand,
+                        "with --accuracy: the contact band's false light (hard_contact_*; one more shadow ray a pixel)");
         bench->add_option("--spec", specFile_, "JSON spec (one object or an array), which says everything the lists below would");
         bench->add_option("--out,-o", out_, "results file: .csv or .json")->required();
         bench->add_option("--path", path_,
@@ -162,7 +164,7 @@ public:
         auto given = [&](const char* name) { return command_->get_option(name)->count() > 0; };
         if (!specFile_.empty() && !common.sets.empty())
             return fail("--set: the spec (--spec) sets its parameters itself (its \"base\")", kExitBadInput);
-        for (const char* option : {"--reference", "--samples", "--reference-adaptive"})
+        for (const char* option : {"--reference", "--samples", "--reference-adaptive", "--contact-band"})
             if (given(option) && !spec_.accuracy)
                 return fail(std::string(option) + ": only --accuracy traces the reference", kExitBadInput);
         std::string error;
@@ -189,7 +191,7 @@ private:
         CLI::Option* path = bench.get_option("--path");
         for (const char* name : {"--techniques", "--scenes", "--sweep", "--size", "--frames", "--warmup", "--accuracy",
                                  "--reference", "--samples", "--reference-adaptive", "--depth-floor", "--stable-within",
-                                 "--min-frames"})
+                                 "--min-frames", "--contact-band"})
             bench.get_option(name)->excludes(spec);
         bench.get_option("--min-frames")->needs(bench.get_option("--stable-within"));
         for (const char* name : {"--sweep", "--frames", "--samples", "--reference-adaptive", "--depth-floor", "--stable-within"})
