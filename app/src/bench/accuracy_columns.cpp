@@ -108,7 +108,7 @@ bool addAccuracyColumns(App& app, const TechniqueInfo& info, const AccuracyReque
             // The footprint depends on the capture only; addPassColumns reads it from the
             // first physical pass.
             const bool withFootprint = !footprintDone && model == TranslucencyModel::Physical;
-            if (!app.evaluateCapture(input, options, evaluation, error, {withFootprint, bool(each), request.contactBand})) return false;
+            if (!app.evaluateCapture(input, options, evaluation, error, {withFootprint, false, request.contactBand})) return false;
             footprintDone = footprintDone || withFootprint;
             // Where the evaluation's wall time went (docs/benchmarks.md, seconds_row).
             columns["seconds_reference"] = columns.value("seconds_reference", 0.0) + evaluation.traceSeconds;

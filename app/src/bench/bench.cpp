@@ -233,7 +233,7 @@ static bool addDepthFloorRow(App& app, const BenchSpec& spec, int resolution, nl
 // against each reference mode and translucency model asked for, by the function eval --json
 // uses too (bench/accuracy_columns.h).
 static bool addRowAccuracy(App& app, const BenchSpec& spec, const TechniqueInfo* info, const LightInfo& rowLight,
-                           nlohmann::json& row, std::string& error) {
+                           nlohmann::json& row, std::string& error, const BenchEvaluationHook& onEvaluation) {
     app.light() = rowLight;
     AccuracyRequest request;
     if (!referenceModesFor(spec.reference, *info, request.modes)) {
@@ -243,7 +243,9 @@ static bool addRowAccuracy(App& app, const BenchSpec& spec, const TechniqueInfo*
     request.samples = spec.referenceSamples;
     request.adaptive = spec.referenceAdaptive;
     request.contactBand = spec.contactBand;
-    return addAccuracyColumns(app, *info, request, row, error);
+    if (!onEvaluation) return addAccuracyColumns(app, *info, request, row, error);
+    return addAccuracyColumns(app, *info, request, row, error,
+                              [&](const AccuracyPass& pass, const Evaluation& e) { onEvaluation(*info, pass, e); });
 }
 
 // A row's settings on top of the technique's defaults: the spec's base, then the row's sweep values
@@ -273,7 +275,7 @@ static bool applyRowSettings(App& app, const BenchSpec& spec, const BenchJob& jo
 }
 
 bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows, std::string& error,
-              const std::function<void(const nlohmann::json&)>& onRow) {
+              const std::function<void(const nlohmann::json&)>& onRow, const BenchEvaluationHook& onEvaluation) {
     // Every value checked before the first frame; below, conversions cannot fail.
     if (!checkBenchSpec(spec, app.techniques().techniques(), error)) {
         error = "benchmark: " + error;
@@ -367,7 +369,7 @@ bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows
             LoadedTechnique* loaded = app.techniques().get(info->id, error);
             if (loaded)
                 for (const auto& [name, value] : loaded->host().statistics()) row["stat." + columnName(name)] = value;
-            if (spec.accuracy && !addRowAccuracy(app, spec, info, rowLight, row, error)) return false;
+            if (spec.accuracy && !addRowAccuracy(app, spec, info, rowLight, row, error, onEvaluation)) return false;
         }
         row["seconds_row"] = secondsSince(rowStart);
         rows.push_back(row);

@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bench/accuracy_columns.h"
 #include "bench/bench_spec.h"
 
 namespace shadowlab {
@@ -23,8 +24,11 @@ class App;
 // Runs the sweep on `app`; every row is a flat JSON object (see docs/benchmarks.md). Rows are
 // also passed to `onRow` as they complete (progress output). The whole spec is checked first
 // (checkBenchSpec), so a bad value fails before the first frame.
+// Each evaluation of a row's accuracy columns, on the GL thread right after it (the frame is still
+// the row's): the report keeps the images of the rows at the defaults instead of drawing them again.
+using BenchEvaluationHook = std::function<void(const TechniqueInfo&, const AccuracyPass&, const Evaluation&)>;
 bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows, std::string& error,
-              const std::function<void(const nlohmann::json&)>& onRow = {});
+              const std::function<void(const nlohmann::json&)>& onRow = {}, const BenchEvaluationHook& onEvaluation = {});
 
 // Writes rows as CSV (.csv) or JSON (anything else); CSV columns are the union of row keys.
 bool writeBenchResults(const std::filesystem::path& file, const std::vector<nlohmann::json>& rows, std::string& error);

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <sstream>
 #include <map>
+#include <optional>
+#include <algorithm>
 #include <set>
 
 #include "app.h"
@@ -35,14 +37,66 @@ bool writePngs(std::vector<std::pair<std::filesystem::path, Image>>& pending, st
     return true;
 }
 
-// Screenshot and error heatmap of every technique on each scene of the sweep, at the first size.
-bool writeImages(App& app, const BenchSpec& spec, const std::filesystem::path& dir, std::vector<ReportImage>& images,
-                 std::string& error) {
+// The report's images: a screenshot and an error heatmap per technique and scene of the first
+// spec, at its first size and the technique's defaults. The sweep's rows at those settings give
+// them as they are measured (ImageCollector::onEvaluation); writeImages() draws the rest.
+class ImageCollector {
+public:
+    ImageCollector(App& app, const BenchSpec& spec, std::filesystem::path dir)
+        : app_(app), spec_(spec), dir_(std::move(dir)), host_(app.hostValues()) {}
+
+    // BenchEvaluationHook: a row at the defaults, judged against its own reference's physical model.
+    void onEvaluation(const TechniqueInfo& info, const AccuracyPass& pass, const Evaluation& e) {
+        if (pass.model != TranslucencyModel::Physical || pass.mode != ownReferenceMode(info) || !atDefaults(info)) return;
+        const std::string scene = app_.scene().name;
+        if (!done_.insert({scene, info.id}).second) return;
+        std::string error;
+        if (!app_.presentView(info.id, {}, ~0u, {}, error)) {   // the row's frame, lit
+            done_.erase({scene, info.id});
+            return;
+        }
+        ReportImage entry{scene, info.id, info.displayName, scene + "-" + info.id + ".png", scene + "-" + info.id + "-error.png",
+                          pass.mode == ReferenceOptions::Mode::Hard ? "hard" : "soft", e.metrics};
+        pending.emplace_back(dir_ / entry.image, app_.readDisplay());
+        pending.emplace_back(dir_ / entry.heatmap, e.heatmap());
+        images.push_back(entry);
+    }
+    bool has(const std::string& scene, const std::string& technique) const { return done_.count({scene, technique}) > 0; }
+
+    std::vector<ReportImage> images;
     std::vector<std::pair<std::filesystem::path, Image>> pending;
-    for (const auto& scene : spec.scenes) {
-        if (!app.loadScene(scene, {}, error)) return false;
+
+private:
+    bool atDefaults(const TechniqueInfo& info) {
+        if (app_.renderer().size() != spec_.sizes.front() || app_.hostValues() != host_ ||
+            app_.light().size != app_.scene().light.size)
+            return false;
+        const std::vector<double>& values = app_.params().values(info);
+        for (size_t i = 0; i < info.params.size(); ++i)
+            if (values[i] != info.params[i].defaultValue) return false;
+        return std::find(spec_.scenes.begin(), spec_.scenes.end(), app_.scene().name) != spec_.scenes.end();
+    }
+    App& app_;
+    const BenchSpec& spec_;
+    std::filesystem::path dir_;
+    std::vector<double> host_;
+    std::set<std::pair<std::string, std::string>> done_;
+};
+
+// The images the sweep did not give (techniques measured without accuracy or away from their
+// defaults, the reference), drawn after it; all of them in scene and technique order.
+bool writeImages(App& app, const BenchSpec& spec, ImageCollector& collected, std::vector<ReportImage>& images,
+                 const std::filesystem::path& dir, std::string& error) {
+    std::vector<std::pair<std::filesystem::path, Image>> pending = std::move(collected.pending);
+    if (!writePngs(pending, error)) return false;
+    std::map<std::string, size_t> sceneOrder;
+    for (const auto& sceneArgument : spec.scenes) {
+        if (!app.loadScene(sceneArgument, {}, error)) return false;
         if (!app.setRenderSize(spec.sizes.front(), error)) return false;
+        const std::string scene = app.scene().name;
+        sceneOrder.emplace(scene, sceneOrder.size());
         for (const auto& info : app.techniques().techniques()) {
+            if (collected.has(scene, info.id)) continue;
             app.params().resetToDefaults(info);
             for (int frame = 0; frame < 3; ++frame)
                 if (!app.renderFrame(info.id, error)) return false;
@@ -57,16 +111,25 @@ bool writeImages(App& app, const BenchSpec& spec, const std::filesystem::path& d
                 options.adaptive = spec.referenceAdaptive;
                 options.model = TranslucencyModel::Physical;   // the heatmap shows the error against the physical model
                 Evaluation evaluation;
-                if (!app.evaluate(options, evaluation, error, {.footprint = false, .positions = false})) return false;
+                if (!app.evaluate(options, evaluation, error, {.footprint = false, .positions = false, .contactBand = false})) return false;
                 entry.heatmap = scene + "-" + info.id + "-error.png";
                 entry.reference = hard ? "hard" : "soft";
                 entry.metrics = evaluation.metrics;
                 pending.emplace_back(dir / entry.heatmap, evaluation.heatmap());
             }
-            images.push_back(entry);
+            collected.images.push_back(entry);
         }
         if (!writePngs(pending, error)) return false;
     }
+    // The page's order: scenes as the spec lists them, techniques as the build has them.
+    auto rank = [&](const ReportImage& image) {
+        const auto& all = app.techniques().techniques();
+        const auto t = std::find_if(all.begin(), all.end(), [&](const TechniqueInfo& info) { return info.id == image.technique; });
+        const auto s = sceneOrder.find(image.scene);
+        return std::pair{s == sceneOrder.end() ? sceneOrder.size() : s->second, size_t(t - all.begin())};
+    };
+    images = std::move(collected.images);
+    std::stable_sort(images.begin(), images.end(), [&](const ReportImage& a, const ReportImage& b) { return rank(a) < rank(b); });
     return true;
 }
 
@@ -93,8 +156,15 @@ int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesyst
     const auto started = Clock::now();
     std::vector<nlohmann::json> rows;
     printBenchHeader();
+    std::optional<ImageCollector> collector;
+    if (!specs.empty()) collector.emplace(app, specs.front(), outDir / "images");
     for (const BenchSpec& spec : specs) {
-        if (runBench(app, spec, rows, error, printBenchRow)) continue;
+        BenchEvaluationHook keepImages;
+        if (&spec == &specs.front())
+            keepImages = [&](const TechniqueInfo& info, const AccuracyPass& pass, const Evaluation& e) {
+                collector->onEvaluation(info, pass, e);
+            };
+        if (runBench(app, spec, rows, error, printBenchRow, keepImages)) continue;
         if (!interrupted()) return 2;
         // Ctrl-C: the rows measured so far are written (no images, charts or page for a partial sweep).
         if (!writeBenchResults(outDir / "results.csv", rows, error) || !writeBenchResults(outDir / "results.json", rows, error))
@@ -109,7 +179,7 @@ int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesyst
     const double sweepSeconds = secondsSince(started);
     const auto imagesStarted = Clock::now();
     std::vector<ReportImage> images;
-    if (!specs.empty() && !writeImages(app, specs.front(), outDir / "images", images, error)) return 1;
+    if (!specs.empty() && !writeImages(app, specs.front(), *collector, images, outDir / "images", error)) return 1;
     size_t imageFiles = 0;
     for (const ReportImage& image : images) imageFiles += image.heatmap.empty() ? 1 : 2;
 
