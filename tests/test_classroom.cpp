@@ -80,12 +80,20 @@ TEST(ClassroomLayout, ThePanelNeverHidesTheScene) {
     }
 }
 
-// UI scale for a projector: the panel grows with it, but the view always keeps 55% of the window.
+// UI scale for a projector: the panel grows with it, but the view always keeps 55% of the window,
+// and two thirds of a wide one (issue 29: at --ui-scale 2 on 1280x720 the panel took 576 px).
 TEST(ClassroomLayout, UiScaleWidensThePanelUpToAShareOfTheWindow) {
     EXPECT_EQ(panelWidthFor(1.0f, 1920), 360);
     EXPECT_EQ(panelWidthFor(1.5f, 1920), 540);
-    EXPECT_EQ(panelWidthFor(2.0f, 1280), 576) << "45% of 1280";
+    EXPECT_EQ(panelWidthFor(2.0f, 1280), 460) << "36% of 1280";
+    EXPECT_EQ(panelWidthFor(1.0f, 960), 360) << "a narrow window keeps the panel's 360 px";
     EXPECT_EQ(panelWidthFor(1.0f, 640), 288) << "45% of 640";
+    for (const int width : {1024, 1280, 1600, 1920, 2560})
+        for (const float scale : {1.0f, 1.5f, 2.0f, 3.0f}) {
+            const ViewLayout layout = computeViewLayout({width, 720}, true, panelWidthFor(scale, width), false,
+                                                        CompareLayout::SideBySide, 0.5f);
+            EXPECT_GE(layout.view.size.x, int(0.64 * width)) << width << " px at UI scale " << scale;
+        }
 }
 
 TEST(ClassroomLayout, HiddenUiGivesTheWholeWindowToTheView) {

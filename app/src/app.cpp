@@ -72,6 +72,7 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
     }
     renderer_->setScene(*scene_);
     camera_.reset(scene_->camera);
+    setCameraFloor();
     light_ = scene_->light;
     applyLightOverrides();
     if (options.depthPrepass) setDepthPrepassMode(*options.depthPrepass);
@@ -90,6 +91,14 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
         return false;
     }
     return true;
+}
+
+// The orbit camera stays above the receivers' lowest point (not the scene camera's own height:
+// a scene may start below it, and then the floor is under the camera).
+void App::setCameraFloor() {
+    const Bounds receivers = scene_->worldBounds(DrawSet::Receivers);
+    if (receivers.min.y > receivers.max.y) return;
+    camera_.setFloor(std::min(receivers.min.y, scene_->camera.position.y));
 }
 
 void App::applyLightOverrides() {
@@ -115,6 +124,7 @@ bool App::loadScene(const std::string& nameOrPath, const std::map<std::string, d
         depthPrepassRule_.reset();   // another scene, another depth complexity
         renderer_->setScene(*scene_);
         camera_.reset(scene_->camera);
+        setCameraFloor();
         light_ = scene_->light;
         applyLightOverrides();
         return true;

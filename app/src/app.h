@@ -283,6 +283,7 @@ public:
 
 private:
     void applyLightOverrides();
+    void setCameraFloor();
     // The camera pre-pass this frame's flags ask for, timed, or the shared view's (beginSharedView).
     void cameraPrepassFor(uint32_t flags);
     struct SharedPrepass {

@@ -24,6 +24,7 @@
 #include "app_paths.h"
 #include "render/view_compositor.h"
 #include "ui/async_measurement.h"
+#include "ui/keys.h"
 #include "ui/session.h"
 #include "ui/tour_player.h"
 #include "ui/ui.h"
@@ -78,6 +79,7 @@ private:
         state_.compareLayout = options_.compareLayout;
         state_.wipe = options_.wipe;
         state_.showUi = options_.showUi;
+        if (options_.presenter) setPresenter(state_, true);
         state_.view = options_.view;
         if (options_.probe) app_.setProbePixel(options_.probe);
         state_.uiScale = options_.uiScale;
@@ -111,6 +113,7 @@ private:
             advancePath();
             queueTimedMeasurement();
         }
+        followPresenter();
         if (!prepareSurface()) return false;
         const bool comparing = !state_.compareTechnique.empty();
         state_.layout = computeViewLayout(surfaceSize_, state_.showUi, panelWidthFor(state_.uiScale, surfaceSize_.x), comparing,
@@ -135,6 +138,11 @@ private:
         glfwGetCursorPos(window_, &mouse.x, &mouse.y);
         const glm::vec2 delta = glm::vec2(mouse - lastMouse_);
         lastMouse_ = mouse;
+        // A press on the wipe's handle starts its drag before the camera sees the motion (the
+        // overlay, drawn later in the frame, would start it a frame late and the camera orbit).
+        if (!ui_.wantsMouse())
+            for (const glm::vec2 press : state_.leftPresses)
+                if (ui_.onWipeHandle(state_, press)) state_.draggingWipe = true;
         if (!ui_.wantsMouse() && !state_.draggingWipe) {
             if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) camera.look(delta);
             if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS) camera.pan(delta);
@@ -143,10 +151,15 @@ private:
         state_.scroll = 0.0f;
         if (!ui_.wantsKeyboard() && camera.mode() == CameraController::Mode::Fly) {
             glm::vec3 move(0.0f);
-            auto pressed = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS ? 1.0f : 0.0f; };
-            move.z = pressed(GLFW_KEY_W) - pressed(GLFW_KEY_S);
-            move.x = pressed(GLFW_KEY_D) - pressed(GLFW_KEY_A);
-            move.y = pressed(GLFW_KEY_E) - pressed(GLFW_KEY_Q);
+            // The held keys of the table (ui/keys.h), which the help overlay lists.
+            auto pressed = [&](KeyAction action) {
+                for (const int key : keysFor(action))
+                    if (glfwGetKey(window_, key) == GLFW_PRESS) return 1.0f;
+                return 0.0f;
+            };
+            move.z = pressed(KeyAction::FlyForward) - pressed(KeyAction::FlyBack);
+            move.x = pressed(KeyAction::FlyRight) - pressed(KeyAction::FlyLeft);
+            move.y = pressed(KeyAction::FlyUp) - pressed(KeyAction::FlyDown);
             camera.fly(move, seconds);
         }
     }
@@ -174,7 +187,8 @@ private:
     // frame is drawn, so frame k of a step shows path frame k).
     void advancePath() {
         if (!state_.path || !state_.pathPlaying || state_.path->frames <= 0) return;
-        state_.pathFrame %= state_.path->frames;
+        state_.pathClock = std::fmod(std::max(state_.pathClock, 0.0f), float(state_.path->frames));
+        state_.pathFrame = std::min(int(state_.pathClock), state_.path->frames - 1);
         setPathFrame(app_, *state_.path, state_.pathFrame, state_.pathCamera, state_.pathLight);
     }
 
@@ -184,6 +198,27 @@ private:
         const int at = options_.frames > 0 ? std::max(1, std::min(options_.frames - 2, GpuTimer::kFramesInFlight + 2))
                                            : GpuTimer::kFramesInFlight + 2;
         if (options_.measure && frameIndex_ == at) state_.commands.push_back({UiCommand::Kind::Measure, ""});
+    }
+
+    // Presenter mode takes the whole screen and gives the window back when it ends (offscreen:
+    // the surface keeps --size).
+    void followPresenter() {
+        if (!window_ || state_.presenter == fullscreen_) return;
+        fullscreen_ = state_.presenter;
+        GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+        const GLFWvidmode* mode = monitor ? glfwGetVideoMode(monitor) : nullptr;
+        if (fullscreen_ && mode) {
+            glfwGetWindowPos(window_, &windowedRect_.x, &windowedRect_.y);
+            glfwGetWindowSize(window_, &windowedRect_.z, &windowedRect_.w);
+            glfwSetWindowMonitor(window_, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
+            logInfo("presenter mode: full screen at " + std::to_string(mode->width) + "x" + std::to_string(mode->height));
+        } else if (fullscreen_) {
+            glfwMaximizeWindow(window_);   // no monitor to take: as large as the desktop allows
+            logInfo("presenter mode: no monitor reported, the window maximised");
+        } else if (windowedRect_.z > 0) {
+            glfwSetWindowMonitor(window_, nullptr, windowedRect_.x, windowedRect_.y, windowedRect_.z, windowedRect_.w, 0);
+            logInfo("presenter mode ended");
+        }
     }
 
     // The surface: the window's framebuffer, or the offscreen one.
@@ -299,7 +334,9 @@ private:
             for (const auto& [at, file] : options_.screenshotsAt)
                 if (at == frameIndex_ && !(finalShot && file == options_.screenshot))
                     commands.insert(commands.begin(), UiCommand{UiCommand::Kind::Screenshot, file});
-        if (state_.path && state_.pathPlaying && !held) ++state_.pathFrame;   // a step applied by a command below starts at 0
+        // The path's speed in path frames per window frame (1 in tours); a step applied by a
+        // command below starts at 0.
+        if (state_.path && state_.pathPlaying && !held) state_.pathClock += state_.pathSpeed;
         for (const UiCommand& command : commands) runCommand(command);
     }
 
@@ -313,6 +350,7 @@ private:
         case UiCommand::Kind::LoadTour: return cancelMeasurement("a tour was loaded"), loadTour(command.argument);
         case UiCommand::Kind::SaveSession: return saveSession(command.argument);
         case UiCommand::Kind::LoadSession: return cancelMeasurement("a session was loaded"), loadSession(command.argument);
+        case UiCommand::Kind::PlayPath: return playPath(command.argument);
         }
     }
 
@@ -491,6 +529,36 @@ private:
         tourStep("0");
     }
 
+    // The panel's "Paths" section outside tours: a built-in path or a file, made from the camera
+    // and light on screen now, played as a tour step's ("" stops it).
+    void playPath(const std::string& name) {
+        state_.pathStatus.clear();
+        if (name.empty()) {
+            state_.path.reset();
+            state_.pathName.clear();
+            return;
+        }
+        TourStep step;
+        step.technique = state_.technique;
+        step.path = name;
+        CameraPath path;
+        std::string error;
+        const SceneCamera camera = app_.camera().pose();
+        if (!resolveTourPath(app_, step, camera, app_.light(), path, error)) {
+            bool unused = false;
+            return failed(state_.pathStatus, unused, "path '" + name + "': " + error, 2);
+        }
+        state_.pathCamera = camera;
+        state_.pathLight = app_.light();
+        state_.path = std::move(path);
+        state_.pathName = name;
+        state_.pathFrames = 0;
+        state_.pathFrame = 0;
+        state_.pathClock = 0.0f;
+        state_.pathPlaying = true;
+        logInfo("path " + name + ": " + std::to_string(state_.path->frames) + " frames, playing");
+    }
+
     void saveSession(const std::string& argument) {
         std::filesystem::path file = argument;
         if (file.empty()) {
@@ -530,6 +598,8 @@ private:
     int exitCode_ = 0;
     std::chrono::steady_clock::time_point last_;
     glm::dvec2 lastMouse_{0.0};
+    bool fullscreen_ = false;
+    glm::ivec4 windowedRect_{0};       // x, y, width, height before presenter mode took the screen
     long presentedFrames_ = 0;         // swaps, held frames included
     long measureStartFrame_ = 0;
     float longestFrameGap_ = 0.0f;     // seconds between two frames while measuring (the click's frame included)

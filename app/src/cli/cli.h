@@ -79,6 +79,7 @@ struct WindowOptions {
     double wipe = 0.5;
     double uiScale = 1.0;
     bool hideUi = false;
+    bool presenter = false;
     bool measure = false;
     std::string measureReference = "hard";   // the reference of "Measure accuracy": hard | soft
     int measureSamples = 64;                 // its rays per pixel when soft

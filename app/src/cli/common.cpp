@@ -200,6 +200,7 @@ int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& te
     out.wipe = float(w.wipe);
     out.uiScale = float(w.uiScale);
     out.showUi = !w.hideUi;
+    out.presenter = w.presenter;
     out.measure = w.measure;
     if (w.measureReference != "hard" && w.measureReference != "soft")
         return fail("--measure-reference '" + w.measureReference + "': expected hard or soft", kExitBadInput);

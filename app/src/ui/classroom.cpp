@@ -30,7 +30,11 @@ bool parseCompareLayout(const std::string& text, CompareLayout& layout) {
 int panelWidthFor(float uiScale, int windowWidth) {
     // 360 px holds the longest label on one line beside nothing (labels sit above their widgets).
     const int wanted = int(std::lround(360.0f * std::clamp(uiScale, 0.5f, 4.0f)));
-    return std::clamp(wanted, 1, std::max(1, int(std::floor(0.45 * windowWidth))));
+    // A large UI scale on a projector's 1280 px would take 45% (576 px at scale 2): the panel
+    // stops at 36% of a wide window, labels wrap, and the view keeps two thirds. Narrow windows
+    // keep 360 px up to 45%, since below that the parameter labels no longer fit.
+    const double share = std::min(0.45 * windowWidth, std::max(360.0, 0.36 * windowWidth));
+    return std::clamp(wanted, 1, std::max(1, int(std::floor(share))));
 }
 
 ViewLayout computeViewLayout(glm::ivec2 window, bool panelVisible, int panelWidth, bool comparing, CompareLayout layout,

@@ -46,7 +46,7 @@ struct ViewLayout {
 };
 
 // Panel width for a UI scale: wide enough for the longest parameter label at that scale, at
-// most 45% of the window so the view keeps the larger part.
+// most 36% of a wide window (360 px, up to 45%, in a narrow one) so the view keeps the larger part.
 int panelWidthFor(float uiScale, int windowWidth);
 // `wipe` is the divider's position across the view, 0..1.
 ViewLayout computeViewLayout(glm::ivec2 window, bool panelVisible, int panelWidth, bool comparing, CompareLayout layout,

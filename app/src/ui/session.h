@@ -32,6 +32,7 @@ struct InteractiveOptions {
     bool softReference = false;                    // the panel's reference at the start: soft (else hard)
     int referenceSamples = 64;                     // its rays per pixel
     bool showUi = true;                            // false: the view (and comparison labels) only
+    bool presenter = false;                        // presenter mode at the start (full screen, caption large)
     ViewSelection view;                            // the image shown at the start (lit, visibility, ...)
     std::optional<glm::ivec2> probe;               // the kernel view's pixel at the start (main-target pixels)
     float uiScale = 1.0f;

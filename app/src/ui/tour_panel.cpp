@@ -34,6 +34,12 @@ void Ui::drawTourPlayer(App& app, UiState& state) {
     const int count = int(tour.steps.size());
     const int index = std::clamp(state.tourStep, 0, count - 1);
     const TourStep& step = tour.steps[size_t(index)];
+    // A new step brings the panel back to its caption, wherever the reader had scrolled to.
+    if (index != scrolledToStep_ || state.tour.get() != scrolledTour_) {
+        ImGui::SetScrollHereY(0.0f);
+        scrolledToStep_ = index;
+        scrolledTour_ = state.tour.get();
+    }
     wrappedText(tour.title, ImVec4(0.55f, 0.8f, 1.0f, 1.0f));
     wrappedText("step " + std::to_string(index + 1) + " of " + std::to_string(count) + ": " + step.title);
     ImGui::BeginDisabled(index == 0);

@@ -12,6 +12,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <imgui_stdlib.h>
 
+#include "ui/keys.h"
 #include "util/log.h"
 
 namespace shadowlab {
@@ -21,6 +22,7 @@ namespace {
 // ImGui's built-in 13 px bitmap font scaled up.
 constexpr const char* kFontFile = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 constexpr float kFontPixels = 15.0f;
+constexpr float kPresenterFontPixels = 28.0f;
 
 void scrollCallback(GLFWwindow* window, double, double dy) {
     if (auto* state = static_cast<UiState*>(glfwGetWindowUserPointer(window))) state->scroll += float(dy);
@@ -197,6 +199,30 @@ void timingsTable(const char* id, const std::map<std::string, double>& timings) 
     ImGui::EndTable();
 }
 
+// What a key of the table does (the fly keys are held, read by the frame loop).
+void runKeyAction(KeyAction action, UiState& state) {
+    switch (action) {
+    case KeyAction::Screenshot: return state.commands.push_back({UiCommand::Kind::Screenshot, ""});
+    case KeyAction::ToggleUi: state.showUi = !state.showUi; return;
+    case KeyAction::Measure: return state.commands.push_back({UiCommand::Kind::Measure, ""});
+    case KeyAction::SaveSession: return state.commands.push_back({UiCommand::Kind::SaveSession, ""});
+    case KeyAction::Quit: state.quitRequested = true; return;
+    case KeyAction::Presenter: return setPresenter(state, !state.presenter);
+    case KeyAction::Help: state.showHelp = !state.showHelp; return;
+    case KeyAction::PlayPath: state.pathPlaying = !state.pathPlaying; return;
+    case KeyAction::NextStep:
+        if (state.tour) state.commands.push_back({UiCommand::Kind::TourStep, "next"});
+        return;
+    case KeyAction::PreviousStep:
+        if (state.tour) state.commands.push_back({UiCommand::Kind::TourStep, "previous"});
+        return;
+    case KeyAction::RestartStep:
+        if (state.tour) state.commands.push_back({UiCommand::Kind::TourStep, "restart"});
+        return;
+    default: return;   // fly keys: held, read each frame
+    }
+}
+
 } // namespace
 
 bool Ui::init(GLFWwindow* window, float uiScale) {
@@ -234,8 +260,11 @@ void Ui::applyScale(float scale) {
     const bool uploaded = appliedScale_ > 0.0f && io.Fonts->IsBuilt();
     io.Fonts->Clear();
     std::error_code ec;
+    largeFont_ = nullptr;
     if (std::filesystem::exists(kFontFile, ec)) {
-        io.Fonts->AddFontFromFileTTF(kFontFile, std::round(kFontPixels * scale));
+        io.Fonts->AddFontFromFileTTF(kFontFile, std::round(kFontPixels * scale));   // the first font is the default
+        // Presenter captions: read from the back of a room.
+        largeFont_ = io.Fonts->AddFontFromFileTTF(kFontFile, std::round(kPresenterFontPixels * scale));
         io.FontGlobalScale = 1.0f;
     } else {
         io.Fonts->AddFontDefault();
@@ -264,6 +293,13 @@ void Ui::shutdown() {
 bool Ui::wantsMouse() const { return initialised_ && ImGui::GetIO().WantCaptureMouse; }
 bool Ui::wantsKeyboard() const { return initialised_ && ImGui::GetIO().WantCaptureKeyboard; }
 
+bool Ui::onWipeHandle(const UiState& state, glm::vec2 p) const {
+    const ViewLayout& layout = state.layout;
+    if (!layout.comparing || state.compareLayout != CompareLayout::Wipe) return false;
+    const float r = 0.7f * kFontPixels * std::max(appliedScale_, 0.5f);   // the handle's radius at this UI scale
+    return std::abs(p.x - float(layout.wipeX)) < r && layout.view.contains(p);
+}
+
 void Ui::draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, glm::ivec2 display) {
     applyScale(state.uiScale);
     if (window_) {
@@ -279,22 +315,11 @@ void Ui::draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, 
     ImGui::NewFrame();
     smoothedFrameMs_ = smoothedFrameMs_ == 0.0f ? frameSeconds * 1000.0f : 0.95f * smoothedFrameMs_ + 0.05f * frameSeconds * 1000.0f;
 
-    // Keys typed into a text field are the field's.
-    if (!ImGui::GetIO().WantCaptureKeyboard) {
-        for (const int key : state.pressedKeys) {
-            if (key == GLFW_KEY_F12) state.commands.push_back({UiCommand::Kind::Screenshot, ""});
-            if (key == GLFW_KEY_F1 || key == GLFW_KEY_H) state.showUi = !state.showUi;
-            if (key == GLFW_KEY_M) state.commands.push_back({UiCommand::Kind::Measure, ""});
-            if (key == GLFW_KEY_F5) state.commands.push_back({UiCommand::Kind::SaveSession, ""});
-            if (key == GLFW_KEY_ESCAPE) state.quitRequested = true;
-            // The tour player: next, previous, restart the step.
-            if (state.tour) {
-                if (key == GLFW_KEY_RIGHT || key == GLFW_KEY_PAGE_DOWN) state.commands.push_back({UiCommand::Kind::TourStep, "next"});
-                if (key == GLFW_KEY_LEFT || key == GLFW_KEY_PAGE_UP) state.commands.push_back({UiCommand::Kind::TourStep, "previous"});
-                if (key == GLFW_KEY_HOME) state.commands.push_back({UiCommand::Kind::TourStep, "restart"});
-            }
-        }
-    }
+    // Keys typed into a text field are the field's; every key is the table's (ui/keys.h).
+    if (!ImGui::GetIO().WantCaptureKeyboard)
+        for (const int key : state.pressedKeys)
+            for (const KeyBinding& binding : keyBindings())
+                if (binding.key == key) runKeyAction(binding.action, state);
     state.pressedKeys.clear();
 
     // The latest hot-reload line of the log (plugin or shader), for the status line.
@@ -316,6 +341,8 @@ void Ui::draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, 
     state.leftRelease.reset();
     if (state.showUi) drawPanel(app, state);
     else drawStatusLine(app, state, true);
+    if (state.presenter) drawPresenterOverlay(app, state);
+    if (state.showHelp) drawHelpOverlay(state);
 
     ImGui::Render();
     renderer_.render(ImGui::GetDrawData(), framebuffer);
@@ -372,10 +399,9 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
                 draw->AddCircleFilled(ImVec2(divider, y), r, IM_COL32(255, 255, 255, 230));
                 draw->AddCircle(ImVec2(divider, y), r, IM_COL32(0, 0, 0, 200), 0, 2.0f);
                 const ImGuiIO& io = ImGui::GetIO();
-                auto onHandle = [&](glm::vec2 p) { return std::abs(p.x - divider) < r && layout.view.contains(p); };
-                const bool near = onHandle({io.MousePos.x, io.MousePos.y});
+                const bool near = onWipeHandle(state, {io.MousePos.x, io.MousePos.y});
                 for (const glm::vec2 press : state.leftPresses)
-                    if (onHandle(press) && !io.WantCaptureMouse) state.draggingWipe = true;
+                    if (onWipeHandle(state, press) && !io.WantCaptureMouse) state.draggingWipe = true;
                 // Follow the cursor; a release ends the drag where the button went up (a slow
                 // frame may see the release and later moves together).
                 const bool released = state.leftRelease.has_value() || !ImGui::IsMouseDown(0);
@@ -670,7 +696,8 @@ void Ui::drawPanel(App& app, UiState& state) {
     ImGui::Begin("shadowlab", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     drawStatusLine(app, state, false);
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("F1 or H hides this panel, F12 saves a screenshot, M measures accuracy, F5 saves the session");
+    ImGui::TextWrapped("? lists every key. F1 or H hides this panel, P presents, F12 saves a screenshot, M measures "
+                       "accuracy, F5 saves the session");
     ImGui::PopStyleColor();
     ImGui::Separator();
     drawTourPlayer(app, state);

@@ -26,9 +26,10 @@ namespace shadowlab {
 // --session at the start, and the headless `tour` command (one step per run) all apply a step
 // with the same command.
 struct UiCommand {
-    enum class Kind { Measure, CancelMeasure, Screenshot, LoadScene, TourStep, LoadTour, SaveSession, LoadSession } kind;
+    enum class Kind { Measure, CancelMeasure, Screenshot, LoadScene, TourStep, LoadTour, SaveSession, LoadSession, PlayPath } kind;
     // LoadScene, LoadTour, LoadSession: name or path; SaveSession: path ("" = a new name under
-    // the session folder); TourStep: "next", "previous", "restart" or a step index from 0.
+    // the session folder); TourStep: "next", "previous", "restart" or a step index from 0;
+    // PlayPath: a built-in path or a path file, from the camera and light on screen ("" stops it).
     std::string argument;
 };
 
@@ -48,6 +49,10 @@ struct UiState {
     bool quitRequested = false;
     bool showUi = true;               // F1 or H toggles; false: nothing over the view but labels
     float uiScale = 1.0f;             // fonts and sizes (a projector wants 1.5 to 2)
+    // Presenter mode (P, --presenter): full screen, the panel hidden, the step's caption large
+    // on the view with its figures beside it. `showHelp`: the overlay of every key (`?`).
+    bool presenter = false;
+    bool showHelp = false;
     ViewLayout layout;                // this frame's (the session computes it before the panel)
     std::string frameError;
     std::vector<UiCommand> commands;
@@ -65,11 +70,19 @@ struct UiState {
     // The shown step's camera and light path (a step with "path"): one path frame per window
     // frame from `pathCamera` and `pathLight` (the step's), looping; restarting the step starts
     // it again. Paused, the camera is the user's again.
+    // Outside tours the panel's "Paths" section plays one the same way. `pathName` and
+    // `pathFrames` are what the step (or the panel) asked for, so a saved session keeps them;
+    // `pathSpeed` path frames per window frame (the fraction accumulates in `pathClock`).
     std::optional<CameraPath> path;
+    std::string pathName;
+    int pathFrames = 0;
     SceneCamera pathCamera;
     LightInfo pathLight;
     int pathFrame = 0;
+    float pathSpeed = 1.0f;
+    float pathClock = 0.0f;
     bool pathPlaying = true;
+    std::string pathStatus;           // what the panel's last PlayPath said (an error names the path)
 
     // Accuracy measured on demand ("Measure accuracy"): one result per side of the view, and
     // every measurement of this session for the error-against-milliseconds plot.
@@ -93,6 +106,9 @@ struct UiState {
     std::vector<MeasuredPoint> measured;
 };
 
+// Presenter mode on or off: on hides the panel (and the help overlay); off shows it again.
+void setPresenter(UiState& state, bool on);
+
 class Ui {
 public:
     // window = nullptr: offscreen (no platform input; the display size comes with each draw).
@@ -102,6 +118,9 @@ public:
     void draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, glm::ivec2 display);
     bool wantsMouse() const;
     bool wantsKeyboard() const;
+    // Whether `p` (window pixels) grabs the wipe's divider: the frame loop asks before it moves
+    // the camera, the overlay before it starts a drag, so a drag of the handle never orbits.
+    bool onWipeHandle(const UiState& state, glm::vec2 p) const;
 
 private:
     void applyScale(float scale);
@@ -115,11 +134,18 @@ private:
     void drawReloadSection(App& app);
     void drawHostSection(App& app);
     void drawStatusLine(App& app, const UiState& state, bool overlay);
+    void drawPresenterOverlay(App& app, const UiState& state);   // presenter.cpp
+    void drawHelpOverlay(const UiState& state);                   // presenter.cpp
+    void drawPathSection(App& app, UiState& state);               // tour_panel.cpp
     void drawTourPlayer(App& app, UiState& state);   // tour_panel.cpp
     void drawLessonSection(App& app, UiState& state); // tour_panel.cpp
     bool initialised_ = false;
     GLFWwindow* window_ = nullptr;
     ImGuiGlRenderer renderer_;
+    ImFont* largeFont_ = nullptr;     // presenter captions (null: the panel's font, scaled)
+    int scrolledToStep_ = -1;         // the tour step the panel last scrolled back to
+    const Tour* scrolledTour_ = nullptr;
+    std::string pathChoice_ = "orbit";
     glm::vec2 initialCursor_{0.0f};
     float appliedScale_ = 0.0f;
     float smoothedFrameMs_ = 0.0f;
