@@ -31,7 +31,9 @@
 #include "util/log.h"
 #include "util/paths.h"
 #include "util/progress.h"
+#include "util/scratch_dir.h"
 #include "util/text_file.h"
+#include "util/video_export.h"
 
 namespace shadowlab {
 
@@ -51,6 +53,7 @@ public:
                 break;
             }
         }
+        if (recording() && exitCode_ == 0) finishRecording();   // --export: the frames of the run
         cancelMeasurement("the window closed");   // the worker is joined before anything it reads goes
         app_.camera().setFramingAspect(0.0f);
         ui_.shutdown();
@@ -95,6 +98,7 @@ private:
         }
         if (!options_.session.empty()) runCommand({UiCommand::Kind::LoadSession, options_.session});
         if (!options_.session.empty() && state_.sessionStatusIsError) return 2;   // refused before the first frame, as --tour
+        if (!options_.exportFile.empty() && !startRecording(options_.exportFile, 0)) return 1;
         return 0;
     }
 
@@ -123,6 +127,7 @@ private:
             markStaleMeasurement(comparing);
         }
         ui_.draw(app_, state_, seconds, surface_, surfaceSize_);
+        if (!held) recordFrame();
         runQueuedCommands(held);
         app_.backend().swapBuffers();
         ++presentedFrames_;
@@ -351,6 +356,7 @@ private:
         case UiCommand::Kind::SaveSession: return saveSession(command.argument);
         case UiCommand::Kind::LoadSession: return cancelMeasurement("a session was loaded"), loadSession(command.argument);
         case UiCommand::Kind::PlayPath: return playPath(command.argument);
+        case UiCommand::Kind::ExportPath: return exportPath();
         }
     }
 
@@ -559,6 +565,82 @@ private:
         logInfo("path " + name + ": " + std::to_string(state_.path->frames) + " frames, playing");
     }
 
+    // Export (--export, or the panel's "Export path"): the view of each frame drawn (the panel
+    // cropped off; overlays such as labels and presenter captions kept) written as a numbered
+    // PNG, then encoded by ffmpeg (util/video_export.h). Reading the surface back waits for the
+    // GPU: it happens only while exporting, as a screenshot does.
+    bool recording() const { return !recordOut_.empty(); }
+
+    bool startRecording(const std::filesystem::path& out, int frames) {
+        std::string error;
+        const std::filesystem::path scratch = scratchDir(error);
+        if (scratch.empty()) return logError(error), false;
+        recordFolder_ = scratch / ("export-" + std::to_string(++recordings_));
+        std::error_code ec;
+        std::filesystem::remove_all(recordFolder_, ec);
+        std::filesystem::create_directories(recordFolder_, ec);
+        if (ec) return logError(recordFolder_.string() + ": " + ec.message()), false;
+        recordOut_ = out;
+        recordTarget_ = frames;
+        recordedFrames_ = 0;
+        logInfo("exporting to " + out.string() + (frames > 0 ? " (" + std::to_string(frames) + " frames)" : ""));
+        return true;
+    }
+
+    void recordFrame() {
+        if (!recording() || surfaceSize_.x <= 0) return;
+        const Image surface = ViewCompositor::readSurface(surface_, surfaceSize_);
+        const PixelRect& view = state_.layout.view;
+        Image image{view.size.x, view.size.y, 4, std::vector<uint8_t>(size_t(view.size.x) * size_t(view.size.y) * 4)};
+        const int y0 = surfaceSize_.y - (view.origin.y + view.size.y);   // rows are bottom-up
+        for (int y = 0; y < view.size.y; ++y)
+            std::copy_n(surface.pixels.begin() + ((ptrdiff_t(y0 + y) * surfaceSize_.x + view.origin.x) * 4), size_t(view.size.x) * 4,
+                        image.pixels.begin() + ptrdiff_t(y) * view.size.x * 4);
+        char name[32];
+        std::snprintf(name, sizeof(name), "frame_%05d.png", recordedFrames_);
+        std::string error;
+        if (!writePng(recordFolder_ / name, image, error)) {
+            bool unused = false;
+            failed(state_.pathStatus, unused, error, 1);
+            recordOut_.clear();
+            return;
+        }
+        if (++recordedFrames_ == recordTarget_) finishRecording();
+    }
+
+    void finishRecording() {
+        std::string error;
+        const std::filesystem::path out = recordOut_;
+        recordOut_.clear();
+        const bool encoded = encodeFrames(recordFolder_, 30, out, error);
+        std::error_code ec;
+        std::filesystem::remove_all(recordFolder_, ec);
+        if (!encoded) {
+            bool unused = false;
+            return failed(state_.pathStatus, unused, error, 1);
+        }
+        state_.pathStatus = "exported " + out.string() + " (" + std::to_string(recordedFrames_) + " frames)";
+        logInfo("wrote " + out.string() + " (" + std::to_string(recordedFrames_) + " frames)");
+    }
+
+    // The panel's "Export path": one loop of the playing path from its first frame, into
+    // exports/<scene>-<technique>-<date>.gif.
+    void exportPath() {
+        bool unused = false;
+        if (!state_.path || state_.path->frames <= 0) return failed(state_.pathStatus, unused, "Export path: no path is playing", 0);
+        std::error_code ec;
+        std::filesystem::create_directories(options_.exportFolder, ec);
+        std::filesystem::path file = uniqueScreenshotPath(options_.exportFolder, app_.scene().name, state_.technique,
+                                                          state_.pathName.find('/') == std::string::npos ? state_.pathName : "path",
+                                                          std::chrono::system_clock::now());
+        file.replace_extension(".gif");
+        if (const std::string problem = exportProblem("Export path", file); !problem.empty())
+            return failed(state_.pathStatus, unused, problem, 0);
+        state_.pathClock = 0.0f;
+        state_.pathPlaying = true;
+        startRecording(file, std::max(1, int(std::ceil(float(state_.path->frames) / std::max(state_.pathSpeed, 0.01f)))));
+    }
+
     void saveSession(const std::string& argument) {
         std::filesystem::path file = argument;
         if (file.empty()) {
@@ -599,6 +681,11 @@ private:
     std::chrono::steady_clock::time_point last_;
     glm::dvec2 lastMouse_{0.0};
     bool fullscreen_ = false;
+    std::filesystem::path recordOut_;  // the export being recorded ("" = none)
+    std::filesystem::path recordFolder_;
+    int recordTarget_ = 0;             // frames to record (0: until the run ends)
+    int recordedFrames_ = 0;
+    int recordings_ = 0;
     glm::ivec4 windowedRect_{0};       // x, y, width, height before presenter mode took the screen
     long presentedFrames_ = 0;         // swaps, held frames included
     long measureStartFrame_ = 0;

@@ -80,6 +80,7 @@ struct WindowOptions {
     double uiScale = 1.0;
     bool hideUi = false;
     bool presenter = false;
+    std::string exportFile;      // --export: the run's frames as a .gif, .mp4 or .webm
     bool measure = false;
     std::string measureReference = "hard";   // the reference of "Measure accuracy": hard | soft
     int measureSamples = 64;                 // its rays per pixel when soft

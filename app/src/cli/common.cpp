@@ -31,6 +31,7 @@
 #include "bench/tour_pages.h"
 #include "util/log.h"
 #include "util/paths.h"
+#include "util/video_export.h"
 #include "util/strings.h"
 #include "util/text_file.h"
 #include "host_shared/translucent_layers_shared.h"
@@ -201,6 +202,13 @@ int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& te
     out.uiScale = float(w.uiScale);
     out.showUi = !w.hideUi;
     out.presenter = w.presenter;
+    if (!w.exportFile.empty()) {
+        if (w.frames <= 0)
+            return fail("--export " + w.exportFile + ": records the frames of a run of --frames N (a tour step, a path)",
+                        kExitBadInput);
+        if (const std::string problem = exportProblem("--export", w.exportFile); !problem.empty()) return fail(problem, kExitBadInput);
+        out.exportFile = w.exportFile;
+    }
     out.measure = w.measure;
     if (w.measureReference != "hard" && w.measureReference != "soft")
         return fail("--measure-reference '" + w.measureReference + "': expected hard or soft", kExitBadInput);

@@ -26,9 +26,11 @@
 #include "util/log.h"
 #include "util/paths.h"
 #include "util/progress.h"
+#include "util/scratch_dir.h"
 #include "util/stats.h"
 #include "util/strings.h"
 #include "util/text_file.h"
+#include "util/video_export.h"
 
 namespace shadowlab::cli {
 namespace {
@@ -83,9 +85,38 @@ int renderProbeSlide(App& app, const std::string& technique, const std::string& 
     return 0;
 }
 
+// `render --path P --export FILE`: the path's frames into a scratch folder (or --out when given)
+// and encoded by ffmpeg into FILE.
+int renderPathExport(App& app, const std::string& technique, const std::string& path, int pathFrames, const std::string& view,
+                     const std::string& out, const std::string& exportFile) {
+    std::string error;
+    std::filesystem::path folder = out;
+    if (folder.empty()) {
+        const std::filesystem::path scratch = scratchDir(error);
+        if (scratch.empty()) return fail(error, kExitFailure);
+        folder = scratch / "export-frames";
+        std::filesystem::remove_all(folder);
+    }
+    if (const int code = renderPath(app, technique, path, pathFrames, view, folder, error, false)) return fail(error, code);
+    if (!encodeFrames(folder, 30, exportFile, error)) return fail("--export " + error, kExitFailure);
+    if (out.empty()) std::filesystem::remove_all(folder);
+    logInfo("wrote " + exportFile);
+    return 0;
+}
+
 int commandRender(const CommonOptions& common, const std::string& out, const std::string& view, int frames,
                   const std::string& reference, int samples, const WindowOptions& compare, const std::string& path,
-                  int pathFrames, const std::string& probe) {
+                  int pathFrames, const std::string& probe, const std::string& exportFile) {
+    if (out.empty() && exportFile.empty()) return fail("--out: required (or --path P --export FILE)", kExitBadInput);
+    if (!exportFile.empty()) {
+        // Checked before the app starts: a missing encoder costs no frames.
+        if (path.empty())
+            return fail("--export " + exportFile + ": exports a path (--path P); a tour step is exported by the window: "
+                        "--tour T --tour-step N --frames N --export FILE",
+                        kExitBadInput);
+        if (const std::string problem = exportProblem("--export", exportFile); !problem.empty()) return fail(problem, kExitBadInput);
+        if (std::string error; !outputProblem("--export", exportFile, false, error)) return fail(error, kExitBadInput);
+    }
     glm::ivec2 probePixel(0);
     if (!probe.empty()) {
         // Checked before the app starts: a bad value costs no context.
@@ -97,7 +128,7 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
             return fail("--probe: one technique, one frame (without --compare or --path)", kExitBadInput);
     }
     std::string error;
-    if (!outputProblem("--out", out, !path.empty(), error)) return fail(error, kExitBadInput);
+    if (!out.empty() && !outputProblem("--out", out, !path.empty(), error)) return fail(error, kExitBadInput);
     App app;
     if (int code = startApp(app, common, false)) return code;
     if (!probe.empty()) {
@@ -116,6 +147,7 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         if (!app.techniques().find(technique)) return fail("--technique '" + technique + "': no such technique", kExitBadInput);
         if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
         if (const std::string problem = app.viewProblem(technique, view); !problem.empty()) return fail("--" + problem, kExitBadInput);
+        if (!exportFile.empty()) return renderPathExport(app, technique, path, pathFrames, view, out, exportFile);
         const int code = renderPath(app, technique, path, pathFrames, view, out, error);
         return code ? fail(error, code) : 0;
     }
@@ -196,7 +228,7 @@ class RenderCommand final : public Command {
 public:
     CLI::App* declare(CLI::App& cli) override {
         auto* render = command_ = cli.add_subcommand("render", "render one frame headless to a PNG file");
-        render->add_option("--out,-o", out_, "PNG file to write")->required();
+        render->add_option("--out,-o", out_, "PNG file to write (with --path: the folder of frames)");
         render->add_option("--view", view_,
                            "lit | visibility | error (heatmap vs the reference) | reference | footprint (texel footprint m, "
                            "log2 heat map) | texel-grid | coverage (which map serves a pixel, and the light frusta) | "
@@ -228,6 +260,9 @@ public:
             ->check(CLI::Range(1, 100000))
             ->needs(render->get_option("--path"));
         render->get_option("--frames")->excludes(render->get_option("--path"));   // a path draws its own frames
+        render->add_option("--export", export_,
+                           "with --path: the path as an animated image or video, FILE.gif, .mp4 or .webm (30 frames a "
+                           "second; needs the ffmpeg program on PATH); --out then keeps the frames");
         return render;
     }
     int run(const CommonOptions& common) override {
@@ -240,7 +275,7 @@ public:
                             kExitBadInput);
         if (given("--wipe") && compare_.compareLayout != "wipe")
             return fail("--wipe: places the divider of --compare-layout wipe", kExitBadInput);
-        return commandRender(common, out_, view_, frames_, reference_, samples_, compare_, path_, pathFrames_, probe_);
+        return commandRender(common, out_, view_, frames_, reference_, samples_, compare_, path_, pathFrames_, probe_, export_);
     }
     std::vector<Unused> unusedCommonOptions() const override {
         if (view_ == "error" || view_ == "reference") return {};
@@ -249,7 +284,7 @@ public:
     }
 
 private:
-    std::string out_, view_ = "lit", probe_, reference_ = "auto", path_;
+    std::string out_, view_ = "lit", probe_, reference_ = "auto", path_, export_;
     int frames_ = 3, samples_ = BenchSpec{}.referenceSamples, pathFrames_ = 0;
     WindowOptions compare_;
     CLI::App* command_ = nullptr;

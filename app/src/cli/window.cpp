@@ -76,6 +76,9 @@ void MainJob::declare(CLI::App& cli) {
     windowOption(cli.add_option("--ui-scale", window_.uiScale, "window: size of the panel's text and widgets (1.5-2 for a projector)"))
         ->check(CLI::Range(0.5, 4.0));
     windowOption(cli.add_flag("--hide-ui", window_.hideUi, "window: start with the panel hidden (F1 or H toggles it)"));
+    windowOption(cli.add_option("--export", window_.exportFile,
+                                "window: with --frames N, the N frames drawn (the view, without the panel) as FILE.gif, "
+                                ".mp4 or .webm, e.g. a tour step's path (needs the ffmpeg program)"));
     windowOption(cli.add_flag("--presenter", window_.presenter,
                               "window: presenter mode (P toggles it): full screen, the panel hidden, the tour step's "
                               "caption large on the view with its figures beside it; ? lists every key"));

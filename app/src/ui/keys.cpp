@@ -1,6 +1,8 @@
 // The window's keys (see keys.h).
 #include "ui/keys.h"
 
+#include "gl/gl.h"   // glad before GLFW (unity batches)
+
 #include <GLFW/glfw3.h>
 
 namespace shadowlab {

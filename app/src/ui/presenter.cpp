@@ -14,6 +14,14 @@
 namespace shadowlab {
 namespace {
 
+// A box of `width` holding `text` wrapped, its height measured now: auto-resizing would lag a
+// frame behind text that changes (the GPU time arrives frames late) and cut a slide's last line.
+ImVec2 presenterBoxSize(const std::string& text, float width, float maxHeight) {
+    const ImVec2 padding = ImGui::GetStyle().WindowPadding;
+    const ImVec2 textSize = ImGui::CalcTextSize(text.c_str(), nullptr, false, width - 2.0f * padding.x);
+    return ImVec2(width, std::min(maxHeight, textSize.y + 2.0f * (padding.y + ImGui::GetStyle().ItemSpacing.y)));
+}
+
 constexpr ImGuiWindowFlags kPresenterWindowFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings |
                                                    ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoMove |
                                                    ImGuiWindowFlags_NoNav;
@@ -69,10 +77,11 @@ void Ui::drawPresenterOverlay(App& app, const UiState& state) {
     } else {
         heading = presenterSideTitle(app, state.technique);
     }
+    const float maxHeight = 0.6f * float(view.size.y);
     ImGui::SetNextWindowPos(ImVec2(float(view.origin.x) + margin, bottom), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
-    ImGui::SetNextWindowSizeConstraints(ImVec2(captionWidth, 0.0f), ImVec2(captionWidth, 0.6f * float(view.size.y)));
+    ImGui::SetNextWindowSize(presenterBoxSize(heading + "\n" + caption, captionWidth, maxHeight));
     ImGui::SetNextWindowBgAlpha(0.78f);
-    ImGui::Begin("##presenter-caption", nullptr, kPresenterWindowFlags | ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::Begin("##presenter-caption", nullptr, kPresenterWindowFlags);
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextColored(ImVec4(0.55f, 0.8f, 1.0f, 1.0f), "%s", heading.c_str());
     if (!caption.empty()) ImGui::TextUnformatted(caption.c_str());
@@ -85,9 +94,9 @@ void Ui::drawPresenterOverlay(App& app, const UiState& state) {
         figures += "\n\npath " + state.pathName + ": frame " + std::to_string(state.pathFrame % state.path->frames + 1) + " of " +
                    std::to_string(state.path->frames);
     ImGui::SetNextWindowPos(ImVec2(float(view.origin.x + view.size.x) - margin, bottom), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
-    ImGui::SetNextWindowSizeConstraints(ImVec2(figuresWidth, 0.0f), ImVec2(figuresWidth, 0.6f * float(view.size.y)));
+    ImGui::SetNextWindowSize(presenterBoxSize(figures, figuresWidth, maxHeight));
     ImGui::SetNextWindowBgAlpha(0.78f);
-    ImGui::Begin("##presenter-figures", nullptr, kPresenterWindowFlags | ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::Begin("##presenter-figures", nullptr, kPresenterWindowFlags);
     ImGui::PushTextWrapPos(0.0f);
     ImGui::TextUnformatted(figures.c_str());
     ImGui::PopTextWrapPos();

@@ -37,6 +37,8 @@ struct InteractiveOptions {
     std::optional<glm::ivec2> probe;               // the kernel view's pixel at the start (main-target pixels)
     float uiScale = 1.0f;
     std::filesystem::path screenshotFolder = "screenshots";   // F12
+    std::filesystem::path exportFile;              // --export: every frame of the run into this .gif/.mp4/.webm
+    std::filesystem::path exportFolder = "exports";          // the panel's "Export path"
     // A guided tour, started at `tourStep` (from 0), and/or a session file applied at the start
     // (both checked whole before: tour.h). The session folder is where "Save session" writes.
     std::shared_ptr<const Tour> tour;

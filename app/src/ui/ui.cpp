@@ -776,6 +776,8 @@ void Ui::drawPanel(App& app, UiState& state) {
 
     drawLessonSection(app, state);
 
+    drawPathSection(app, state);
+
     drawTimingSection(app, state);
 
     drawAccuracySection(app, state);

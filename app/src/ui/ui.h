@@ -26,7 +26,7 @@ namespace shadowlab {
 // --session at the start, and the headless `tour` command (one step per run) all apply a step
 // with the same command.
 struct UiCommand {
-    enum class Kind { Measure, CancelMeasure, Screenshot, LoadScene, TourStep, LoadTour, SaveSession, LoadSession, PlayPath } kind;
+    enum class Kind { Measure, CancelMeasure, Screenshot, LoadScene, TourStep, LoadTour, SaveSession, LoadSession, PlayPath, ExportPath } kind;
     // LoadScene, LoadTour, LoadSession: name or path; SaveSession: path ("" = a new name under
     // the session folder); TourStep: "next", "previous", "restart" or a step index from 0;
     // PlayPath: a built-in path or a path file, from the camera and light on screen ("" stops it).
