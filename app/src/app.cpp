@@ -442,6 +442,33 @@ KernelProbe App::probeKernel(const std::string& technique, std::string& error) {
     return shadowlab::probeKernel(footprint, maps.front(), quad, pixel, fetch);
 }
 
+std::optional<glm::ivec2> App::shadowEdgePixel(const std::string& technique) {
+    std::string error;
+    if (!renderFrame(technique, error, FrameOutputs::Accuracy)) return std::nullopt;
+    const glm::ivec2 size = renderer_->size();
+    const std::vector<glm::vec4> term = renderer_->readTarget(MainTarget::Visibility);
+    const std::vector<glm::vec4> position = renderer_->readTarget(MainTarget::Position);
+    auto at = [&](int x, int y) { return size_t(y) * size_t(size.x) + size_t(x); };
+    auto drawn = [&](int x, int y) { return position[at(x, y)].w > 0.5f; };
+    std::optional<glm::ivec2> best;
+    float bestDistance = 1e30f;
+    const glm::vec2 centre = 0.5f * glm::vec2(size);
+    // Two pixels in from the border, so the kernel's footprint around it stays in the image.
+    for (int y = 2; y + 2 < size.y; ++y)
+        for (int x = 2; x + 2 < size.x; ++x) {
+            if (!drawn(x, y) || !drawn(x + 1, y) || !drawn(x, y + 1)) continue;
+            const float v = term[at(x, y)].x;
+            const bool edge = (v > 0.1f && v < 0.9f) || std::abs(v - term[at(x + 1, y)].x) > 0.5f ||
+                              std::abs(v - term[at(x, y + 1)].x) > 0.5f;
+            const float distance = glm::distance(glm::vec2(x, y), centre);
+            if (edge && distance < bestDistance) {
+                bestDistance = distance;
+                best = glm::ivec2(x, size.y - 1 - y);   // rows are bottom-up
+            }
+        }
+    return best;
+}
+
 std::string App::debugViewsOf(const std::string& technique) {
     std::string error, views;
     LoadedTechnique* loaded = techniques_->get(technique, error);

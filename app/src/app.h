@@ -201,6 +201,11 @@ public:
     // The pixel the kernel view probes, in main-target pixels from the top left (as images and
     // the mouse count); none: nothing probed. The probe is measured when the view is drawn.
     void setProbePixel(std::optional<glm::ivec2> pixel) { probePixel_ = pixel; }
+    // A pixel worth probing when none is given: of a frame of `technique`, the drawn pixel on a
+    // shadow edge (shadow term between 0.1 and 0.9, or a hard step of more than half to a
+    // neighbour) nearest the image's centre, from the top left; none when the frame has no edge.
+    // Reads the frame back (a slide's set-up, never the frame loop).
+    std::optional<glm::ivec2> shadowEdgePixel(const std::string& technique);
     std::optional<glm::ivec2> probePixel() const { return probePixel_; }
     // The footprint of the last kernel view drawn (valid = false with its problem otherwise).
     const KernelProbe& lastProbe() const { return lastProbe_; }

@@ -79,6 +79,7 @@ private:
         }
         state_.technique = options_.technique.empty() ? app_.firstTechnique() : options_.technique;
         state_.compareTechnique = options_.compareTechnique;
+        state_.gridTechniques = options_.gridTechniques;
         state_.compareLayout = options_.compareLayout;
         state_.wipe = options_.wipe;
         state_.showUi = options_.showUi;
@@ -253,17 +254,18 @@ private:
         glClearColor(0.09f, 0.09f, 0.11f, 1.0f);
         glClear(GL_COLOR_BUFFER_BIT);
         state_.frameError.clear();
-        const std::string sides[2] = {state_.technique, state_.compareTechnique};
+        const std::vector<std::string> sides = shownTechniques(state_);
         const bool difference = comparing && state_.compareLayout == CompareLayout::Difference;
         const FrameOutputs outputs =
             difference || state_.view.needsAccuracyTargets() ? FrameOutputs::Accuracy : FrameOutputs::Colour;
         probeUnderMouse();
         // One camera and scene: both sides share one camera pre-pass (the full one if either needs it).
-        if (comparing) app_.beginSharedView({sides[0], sides[1]});
-        for (int s = 0; s < (comparing ? 2 : 1); ++s) {
-            if (!app_.renderFrame(sides[s], error, outputs)) {
+        if (comparing) app_.beginSharedView(sides);
+        for (int s = 0; s < int(sides.size()); ++s) {
+            if (!app_.renderFrame(sides[size_t(s)], error, outputs)) {
                 state_.frameError = error;
                 if (s == 1) state_.compareTechnique.clear();
+                if (s > 1) state_.gridTechniques.clear();
                 break;
             }
             state_.sideTimings[s] = app_.timer().latest();   // this side's: the sides alternate frame by frame
@@ -274,13 +276,13 @@ private:
                     ViewCompositor::blitDisplay(renderer, surface_, surfaceSize_, layout.view.origin, layout.view.size, 0);
                 continue;
             }
-            presentSide(s, sides[s]);
-            const PixelRect& rect = layout.halves[s];
+            presentSide(s, sides[size_t(s)]);
+            const PixelRect& rect = layout.cells[s];
             const int sourceX = comparing && state_.compareLayout == CompareLayout::Wipe ? rect.origin.x - layout.view.origin.x : 0;
             ViewCompositor::blitDisplay(renderer, surface_, surfaceSize_, rect.origin, rect.size, sourceX);
         }
         app_.endSharedView();
-        if (!comparing) state_.sideTimings[1].clear();
+        for (size_t s = sides.size(); s < size_t(kMaxGridSides); ++s) state_.sideTimings[s].clear();
     }
 
     // The kernel view probes the pixel under the mouse (over the view, not the panel); without a
@@ -318,11 +320,12 @@ private:
 
     // The heatmap and figures say when they no longer describe the view.
     void markStaleMeasurement(bool comparing) {
-        const std::string sides[2] = {state_.technique, state_.compareTechnique};
+        (void)comparing;
+        const std::vector<std::string> sides = shownTechniques(state_);
         state_.staleReason.clear();
-        for (size_t s = 0; s < state_.measurement.size() && state_.staleReason.empty(); ++s)
+        for (size_t s = 0; s < state_.measurement.size() && s < sides.size() && state_.staleReason.empty(); ++s)
             state_.staleReason = staleReason(state_.measurement[s].key, currentMeasurementKey(app_, sides[s]));
-        if (state_.measurement.size() != (comparing ? 2u : 1u) && !state_.measurement.empty())
+        if (state_.measurement.size() != sides.size() && !state_.measurement.empty())
             state_.staleReason = "the comparison changed";
     }
 
@@ -392,9 +395,9 @@ private:
     // (pollMeasurement takes the result); the GPU tracer draws with GL, so it measures here, at once.
     void measure() {
         state_.measureError.clear();
-        const std::string sides[2] = {state_.technique, state_.compareTechnique};
+        const std::vector<std::string> sides = shownTechniques(state_);
         std::vector<AsyncMeasurement::Side> requests;
-        for (int s = 0; s < (state_.compareTechnique.empty() ? 1 : 2); ++s) {
+        for (size_t s = 0; s < sides.size(); ++s) {
             const TechniqueInfo* info = app_.techniques().find(sides[s]);
             AsyncMeasurement::Side side{sides[s], {}, 0.0};
             side.options.mode = state_.referenceMode == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
@@ -448,9 +451,7 @@ private:
     void pollMeasurement() {
         if (measurement_.running()) {
             const std::vector<std::string> measured = measurement_.techniques();
-            std::vector<std::string> shown{state_.technique};
-            if (!state_.compareTechnique.empty()) shown.push_back(state_.compareTechnique);
-            if (measured != shown) cancelMeasurement("the technique changed");
+            if (measured != shownTechniques(state_)) cancelMeasurement("the technique changed");
         }
         switch (measurement_.poll()) {
         case AsyncMeasurement::Status::Idle: state_.measuring = false; return;

@@ -104,6 +104,21 @@ int renderPathExport(App& app, const std::string& technique, const std::string& 
     return 0;
 }
 
+// A host debug view as a slide: the window's frame loop offscreen without the panel, with the
+// view's legend drawn over it.
+int renderViewSlide(App& app, const std::string& technique, const std::string& view, int frames, const std::string& out) {
+    WindowOptions w;
+    w.frames = std::max(frames, 1);
+    w.screenshot = out;
+    w.hideUi = true;
+    InteractiveOptions options;
+    if (int code = windowOptionsProblem(app, w, technique, options)) return code;
+    options.view = parseView(view);
+    const int code = app.runInteractive(options);
+    if (code == 0) logInfo("wrote " + out);
+    return code;
+}
+
 int commandRender(const CommonOptions& common, const std::string& out, const std::string& view, int frames,
                   const std::string& reference, int samples, const WindowOptions& compare, const std::string& path,
                   int pathFrames, const std::string& probe, const std::string& exportFile) {
@@ -151,24 +166,26 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         const int code = renderPath(app, technique, path, pathFrames, view, out, error);
         return code ? fail(error, code) : 0;
     }
-    // --compare A,B (or --compare B with --technique A): both techniques in one image, labelled.
-    std::string other;
+    // --compare A,B (or --compare B with --technique A): both techniques in one image, labelled;
+    // A,B,C[,D]: a grid of three or four.
+    std::string other, others;
     if (!compare.compare.empty()) {
-        const auto comma = compare.compare.find(',');
-        if (comma == std::string::npos) {
-            other = compare.compare;
-        } else {
-            technique = compare.compare.substr(0, comma);
-            other = compare.compare.substr(comma + 1);
-        }
-        if (technique.empty() || other.empty() || other.find(',') != std::string::npos)
-            return fail("--compare '" + compare.compare + "': expected A,B (two technique ids, e.g. pcss,reference) or "
-                        "one id to compare --technique with",
+        std::vector<std::string> ids;
+        if (!splitList(compare.compare, "--compare", ids, error)) return fail(error, kExitBadInput);
+        if (ids.size() > 1) technique = ids.front();
+        for (size_t i = ids.size() > 1 ? 1 : 0; i < ids.size(); ++i) others += (others.empty() ? "" : ",") + ids[i];
+        other = ids.size() > 1 ? ids[1] : ids.front();
+        if (technique.empty() || other.empty() || ids.size() > size_t(kMaxGridSides))
+            return fail("--compare '" + compare.compare + "': expected A,B (two technique ids, e.g. pcss,reference), "
+                        "A,B,C[,D] (a grid) or one id to compare --technique with",
                         kExitBadInput);
         if (view != "lit" && view != "visibility")
             return fail("--view " + view + ": --compare shows lit or visibility", kExitBadInput);
     }
-    for (const std::string& id : {technique, other}) {
+    std::vector<std::string> named{technique};
+    if (!others.empty() && !splitList(others, "--compare", named, error)) return fail(error, kExitBadInput);
+    if (!others.empty()) named.insert(named.begin(), technique);
+    for (const std::string& id : named) {
         if (id.empty() || app.techniques().find(id)) continue;
         std::string known;
         for (const auto& t : app.techniques().techniques()) appendListItem(known, t.id);
@@ -182,7 +199,7 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         return fail("--" + problem, kExitBadInput);
     if (!other.empty()) {
         WindowOptions w = compare;
-        w.compare = other;
+        w.compare = others;
         w.frames = std::max(frames, 1);
         w.screenshot = out;
         w.hideUi = true;   // a slide: the view and the two labels
@@ -193,7 +210,21 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         if (code == 0) logInfo("wrote " + out);
         return code;
     }
-    if (!probe.empty()) return renderProbeSlide(app, technique, view, frames, out, probePixel);
+    // The host's debug views are slides of the window's frame loop (their legends are drawn with
+    // its overlays); the kernel view without --probe probes a shadow edge near the centre.
+    const ViewSelection::Kind kind = parseView(view).kind;
+    if (kind == ViewSelection::Kind::Kernel && probe.empty()) {
+        const std::optional<glm::ivec2> edge = app.shadowEdgePixel(technique);
+        if (!edge) return fail("--view kernel: no shadow edge in the frame to probe; give --probe X,Y", kExitBadInput);
+        probePixel = *edge;
+        app.setProbePixel(probePixel);
+        logInfo("--view kernel: probing " + std::to_string(edge->x) + "," + std::to_string(edge->y) +
+                ", the shadow edge nearest the centre (--probe X,Y picks another)");
+    }
+    if (kind == ViewSelection::Kind::Kernel) return renderProbeSlide(app, technique, view, frames, out, probePixel);
+    if (kind == ViewSelection::Kind::Footprint || kind == ViewSelection::Kind::TexelGrid ||
+        kind == ViewSelection::Kind::MapCoverage || kind == ViewSelection::Kind::FocusBody)
+        return renderViewSlide(app, technique, view, frames, out);
     Progress progress("render: drawing " + technique, uint64_t(std::max(frames, 1)), "frames");   // a huge scene on llvmpipe
     for (int i = 0; i < std::max(frames, 1); ++i) {
         if (!app.renderFrame(technique, error)) return fail(error, kExitFailure);
@@ -242,10 +273,10 @@ public:
         render->add_option("--samples", samples_, "soft reference: rays per pixel, traced adaptively (default 1024)")
             ->check(CLI::Range(1, 4096));
         render->add_option("--compare", compare_.compare,
-                           "A,B: both techniques in one image with their labels (B may be 'reference', the ground truth)");
+                           "A,B: both techniques in one image with their labels (B may be 'reference', the ground truth); A,B,C[,D]: a grid of three or four");
         // Options that mean something only with another are refused alone (CLI11's needs: exit 2).
         CLI::Option* compare = render->get_option("--compare");
-        render->add_option("--compare-layout", compare_.compareLayout, "with --compare: side-by-side (default) | wipe | difference")
+        render->add_option("--compare-layout", compare_.compareLayout, "with --compare: side-by-side (default) | wipe | difference | grid (A,B,C[,D] give a grid)")
             ->needs(compare);
         render->add_option("--wipe", compare_.wipe, "with --compare-layout wipe: divider position, 0..1 (default 0.5)")
             ->check(CLI::Range(0.0, 1.0))

@@ -61,10 +61,11 @@ void MainJob::declare(CLI::App& cli) {
     auto windowOption = [&](CLI::Option* option) { return option->group("Window"); };
     windowOption(cli.add_option("--smoke-test", window_.smokeFrames, "window: draw N frames cycling every technique, then exit"))
         ->check(CLI::Range(1, 1000000));
-    windowOption(cli.add_option("--compare", window_.compare, "window: compare this technique (B) with --technique (A)"));
+    windowOption(cli.add_option("--compare", window_.compare,
+                                "window: compare this technique (B) with --technique (A); B,C[,D]: a grid of three or four"));
     // Options that mean something only with another are refused alone (CLI11's needs: exit 2).
     CLI::Option* compare = cli.get_option("--compare");
-    windowOption(cli.add_option("--compare-layout", window_.compareLayout, "side-by-side (default) | wipe | difference"))
+    windowOption(cli.add_option("--compare-layout", window_.compareLayout, "side-by-side (default) | wipe | difference | grid (three or four techniques)"))
         ->needs(compare);
     windowOption(cli.add_option("--wipe", window_.wipe, "wipe divider position across the view, 0..1 (default 0.5)"))
         ->check(CLI::Range(0.0, 1.0))

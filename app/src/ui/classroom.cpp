@@ -14,12 +14,13 @@ const char* compareLayoutName(CompareLayout layout) {
     case CompareLayout::SideBySide: return "side-by-side";
     case CompareLayout::Wipe: return "wipe";
     case CompareLayout::Difference: return "difference";
+    case CompareLayout::Grid: return "grid";
     }
     return "?";
 }
 
 bool parseCompareLayout(const std::string& text, CompareLayout& layout) {
-    for (CompareLayout l : {CompareLayout::SideBySide, CompareLayout::Wipe, CompareLayout::Difference})
+    for (CompareLayout l : {CompareLayout::SideBySide, CompareLayout::Wipe, CompareLayout::Difference, CompareLayout::Grid})
         if (text == compareLayoutName(l)) {
             layout = l;
             return true;
@@ -46,9 +47,19 @@ ViewLayout computeViewLayout(glm::ivec2 window, bool panelVisible, int panelWidt
     out.view = {{panel, 0}, {window.x - panel, window.y}};
     out.comparing = comparing;
     out.halves[0] = out.halves[1] = out.view;
+    for (PixelRect& cell : out.cells) cell = out.view;
     out.renderSize = out.view.size;
     out.wipeX = out.view.origin.x + int(std::lround(std::clamp(wipe, 0.0f, 1.0f) * float(out.view.size.x)));
     if (!comparing) return out;
+    if (layout == CompareLayout::Grid) {
+        // Quarters of one size (a pixel row or column may stay unused), A B over C D.
+        out.renderSize = glm::max(out.view.size / 2, glm::ivec2(1));
+        for (int i = 0; i < kMaxGridSides; ++i)
+            out.cells[i] = {out.view.origin + glm::ivec2(i % 2, i / 2) * out.renderSize, out.renderSize};
+        out.halves[0] = out.cells[0];
+        out.halves[1] = out.cells[1];
+        return out;
+    }
     if (layout == CompareLayout::SideBySide) {
         const int left = std::max(1, out.view.size.x / 2);
         out.halves[0] = {out.view.origin, {left, out.view.size.y}};
@@ -59,6 +70,8 @@ ViewLayout computeViewLayout(glm::ivec2 window, bool panelVisible, int panelWidt
         out.halves[0] = {out.view.origin, {out.wipeX - out.view.origin.x, out.view.size.y}};
         out.halves[1] = {{out.wipeX, 0}, {out.view.origin.x + out.view.size.x - out.wipeX, out.view.size.y}};
     }
+    out.cells[0] = out.halves[0];
+    out.cells[1] = out.halves[1];
     return out;
 }
 

@@ -34,7 +34,7 @@ std::string presenterSideTitle(App& app, const std::string& id) {
 // The figures of side `s`: its GPU time and, once measured, its accuracy (marked stale when the
 // view has changed since).
 std::string presenterSideFigures(App& app, const UiState& state, int s, const std::string& id) {
-    std::string text = (state.compareTechnique.empty() ? "" : std::string(s == 0 ? "A: " : "B: ")) + presenterSideTitle(app, id);
+    std::string text = (state.compareTechnique.empty() ? "" : std::string(1, char('A' + s)) + ": ") + presenterSideTitle(app, id);
     char line[160];
     const auto frame = state.sideTimings[s].find("frame");
     if (frame != state.sideTimings[s].end()) {
@@ -52,6 +52,16 @@ std::string presenterSideFigures(App& app, const UiState& state, int s, const st
 }
 
 } // namespace
+
+std::vector<std::string> shownTechniques(const UiState& state) {
+    std::vector<std::string> sides{state.technique};
+    if (state.compareTechnique.empty()) return sides;
+    sides.push_back(state.compareTechnique);
+    if (state.compareLayout == CompareLayout::Grid)
+        for (const std::string& id : state.gridTechniques)
+            if (!id.empty() && sides.size() < size_t(kMaxGridSides)) sides.push_back(id);
+    return sides;
+}
 
 void setPresenter(UiState& state, bool on) {
     state.presenter = on;
@@ -88,8 +98,9 @@ void Ui::drawPresenterOverlay(App& app, const UiState& state) {
     ImGui::PopTextWrapPos();
     ImGui::End();
     // The figures beside it.
-    std::string figures = presenterSideFigures(app, state, 0, state.technique);
-    if (!state.compareTechnique.empty()) figures += "\n\n" + presenterSideFigures(app, state, 1, state.compareTechnique);
+    std::string figures;
+    const std::vector<std::string> sides = shownTechniques(state);
+    for (size_t s = 0; s < sides.size(); ++s) figures += (s ? "\n\n" : "") + presenterSideFigures(app, state, int(s), sides[s]);
     if (state.path && state.path->frames > 0)
         figures += "\n\npath " + state.pathName + ": frame " + std::to_string(state.pathFrame % state.path->frames + 1) + " of " +
                    std::to_string(state.path->frames);

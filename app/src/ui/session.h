@@ -22,6 +22,7 @@ namespace shadowlab {
 struct InteractiveOptions {
     std::string technique;
     std::string compareTechnique;                  // non-empty: compare `technique` (A) with it (B)
+    std::vector<std::string> gridTechniques;       // the grid's C and D (compareLayout Grid)
     CompareLayout compareLayout = CompareLayout::SideBySide;
     float wipe = 0.5f;                             // Wipe: divider across the view, 0..1
     int frames = 0;                                // > 0: draw that many, save `screenshot`, return

@@ -337,6 +337,7 @@ void Ui::draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, 
     }
 
     drawViewOverlay(app, state);
+    drawViewLegend(app, state);
     state.leftPresses.clear();
     state.leftRelease.reset();
     if (state.showUi) drawPanel(app, state);
@@ -378,7 +379,22 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
         const std::string a = "A: " + techniqueTitle(app, state.technique);
         const std::string b = "B: " + techniqueTitle(app, state.compareTechnique);
         const float left = float(layout.view.origin.x) + 8.0f, right = float(layout.view.origin.x + layout.view.size.x) - 8.0f;
-        if (state.compareLayout == CompareLayout::Difference) {
+        if (state.compareLayout == CompareLayout::Grid) {
+            // A B over C D: lines between the quarters and each one's label in its lower left corner.
+            const PixelRect& first = layout.cells[0];
+            const float midX = float(first.origin.x + first.size.x), midY = float(first.origin.y + first.size.y);
+            for (const ImU32 colour : {IM_COL32(0, 0, 0, 160), IM_COL32(255, 255, 255, 230)}) {
+                const float width = colour == IM_COL32(0, 0, 0, 160) ? 4.0f : 2.0f;
+                draw->AddLine(ImVec2(midX, float(layout.view.origin.y)), ImVec2(midX, bottom + 8.0f), colour, width);
+                draw->AddLine(ImVec2(left - 8.0f, midY), ImVec2(right + 8.0f, midY), colour, width);
+            }
+            const std::vector<std::string> sides = shownTechniques(state);
+            for (size_t i = 0; i < sides.size(); ++i) {
+                const PixelRect& cell = layout.cells[i];
+                labelBox(draw, ImVec2(float(cell.origin.x) + 8.0f, float(cell.origin.y + cell.size.y) - 8.0f),
+                         std::string(1, char('A' + i)) + ": " + techniqueTitle(app, sides[i]), false);
+            }
+        } else if (state.compareLayout == CompareLayout::Difference) {
             labelBox(draw, ImVec2(left, bottom),
                      "difference of the shadow terms\n" + a + "\n" + b + "\norange: A darker, blue: B darker", false,
                      IM_COL32(255, 255, 255, 255), left, right);
@@ -569,7 +585,7 @@ void Ui::drawAccuracySection(App& app, UiState& state) {
         for (size_t s = 0; s < state.measurement.size(); ++s) {
             const SideMeasurement& side = state.measurement[s];
             const AccuracyMetrics& m = side.metrics;
-            if (state.measurement.size() > 1) ImGui::TextUnformatted(s == 0 ? "A" : "B");
+            if (state.measurement.size() > 1) ImGui::Text("%c", char('A' + s));
             ImGui::TextWrapped("%s", side.label.c_str());
             ImGui::TextWrapped("MAE %.4f   RMSE %.4f\nfalse shadow %.3f%%   false light %.3f%%\n"
                                "MAE in penumbra %.4f, elsewhere %.4f\ncompared %.1f%% of pixels (traced in %.2f s)\n"
@@ -623,11 +639,10 @@ void Ui::drawTimingSection(App& app, UiState& state) {
     if (ImGui::CollapsingHeader("Timing and memory", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::TextWrapped("%.1f FPS  (%.2f ms per frame, host CPU %.3f ms)", 1000.0f / std::max(smoothedFrameMs_, 1e-3f),
                            smoothedFrameMs_, app.lastCpuFrameMs());
-        const bool comparing = !state.compareTechnique.empty();
-        const std::string sides[2] = {state.technique, state.compareTechnique};
-        for (int s = 0; s < (comparing ? 2 : 1); ++s) {
-            if (comparing) ImGui::TextWrapped("%s: %s", s == 0 ? "A" : "B", techniqueTitle(app, sides[s]).c_str());
-            timingsTable(s == 0 ? "passes-a" : "passes-b", state.sideTimings[s]);
+        const std::vector<std::string> sides = shownTechniques(state);
+        for (size_t s = 0; s < sides.size(); ++s) {
+            if (sides.size() > 1) ImGui::TextWrapped("%c: %s", char('A' + s), techniqueTitle(app, sides[s]).c_str());
+            timingsTable(("passes-" + std::to_string(s)).c_str(), state.sideTimings[s]);
             std::string error;
             if (LoadedTechnique* loaded = app.techniques().get(sides[s], error)) {
                 ImGui::Text("technique GPU memory: %.2f MiB", double(loaded->host().gpuBytes()) / (1024.0 * 1024.0));
@@ -689,6 +704,47 @@ void Ui::drawHostSection(App& app) {
     }
 }
 
+// "compare with (B)", the layout, and the grid's C and D.
+void Ui::drawComparePicker(App& app, UiState& state) {
+    fieldLabel("compare with (B)",
+               "Side by side: the view split in two, both halves with the whole camera framing. Wipe: one framing, A left "
+               "of a divider you drag, B right of it. Difference: where the two shadow terms differ.");
+    const TechniqueInfo* compareInfo = app.techniques().find(state.compareTechnique);
+    if (ImGui::BeginCombo("##compare", compareInfo ? compareInfo->displayName.c_str() : "(nothing)")) {
+        if (ImGui::Selectable("(nothing)", state.compareTechnique.empty())) state.compareTechnique.clear();
+        for (const auto& t : app.techniques().techniques())
+            if (ImGui::Selectable((t.displayName + "##compare" + t.id).c_str(), t.id == state.compareTechnique))
+                state.compareTechnique = t.id;
+        ImGui::EndCombo();
+    }
+    if (!state.compareTechnique.empty()) {
+        int layout = int(state.compareLayout);
+        ImGui::RadioButton("side by side", &layout, int(CompareLayout::SideBySide));
+        ImGui::SameLine();
+        ImGui::RadioButton("wipe", &layout, int(CompareLayout::Wipe));
+        ImGui::SameLine();
+        ImGui::RadioButton("difference", &layout, int(CompareLayout::Difference));
+        ImGui::SameLine();
+        ImGui::RadioButton("grid", &layout, int(CompareLayout::Grid));
+        state.compareLayout = CompareLayout(layout);
+    }
+    if (!state.compareTechnique.empty() && state.compareLayout == CompareLayout::Grid) {
+        // C and D: the grid's lower quarters (D may stay empty).
+        state.gridTechniques.resize(2);
+        for (int i = 0; i < 2; ++i) {
+            std::string& id = state.gridTechniques[size_t(i)];
+            const TechniqueInfo* cell = app.techniques().find(id);
+            fieldLabel(i == 0 ? "grid: C (lower left)" : "grid: D (lower right)");
+            if (ImGui::BeginCombo(i == 0 ? "##grid-c" : "##grid-d", cell ? cell->displayName.c_str() : "(nothing)")) {
+                if (ImGui::Selectable("(nothing)", id.empty())) id.clear();
+                for (const auto& t : app.techniques().techniques())
+                    if (ImGui::Selectable((t.displayName + "##grid" + std::to_string(i) + t.id).c_str(), t.id == id)) id = t.id;
+                ImGui::EndCombo();
+            }
+        }
+    }
+}
+
 void Ui::drawPanel(App& app, UiState& state) {
     const PixelRect& panel = state.layout.panel;
     ImGui::SetNextWindowPos(ImVec2(float(panel.origin.x), float(panel.origin.y)), ImGuiCond_Always);
@@ -719,26 +775,7 @@ void Ui::drawPanel(App& app, UiState& state) {
         }
         ImGui::EndCombo();
     }
-    fieldLabel("compare with (B)",
-               "Side by side: the view split in two, both halves with the whole camera framing. Wipe: one framing, A left "
-               "of a divider you drag, B right of it. Difference: where the two shadow terms differ.");
-    const TechniqueInfo* compareInfo = app.techniques().find(state.compareTechnique);
-    if (ImGui::BeginCombo("##compare", compareInfo ? compareInfo->displayName.c_str() : "(nothing)")) {
-        if (ImGui::Selectable("(nothing)", state.compareTechnique.empty())) state.compareTechnique.clear();
-        for (const auto& t : app.techniques().techniques())
-            if (ImGui::Selectable((t.displayName + "##compare" + t.id).c_str(), t.id == state.compareTechnique))
-                state.compareTechnique = t.id;
-        ImGui::EndCombo();
-    }
-    if (!state.compareTechnique.empty()) {
-        int layout = int(state.compareLayout);
-        ImGui::RadioButton("side by side", &layout, int(CompareLayout::SideBySide));
-        ImGui::SameLine();
-        ImGui::RadioButton("wipe", &layout, int(CompareLayout::Wipe));
-        ImGui::SameLine();
-        ImGui::RadioButton("difference", &layout, int(CompareLayout::Difference));
-        state.compareLayout = CompareLayout(layout);
-    }
+    drawComparePicker(app, state);
     info = app.techniques().find(state.technique);
     if (info) {
         ImGui::TextDisabled("%s  |  %s", info->category.c_str(), info->id.c_str());

@@ -36,6 +36,7 @@ struct UiCommand {
 struct UiState {
     std::string technique;
     std::string compareTechnique;     // non-empty: `technique` is A (left), this one B (right)
+    std::vector<std::string> gridTechniques;   // Grid: C and D (one or two) beside A and B
     CompareLayout compareLayout = CompareLayout::SideBySide;
     float wipe = 0.5f;                // Wipe: divider across the view, 0..1 (dragged in the view)
     bool draggingWipe = false;
@@ -97,7 +98,7 @@ struct UiState {
     float measureProgress = 0.0f;     // 0..1
     std::string measureStage;         // what it is doing ("tracing the reference, image 1 of 2")
     std::string staleReason;          // why the shown measurement no longer matches the view ("" = current)
-    std::map<std::string, double> sideTimings[2];   // GPU ms per pass of each side's latest frame
+    std::map<std::string, double> sideTimings[kMaxGridSides];   // GPU ms per pass of each side's latest frame
     struct MeasuredPoint {
         std::string label;
         double gpuMs;
@@ -105,6 +106,10 @@ struct UiState {
     };
     std::vector<MeasuredPoint> measured;
 };
+
+// The techniques on screen, in the order of their cells: A; A and B when comparing; A, B, C (and
+// D) in the grid layout.
+std::vector<std::string> shownTechniques(const UiState& state);
 
 // Presenter mode on or off: on hides the panel (and the help overlay); off shows it again.
 void setPresenter(UiState& state, bool on);
@@ -126,6 +131,7 @@ private:
     void applyScale(float scale);
     void drawViewOverlay(App& app, UiState& state);
     void drawPanel(App& app, UiState& state);
+    void drawComparePicker(App& app, UiState& state);
     // Sections of the panel (ui.cpp).
     void drawViewSection(App& app, UiState& state);
     void drawAccuracySection(App& app, UiState& state);
@@ -136,6 +142,7 @@ private:
     void drawStatusLine(App& app, const UiState& state, bool overlay);
     void drawPresenterOverlay(App& app, const UiState& state);   // presenter.cpp
     void drawHelpOverlay(const UiState& state);                   // presenter.cpp
+    void drawViewLegend(App& app, const UiState& state);          // view_legends.cpp
     void drawPathSection(App& app, UiState& state);               // tour_panel.cpp
     void drawTourPlayer(App& app, UiState& state);   // tour_panel.cpp
     void drawLessonSection(App& app, UiState& state); // tour_panel.cpp
