@@ -83,8 +83,10 @@ PY
 start -t shadowmap --compare pcss --compare-layout wipe --scene contact --session-dir sessions2
 xdotool key F5; wait_log "session saved" 1
 xdotool mousemove --window "$window" 660 270; sleep 1
-xdotool mousedown 1; sleep 1
-for x in 700 760 820 860; do xdotool mousemove --window "$window" $x 270; sleep 0.5; done
+# Pressed and moved at once, as a quick hand does: the frame that sees the press also sees the
+# motion (the camera used to orbit by it before the overlay knew a drag had begun).
+xdotool mousedown 1 mousemove --window "$window" 700 270 mousemove --window "$window" 760 270; sleep 0.5
+for x in 820 860; do xdotool mousemove --window "$window" $x 270; sleep 0.5; done
 sleep 1; xdotool mouseup 1; sleep 1
 xdotool key F5; wait_log "session saved" 2
 for _ in 1 2 3; do   # drag the view upwards by most of its height, three times
