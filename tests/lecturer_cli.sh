@@ -5,9 +5,16 @@
 #   - `render --path P --export FILE.gif|.mp4` and the window's `--export` with --frames (a session
 #     saved on a path, played again): the frames counted in the encoded file, and they move;
 #   - --export refused with exit 2 naming the option: no ffmpeg on PATH, a format it does not
-#     know, without --path (render) or without --frames (window).
+#     know, without --path (render) or without --frames (window);
+#   - a grid of four techniques: the same technique four times gives four equal quarters, four
+#     techniques four labelled quarters that differ; more than four, or a grid in a wipe, exit 2;
+#   - the debug views' legends: the footprint's colour bar, a swatch per cascade in the coverage
+#     view, the focus-body view saying it has no B without fit = focus-body, the texel grid without
+#     a wash; the kernel view without --probe probes a shadow edge, and the README's example probe
+#     lands in a penumbra.
 set -euo pipefail
 shadowlab=$1
+source_dir=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 unset DISPLAY WAYLAND_DISPLAY
@@ -66,6 +73,89 @@ for r in rows:
     elif run: runs.append(run); run = 0
 assert runs and max(runs) >= 18, f'caption lines {runs}: the presenter font is not large'
 print('ok: presenter slide, caption and figures boxes, caption lines', max(runs), 'px high')
+PY
+
+# A grid of three or four techniques.
+r=(render --backend osmesa --scene cube --size 640x360 --frames 2 --quiet)
+"$shadowlab" "${r[@]}" --compare shadowmap,shadowmap,shadowmap,shadowmap --out same4.png
+"$shadowlab" "${r[@]}" --compare shadowmap,pcf,pcss,vsm --out grid4.png
+"$shadowlab" "${r[@]}" --compare shadowmap,pcf,pcss --out grid3.png
+expect 2 "--compare 'shadowmap,pcf,pcss,vsm,esm': expected A,B" -- render --backend osmesa --scene cube --compare shadowmap,pcf,pcss,vsm,esm --out x.png
+expect 2 "--compare-layout wipe: compares two techniques" -- --backend osmesa --scene cube --frames 2 --compare pcf,pcss --compare-layout wipe
+expect 2 "at most three techniques beside --technique" -- --backend osmesa --scene cube --frames 2 --compare pcf,pcss,vsm,esm
+"$python" - <<'PY'
+import numpy as np
+from PIL import Image
+load = lambda f: np.asarray(Image.open(f).convert('RGB')).astype(int)
+def quarters(image):
+    h, w = image.shape[0] // 2, image.shape[1] // 2
+    # The upper 60% of each quarter: the cube and its shadow, above the label.
+    return [image[y + 4:y + int(0.6 * h), x + 4:x + w - 4] for y in (0, h) for x in (0, w)]   # off the dividing lines
+same, four, three = load('same4.png'), load('grid4.png'), load('grid3.png')
+q = quarters(same)
+for i in range(1, 4):
+    d = np.abs(q[0] - q[i]).mean()
+    assert d < 1.0, f'quarter {i} of the same technique differs from A by {d:.2f}: the quarters do not share the view'
+q = quarters(four)
+edge = [int((np.abs(q[0] - q[i]).max(axis=2) > 20).sum()) for i in (1, 2, 3)]
+assert min(edge) > 10, f'pixels of B, C, D over 20 levels from A: {edge}: the grid did not draw four techniques'
+# Each quarter's label: a dark box in its lower left corner.
+h, w = four.shape[0] // 2, four.shape[1] // 2
+for i, (y, x) in enumerate(((0, 0), (0, w), (h, 0), (h, w))):
+    label = four[y + h - 30:y + h - 8, x + 10:x + 120]
+    assert (label.max(axis=2) < 60).mean() > 0.4, f'no label in quarter {"ABCD"[i]}'
+# Three techniques: the fourth quarter is empty (the window's background).
+empty = three[h + 10:2 * h - 10, w + 10:2 * w - 10]
+assert np.abs(empty - empty[0, 0]).max() < 3 and empty.mean() < 40, 'the empty quarter of a grid of three is drawn'
+print('ok: grid of four (equal quarters for one technique, four labels), grid of three with an empty quarter')
+PY
+
+# Legends of the debug views (rendered through the window's overlays).
+v=(render --backend osmesa --size 640x360 --frames 2 --quiet)
+"$shadowlab" "${v[@]}" -t shadowmap --set fit=scene --scene forest-002 --view footprint --out footprint.png
+"$shadowlab" "${v[@]}" -t csm --scene forest-002 --view coverage --out coverage.png
+"$shadowlab" "${v[@]}" -t shadowmap --set fit=scene --scene pillars --view focus-body --out body-scene.png
+"$shadowlab" "${v[@]}" -t shadowmap --set fit=focus-body --scene pillars --view focus-body --out body-fit.png
+"$shadowlab" "${v[@]}" -t shadowmap --set resolution=256 --scene cube --view texel-grid --out grid.png
+"$python" - <<'PY'
+import numpy as np
+from PIL import Image
+load = lambda f: np.asarray(Image.open(f).convert('RGB')).astype(int)
+def near(image, colour, tolerance=4):
+    return int((np.abs(image - np.array(colour)).max(axis=2) <= tolerance).sum())
+corner = (slice(0, 130), slice(160, 640))   # the legend's box, top right
+fp = load('footprint.png')[corner]
+blue = ((fp[..., 2] > 180) & (fp[..., 0] < 90)).sum()
+red = ((fp[..., 0] > 200) & (fp[..., 1] < 70) & (fp[..., 2] < 60)).sum()
+assert blue > 40 and red > 40, f'no log2 colour bar in the footprint legend (blue {blue}, red {red} pixels)'
+cov = load('coverage.png')[corner]
+swatches = [near(cov, c) for c in ((229, 51, 51), (51, 204, 51), (63, 102, 255), (242, 204, 25))]
+assert min(swatches) > 40, f'coverage legend: pixels of each cascade colour {swatches}'
+amber = near(load('body-scene.png')[corner], (255, 190, 60))
+amber_fit = near(load('body-fit.png')[corner], (255, 190, 60))
+assert amber > 40 and amber_fit < 5, f'focus-body without B says so ({amber} amber pixels), with B not ({amber_fit})'
+grid = load('grid.png')[140:360]   # the ground in front of the cube and behind it
+yellow = (grid[..., 0] > 180) & (grid[..., 1] > 150) & (grid[..., 2] < 110)
+cyan = (grid[..., 2] > 180) & (grid[..., 1] > 150) & (grid[..., 0] < 120)
+for band in range(0, grid.shape[0] - 20, 20):
+    covered = (yellow | cyan)[band:band + 20].mean()
+    assert covered < 0.35, f'texel grid rows {140 + band}..: {covered:.0%} lines, a wash'
+assert yellow.sum() > 200 and cyan.sum() > 200, f'texel grid: yellow {yellow.sum()} and cyan {cyan.sum()} pixels'
+print(f'ok: legends (footprint bar, {swatches} cascade swatch pixels, focus-body note), texel grid without a wash')
+PY
+# The kernel view without --probe probes a shadow edge; the README's example probe is in a penumbra.
+"$shadowlab" "${v[@]}" -t pcss --scene contact --view kernel --out kernel-auto.png > auto.txt
+readme=$(grep -o 'render --scene contact --technique pcss [^#]*--view kernel [^#]*' "$source_dir/README.md" | head -1)
+[ -n "$readme" ] || fail "no kernel example in the README"
+# shellcheck disable=SC2086
+"$shadowlab" $readme --backend osmesa --quiet > readme.txt
+"$python" - <<'PY'
+import re
+for name in ('auto.txt', 'readme.txt'):
+    line = [l for l in open(name) if 'kernel=' in l][0]
+    lit = float(re.search(r'lit=([0-9.]+)', line).group(1))
+    assert 0.05 < lit < 0.95 and 'decision=searched' in line, f'{name}: not a penumbra or edge pixel: {line}'
+    print(f'ok: {name}: lit {lit}')
 PY
 
 # --export refused before anything is drawn.

@@ -77,6 +77,7 @@ void drawLegendBox(const PixelRect& view, const std::string& title, const std::v
         float x = min.x + pad;
         if (row.hasSwatch) {
             draw->AddRectFilled(ImVec2(x, y + 0.1f * font), ImVec2(x + swatch, y + 0.9f * font), row.swatch);
+            draw->AddRect(ImVec2(x, y + 0.1f * font), ImVec2(x + swatch, y + 0.9f * font), IM_COL32(150, 150, 150, 255));   // dark swatches too
             x += swatch + pad;
         }
         draw->AddText(ImVec2(x, y), kLegendText, row.text.c_str());
@@ -112,7 +113,7 @@ void Ui::drawViewLegend(App& app, const UiState& state) {
         drawLegendBox(view, "shadow-map texel grid",
                       {{IM_COL32(255, 217, 26, 255), true, "every texel edge"},
                        {IM_COL32(26, 217, 255, 255), true, "every n-th edge (n = 2, 4, 8 ...) where"},
-                       {0, false, "texels are under 4 pixels apart"}},
+                       {0, false, "edges would be under 8 pixels apart"}},
                       false);
         return;
     case ViewSelection::Kind::MapCoverage: {
