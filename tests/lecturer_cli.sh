@@ -11,7 +11,8 @@
 #   - the debug views' legends: the footprint's colour bar, a swatch per cascade in the coverage
 #     view, the focus-body view saying it has no B without fit = focus-body, the texel grid without
 #     a wash; the kernel view without --probe probes a shadow edge, and the README's example probe
-#     lands in a penumbra.
+#     lands in a penumbra;
+#   - a path played outside a tour (--play-path, the panel's "Paths") at --path-speed 2.
 set -euo pipefail
 shadowlab=$1
 source_dir=$2
@@ -108,6 +109,23 @@ for i, (y, x) in enumerate(((0, 0), (0, w), (h, 0), (h, w))):
 empty = three[h + 10:2 * h - 10, w + 10:2 * w - 10]
 assert np.abs(empty - empty[0, 0]).max() < 3 and empty.mean() < 40, 'the empty quarter of a grid of three is drawn'
 print('ok: grid of four (equal quarters for one technique, four labels), grid of three with an empty quarter')
+PY
+
+# A path played outside a tour, as the panel's "Camera and light paths" plays one, at a speed: at
+# 2 path frames a window frame, window frame 4 shows path frame 8.
+p=(--backend osmesa --scene cube -t shadowmap --play-path sweep --size 320x180 --hide-ui --quiet)
+"$shadowlab" "${p[@]}" --path-speed 2 --frames 5 --screenshot speed2.png
+"$shadowlab" "${p[@]}" --frames 9 --screenshot frame8.png
+"$shadowlab" "${p[@]}" --frames 5 --screenshot frame4.png
+expect 2 "path 'nowhere'" -- --backend osmesa --scene cube --frames 2 --play-path nowhere
+"$python" - <<'PY'
+import numpy as np
+from PIL import Image
+load = lambda f: np.asarray(Image.open(f).convert('RGB')).astype(int)
+fast, eight, four = load('speed2.png'), load('frame8.png'), load('frame4.png')
+same, other = np.abs(fast - eight).mean(), np.abs(fast - four).mean()
+assert same < 0.5 and other > 2, f'speed 2 at window frame 4: {same:.2f} from path frame 8, {other:.2f} from path frame 4'
+print(f'ok: a path at speed 2 shows path frame 8 at window frame 4 ({same:.2f} levels off, {other:.2f} from frame 4)')
 PY
 
 # Legends of the debug views (rendered through the window's overlays).

@@ -99,6 +99,11 @@ private:
         }
         if (!options_.session.empty()) runCommand({UiCommand::Kind::LoadSession, options_.session});
         if (!options_.session.empty() && state_.sessionStatusIsError) return 2;   // refused before the first frame, as --tour
+        state_.pathSpeed = options_.pathSpeed;
+        if (!options_.playPath.empty()) {
+            runCommand({UiCommand::Kind::PlayPath, options_.playPath});
+            if (!state_.path) return 2;   // named in the log by playPath
+        }
         if (!options_.exportFile.empty() && !startRecording(options_.exportFile, 0)) return 1;
         return 0;
     }

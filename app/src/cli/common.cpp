@@ -213,6 +213,8 @@ int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& te
     out.uiScale = float(w.uiScale);
     out.showUi = !w.hideUi;
     out.presenter = w.presenter;
+    out.playPath = w.playPath;
+    out.pathSpeed = float(w.pathSpeed);
     if (!w.exportFile.empty()) {
         if (w.frames <= 0)
             return fail("--export " + w.exportFile + ": records the frames of a run of --frames N (a tour step, a path)",

@@ -80,6 +80,11 @@ void MainJob::declare(CLI::App& cli) {
     windowOption(cli.add_option("--export", window_.exportFile,
                                 "window: with --frames N, the N frames drawn (the view, without the panel) as FILE.gif, "
                                 ".mp4 or .webm, e.g. a tour step's path (needs the ffmpeg program)"));
+    windowOption(cli.add_option("--play-path", window_.playPath,
+                                "window: play a camera or light path from the start, as the panel's \"Camera and light "
+                                "paths\" does: built-in (orbit, dolly, sweep, walk, static) or a path file"));
+    windowOption(cli.add_option("--path-speed", window_.pathSpeed, "window: path frames per window frame (0.1-4, default 1)"))
+        ->check(CLI::Range(0.1, 4.0));
     windowOption(cli.add_flag("--presenter", window_.presenter,
                               "window: presenter mode (P toggles it): full screen, the panel hidden, the tour step's "
                               "caption large on the view with its figures beside it; ? lists every key"));

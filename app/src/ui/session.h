@@ -40,6 +40,8 @@ struct InteractiveOptions {
     std::filesystem::path screenshotFolder = "screenshots";   // F12
     std::filesystem::path exportFile;              // --export: every frame of the run into this .gif/.mp4/.webm
     std::filesystem::path exportFolder = "exports";          // the panel's "Export path"
+    std::string playPath;                          // a path played from the start, as the panel's "Paths" plays one
+    float pathSpeed = 1.0f;                        // path frames per window frame
     // A guided tour, started at `tourStep` (from 0), and/or a session file applied at the start
     // (both checked whole before: tour.h). The session folder is where "Save session" writes.
     std::shared_ptr<const Tour> tour;
