@@ -161,6 +161,26 @@ for band in range(0, grid.shape[0] - 20, 20):
 assert yellow.sum() > 200 and cyan.sum() > 200, f'texel grid: yellow {yellow.sum()} and cyan {cyan.sum()} pixels'
 print(f'ok: legends (footprint bar, {swatches} cascade swatch pixels, focus-body note), texel grid without a wash')
 PY
+# The shadow map's debug image at its own (square) aspect ratio between bars, its depths stretched
+# from the nearest the map holds (black) to the farthest; the kernel view's magnified inset.
+"$shadowlab" "${v[@]}" -t shadowmap --scene cube --view "shadow map" --out shadow-map.png
+"$shadowlab" "${v[@]}" -t pcf --set kernel=5 --set offset_scale=1 --set hardware_filter=0 --set resolution=256 --scene cube \
+  --view kernel --probe 320,300 --out inset.png > inset.txt
+"$python" - <<'PY'
+import numpy as np
+from PIL import Image
+load = lambda f: np.asarray(Image.open(f).convert('RGB')).astype(int)
+image = load('shadow-map.png')
+bars = np.concatenate([image[140:, :130], image[140:, 510:]], axis=1)   # below the legend
+assert np.abs(bars - bars[0, 0]).max() <= 2, 'no plain bars beside the map: it is stretched to the view'
+square = image[100:, 140:500, 1]   # below the legend's box
+assert square.min() <= 3, f'the nearest depth is not black ({square.min()}): the range is not stretched (it was 11 before)'
+inset = load('inset.png')
+yellow = (np.abs(inset - np.array([255, 217, 0])).max(axis=2) <= 8)
+near, corner = yellow[260:340, 280:360].sum(), yellow[0:200, 380:].sum()
+assert corner > 2 * near > 16, f'the inset does not magnify the box ({corner} yellow pixels in it, {near} at the probe)'
+print(f'ok: shadow map square between bars, black at the nearest depth; kernel inset {corner} px against {near}')
+PY
 # The kernel view without --probe probes a shadow edge; the README's example probe is in a penumbra.
 "$shadowlab" "${v[@]}" -t pcss --scene contact --view kernel --out kernel-auto.png > auto.txt
 readme=$(grep -o 'render --scene contact --technique pcss [^#]*--view kernel [^#]*' "$source_dir/README.md" | head -1)

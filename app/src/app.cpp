@@ -28,6 +28,7 @@ App::~App() {
     if (techniques_) techniques_->unloadAll();
     techniques_.reset();
     shadowMapViews_.release();
+    depthRange_.reset();
     gpuReference_.reset();
     renderer_.reset();
     timer_.reset();
@@ -469,6 +470,37 @@ std::optional<glm::ivec2> App::shadowEdgePixel(const std::string& technique) {
     return best;
 }
 
+// A technique's debug image at its true aspect ratio, letterboxed in the view (a square map was
+// stretched to 16:9), a depth map's values stretched from the nearest to the farthest depth it
+// holds (render/depth_range.h).
+void App::presentDebugImage(const DebugImage& image, GLuint fbo, glm::ivec2 size) {
+    glm::ivec2 texels(0);
+    glGetTextureLevelParameteriv(image.texture, 0, GL_TEXTURE_WIDTH, &texels.x);
+    glGetTextureLevelParameteriv(image.texture, 0, GL_TEXTURE_HEIGHT, &texels.y);
+    glm::ivec2 rect = size, origin(0);
+    if (texels.x > 0 && texels.y > 0) {
+        const float scale = std::min(float(size.x) / float(texels.x), float(size.y) / float(texels.y));
+        rect = glm::max(glm::ivec2(glm::round(glm::vec2(texels) * scale)), glm::ivec2(1));
+        origin = (size - rect) / 2;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, size.x, size.y);
+    glDisable(GL_SCISSOR_TEST);
+    glClearColor(0.09f, 0.09f, 0.11f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glm::vec2 range(0.0f, 1.0f);
+    if (image.kind == DebugImageKind::Depth) {
+        if (!depthRange_) depthRange_ = std::make_unique<DepthRange>();
+        if (inWindowLoop_) depthRange_->update(image.texture);
+        else depthRange_->measureNow(image.texture);
+        range = depthRange_->range(image.texture);
+    }
+    const PresentMode mode = image.kind == DebugImageKind::Depth     ? PresentMode::Depth
+                             : image.kind == DebugImageKind::Moments ? PresentMode::Moments
+                                                                     : PresentMode::Color;
+    renderer_->present(mode, image.texture, fbo, rect, range, origin);
+}
+
 std::string App::debugViewsOf(const std::string& technique) {
     std::string error, views;
     LoadedTechnique* loaded = techniques_->get(technique, error);
@@ -549,10 +581,7 @@ bool App::presentView(const std::string& technique, const ViewSelection& view, G
         std::string names;
         for (const DebugImage& image : loaded->host().debugImages()) {
             if (image.name == view.debugImage) {
-                const PresentMode mode = image.kind == DebugImageKind::Depth    ? PresentMode::Depth
-                                         : image.kind == DebugImageKind::Moments ? PresentMode::Moments
-                                                                                 : PresentMode::Color;
-                renderer_->present(mode, image.texture, fbo, size);
+                presentDebugImage(image, fbo, size);
                 return true;
             }
             appendListItem(names, image.name);

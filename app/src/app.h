@@ -24,6 +24,7 @@
 #include "render/gpu_reference.h"
 #include "render/gpu_timer.h"
 #include "render/renderer.h"
+#include "render/depth_range.h"
 #include "render/shadow_map_views.h"
 #include "render/shader_library.h"
 #include "render/texture_readback.h"
@@ -289,6 +290,7 @@ public:
 private:
     void applyLightOverrides();
     void setCameraFloor();
+    void presentDebugImage(const DebugImage& image, GLuint fbo, glm::ivec2 size);
     // The camera pre-pass this frame's flags ask for, timed, or the shared view's (beginSharedView).
     void cameraPrepassFor(uint32_t flags);
     struct SharedPrepass {
@@ -305,6 +307,8 @@ private:
     std::unique_ptr<GpuTimer> timer_;
     std::unique_ptr<Renderer> renderer_;
     ShadowMapViews shadowMapViews_;
+    std::unique_ptr<DepthRange> depthRange_;   // the `shadow map` view's stretch (render/depth_range.h)
+    bool inWindowLoop_ = false;                // runInteractive: read the depth range without waiting
     std::optional<glm::ivec2> probePixel_;
     KernelProbe lastProbe_;
     std::vector<float> probeDepths_;       // the probed map's depths (read back when the view is drawn)

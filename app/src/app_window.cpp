@@ -700,6 +700,11 @@ private:
     AsyncMeasurement measurement_{app_};   // last: joined and released before the rest goes
 };
 
-int App::runInteractive(const InteractiveOptions& options) { return WindowSession(*this, options).run(); }
+int App::runInteractive(const InteractiveOptions& options) {
+    inWindowLoop_ = true;   // read-backs of the frame loop never wait (render/depth_range.h)
+    const int code = WindowSession(*this, options).run();
+    inWindowLoop_ = false;
+    return code;
+}
 
 } // namespace shadowlab

@@ -439,6 +439,7 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
         const float height = ImGui::CalcTextSize(text.c_str()).y + 0.8f * ImGui::GetFontSize();
         labelBox(draw, ImVec2(float(layout.view.origin.x) + 8.0f, top ? float(layout.view.origin.y) + 8.0f + height : bottom),
                  text, false);
+        if (app.probePixel()) drawKernelInset(app, layout, *app.probePixel(), top);
     }
     if (state.showUi && state.view.kind == ViewSelection::Kind::ErrorHeatmap && !state.measurement.empty()) {
         // Say so when the heatmap no longer shows what is on screen, and offer to measure again.
@@ -458,6 +459,37 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
         if (ImGui::Button("Back to lit")) state.view = {};
         ImGui::End();
     }
+}
+
+// The kernel view's inset: the pixels around the probe magnified (nearest texels, so the taps and
+// the box read as the shader's pixels), at the view's right edge on the side away from the probe,
+// with a cross on the probed pixel and the kernel's size under it.
+void Ui::drawKernelInset(App& app, const ViewLayout& layout, glm::ivec2 probe, bool top) {
+    constexpr int kRadius = 12;   // pixels either side of the probe
+    const float side = std::min(16.0f * ImGui::GetFontSize(), 0.4f * float(layout.view.size.y));
+    const glm::vec2 render(layout.renderSize);
+    if (render.x <= 2.0f * kRadius || render.y <= 2.0f * kRadius) return;
+    const glm::vec2 centre = glm::clamp(glm::vec2(probe) + 0.5f, glm::vec2(kRadius), render - float(kRadius));
+    const glm::vec2 lo = centre - float(kRadius), hi = centre + float(kRadius);
+    const float right = float(layout.view.origin.x + layout.view.size.x) - 8.0f;
+    const float y0 = top ? float(layout.view.origin.y) + 8.0f : float(layout.view.origin.y + layout.view.size.y) - 8.0f - side - 1.6f * ImGui::GetFontSize();
+    const KernelProbe& kernel = app.lastProbe();
+    const float scale = side / float(2 * kRadius);
+    char caption[96];
+    std::snprintf(caption, sizeof caption, "x%.0f around %d,%d: %.1f texels wide, lit %.3f", scale, probe.x, probe.y,
+                  double(kernel.kernelTexels), double(kernel.lit));
+    const float captionWidth = ImGui::CalcTextSize(caption).x, font = ImGui::GetFontSize();
+    const ImVec2 min(right - side, y0), max(right, y0 + side);
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    draw->AddRectFilled(ImVec2(right - std::max(side, captionWidth) - 4.0f, min.y - 4.0f), ImVec2(max.x + 4.0f, max.y + 1.6f * font),
+                        IM_COL32(0, 0, 0, 200), 4.0f);
+    // The display texture is bottom-up: v runs against the view's rows.
+    draw->AddImage(reinterpret_cast<ImTextureID>(intptr_t(app.renderer().displayTexture())), min, max,
+                   ImVec2(lo.x / render.x, 1.0f - lo.y / render.y), ImVec2(hi.x / render.x, 1.0f - hi.y / render.y));
+    const ImVec2 at(min.x + (float(probe.x) + 0.5f - lo.x) * scale, min.y + (float(probe.y) + 0.5f - lo.y) * scale);
+    draw->AddLine(ImVec2(at.x - scale, at.y), ImVec2(at.x + scale, at.y), IM_COL32(255, 255, 255, 255), 1.0f);
+    draw->AddLine(ImVec2(at.x, at.y - scale), ImVec2(at.x, at.y + scale), IM_COL32(255, 255, 255, 255), 1.0f);
+    draw->AddText(ImVec2(right - captionWidth, max.y + 0.2f * font), IM_COL32(225, 225, 225, 255), caption);
 }
 
 // The panel's "View" section.

@@ -138,6 +138,16 @@ void Ui::drawViewLegend(App& app, const UiState& state) {
         drawLegendBox(view, reported ? "focus body B" : "focus body B: not computed (fit is not focus-body)", rows, false);
         return;
     }
+    case ViewSelection::Kind::DebugImage:
+        if (loaded)
+            for (const DebugImage& image : loaded->host().debugImages())
+                if (image.name == state.view.debugImage && image.kind == DebugImageKind::Depth)
+                    drawLegendBox(view, "'" + image.name + "': depth seen from the light",
+                                  {{IM_COL32(0, 0, 0, 255), true, "the nearest depth the map holds"},
+                                   {IM_COL32(255, 255, 255, 255), true, "the farthest (and nothing stored)"},
+                                   {0, false, "the map at its own aspect ratio"}},
+                                  false);
+        return;
     default: return;
     }
 }
