@@ -113,7 +113,12 @@ PY
 
 # A path played outside a tour, as the panel's "Camera and light paths" plays one, at a speed: at
 # 2 path frames a window frame, window frame 4 shows path frame 8.
-p=(--backend osmesa --scene cube -t shadowmap --play-path sweep --size 320x180 --hide-ui --quiet)
+cat > slide.json <<'JSON'
+{"frames": 10, "keyframes": [
+  {"time": 0, "camera": {"position": [3, 2, 4], "target": [0, 0.4, 0]}},
+  {"time": 1, "camera": {"position": [0.6, 2, 4], "target": [-2.4, 0.4, 0]}}]}
+JSON
+p=(--backend osmesa --scene cube -t shadowmap --play-path slide.json --size 320x180 --hide-ui --quiet)
 "$shadowlab" "${p[@]}" --path-speed 2 --frames 5 --screenshot speed2.png
 "$shadowlab" "${p[@]}" --frames 9 --screenshot frame8.png
 "$shadowlab" "${p[@]}" --frames 5 --screenshot frame4.png

@@ -439,7 +439,7 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
         const float height = ImGui::CalcTextSize(text.c_str()).y + 0.8f * ImGui::GetFontSize();
         labelBox(draw, ImVec2(float(layout.view.origin.x) + 8.0f, top ? float(layout.view.origin.y) + 8.0f + height : bottom),
                  text, false);
-        if (app.probePixel()) drawKernelInset(app, layout, *app.probePixel(), top);
+        if (app.probePixel()) drawKernelInset(app, state, *app.probePixel(), top);
     }
     if (state.showUi && state.view.kind == ViewSelection::Kind::ErrorHeatmap && !state.measurement.empty()) {
         // Say so when the heatmap no longer shows what is on screen, and offer to measure again.
@@ -464,17 +464,25 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
 // The kernel view's inset: the pixels around the probe magnified (nearest texels, so the taps and
 // the box read as the shader's pixels), at the view's right edge on the side away from the probe,
 // with a cross on the probed pixel and the kernel's size under it.
-void Ui::drawKernelInset(App& app, const ViewLayout& layout, glm::ivec2 probe, bool top) {
-    constexpr int kRadius = 12;   // pixels either side of the probe
+void Ui::drawKernelInset(App& app, const UiState& state, glm::ivec2 probe, bool top) {
+    const ViewLayout& layout = state.layout;
+    // Pixels either side of the probe: the kernel's reach on screen and a little more, at least 8
+    // (a kernel of a few pixels is what needs magnifying) and at most 96.
+    std::string error;
+    LoadedTechnique* loaded = app.techniques().get(state.technique, error);
+    if (!loaded || loaded->host().shadowMaps().empty() || !app.lastProbe().valid) return;
+    const float reach = kernelPixelRadius(loaded->host().shadowMaps().front(), app.lastProbe(),
+                                          app.camera().info(layout.renderSize).viewProjection, layout.renderSize);
     const float side = std::min(16.0f * ImGui::GetFontSize(), 0.4f * float(layout.view.size.y));
+    const float kRadius = std::min(std::clamp(std::ceil(1.2f * reach) + 2.0f, 8.0f, 96.0f), 0.5f * side);   // magnified, never shrunk
     const glm::vec2 render(layout.renderSize);
     if (render.x <= 2.0f * kRadius || render.y <= 2.0f * kRadius) return;
-    const glm::vec2 centre = glm::clamp(glm::vec2(probe) + 0.5f, glm::vec2(kRadius), render - float(kRadius));
-    const glm::vec2 lo = centre - float(kRadius), hi = centre + float(kRadius);
+    const glm::vec2 centre = glm::clamp(glm::vec2(probe) + 0.5f, glm::vec2(kRadius), render - kRadius);
+    const glm::vec2 lo = centre - kRadius, hi = centre + kRadius;
     const float right = float(layout.view.origin.x + layout.view.size.x) - 8.0f;
     const float y0 = top ? float(layout.view.origin.y) + 8.0f : float(layout.view.origin.y + layout.view.size.y) - 8.0f - side - 1.6f * ImGui::GetFontSize();
     const KernelProbe& kernel = app.lastProbe();
-    const float scale = side / float(2 * kRadius);
+    const float scale = side / (2.0f * kRadius);
     char caption[96];
     std::snprintf(caption, sizeof caption, "x%.0f around %d,%d: %.1f texels wide, lit %.3f", scale, probe.x, probe.y,
                   double(kernel.kernelTexels), double(kernel.lit));

@@ -143,7 +143,7 @@ private:
     void drawPresenterOverlay(App& app, const UiState& state);   // presenter.cpp
     void drawHelpOverlay(const UiState& state);                   // presenter.cpp
     void drawViewLegend(App& app, const UiState& state);          // view_legends.cpp
-    void drawKernelInset(App& app, const ViewLayout& layout, glm::ivec2 probe, bool top);
+    void drawKernelInset(App& app, const UiState& state, glm::ivec2 probe, bool top);
     void drawPathSection(App& app, UiState& state);               // tour_panel.cpp
     void drawTourPlayer(App& app, UiState& state);   // tour_panel.cpp
     void drawLessonSection(App& app, UiState& state); // tour_panel.cpp
