@@ -169,7 +169,8 @@ PY
 # The shadow map's debug image at its own (square) aspect ratio between bars, its depths stretched
 # from the nearest the map holds (black) to the farthest; the kernel view's magnified inset.
 "$shadowlab" "${v[@]}" -t shadowmap --scene cube --view "shadow map" --out shadow-map.png
-"$shadowlab" "${v[@]}" -t pcf --set kernel=5 --set offset_scale=1 --set hardware_filter=0 --set resolution=256 --scene cube \
+# (3 x 3 taps of a 2048-texel map: a few pixels on screen, which the inset shows 9 times larger)
+"$shadowlab" "${v[@]}" -t pcf --set kernel=3 --set offset_scale=1 --set hardware_filter=0 --scene cube \
   --view kernel --probe 320,300 --out inset.png > inset.txt
 "$python" - <<'PY'
 import numpy as np
@@ -183,7 +184,7 @@ assert square.min() <= 3, f'the nearest depth is not black ({square.min()}): the
 inset = load('inset.png')
 yellow = (np.abs(inset - np.array([255, 217, 0])).max(axis=2) <= 8)
 near, corner = yellow[260:340, 280:360].sum(), yellow[0:200, 380:].sum()
-assert corner > 2 * near > 16, f'the inset does not magnify the box ({corner} yellow pixels in it, {near} at the probe)'
+assert near > 2 and corner > 10 * near, f'the inset does not magnify the box ({corner} yellow pixels in it, {near} at the probe)'
 print(f'ok: shadow map square between bars, black at the nearest depth; kernel inset {corner} px against {near}')
 PY
 # The kernel view without --probe probes a shadow edge; the README's example probe is in a penumbra.
