@@ -119,19 +119,40 @@ int renderViewSlide(App& app, const std::string& technique, const std::string& v
     return code;
 }
 
+// --out and --export, checked before the app starts: a missing encoder costs no frames.
+int renderOutputsProblem(const std::string& out, const std::string& exportFile, const std::string& path) {
+    if (out.empty() && exportFile.empty()) return fail("--out: required (or --path P --export FILE)", kExitBadInput);
+    if (exportFile.empty()) return 0;
+    if (path.empty())
+        return fail("--export " + exportFile + ": exports a path (--path P); a tour step is exported by the window: "
+                    "--tour T --tour-step N --frames N --export FILE",
+                    kExitBadInput);
+    if (const std::string problem = exportProblem("--export", exportFile); !problem.empty()) return fail(problem, kExitBadInput);
+    if (std::string error; !outputProblem("--export", exportFile, false, error)) return fail(error, kExitBadInput);
+    return 0;
+}
+
+// --technique and the techniques --compare names beside it ("B" or "B,C,D"), each known.
+int unknownTechniqueProblem(App& app, const std::string& technique, const std::string& others) {
+    std::vector<std::string> named;
+    std::string error;
+    if (!others.empty() && !splitList(others, "--compare", named, error)) return fail(error, kExitBadInput);
+    named.insert(named.begin(), technique);
+    for (const std::string& id : named) {
+        if (id.empty() || app.techniques().find(id)) continue;
+        std::string known;
+        for (const auto& t : app.techniques().techniques()) appendListItem(known, t.id);
+        return fail(std::string(others.empty() ? "--technique '" : "--compare: '") + id + "': no such technique (available: " +
+                        known + ")",
+                    kExitBadInput);
+    }
+    return 0;
+}
+
 int commandRender(const CommonOptions& common, const std::string& out, const std::string& view, int frames,
                   const std::string& reference, int samples, const WindowOptions& compare, const std::string& path,
                   int pathFrames, const std::string& probe, const std::string& exportFile) {
-    if (out.empty() && exportFile.empty()) return fail("--out: required (or --path P --export FILE)", kExitBadInput);
-    if (!exportFile.empty()) {
-        // Checked before the app starts: a missing encoder costs no frames.
-        if (path.empty())
-            return fail("--export " + exportFile + ": exports a path (--path P); a tour step is exported by the window: "
-                        "--tour T --tour-step N --frames N --export FILE",
-                        kExitBadInput);
-        if (const std::string problem = exportProblem("--export", exportFile); !problem.empty()) return fail(problem, kExitBadInput);
-        if (std::string error; !outputProblem("--export", exportFile, false, error)) return fail(error, kExitBadInput);
-    }
+    if (int code = renderOutputsProblem(out, exportFile, path)) return code;
     glm::ivec2 probePixel(0);
     if (!probe.empty()) {
         // Checked before the app starts: a bad value costs no context.
@@ -182,17 +203,7 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         if (view != "lit" && view != "visibility")
             return fail("--view " + view + ": --compare shows lit or visibility", kExitBadInput);
     }
-    std::vector<std::string> named{technique};
-    if (!others.empty() && !splitList(others, "--compare", named, error)) return fail(error, kExitBadInput);
-    if (!others.empty()) named.insert(named.begin(), technique);
-    for (const std::string& id : named) {
-        if (id.empty() || app.techniques().find(id)) continue;
-        std::string known;
-        for (const auto& t : app.techniques().techniques()) appendListItem(known, t.id);
-        return fail(std::string(other.empty() ? "--technique '" : "--compare: '") + id + "': no such technique (available: " +
-                        known + ")",
-                    kExitBadInput);
-    }
+    if (int code = unknownTechniqueProblem(app, technique, others)) return code;
     if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
     // The one check of a view name (tours and sessions get it too), before the first frame kept.
     if (const std::string problem = app.viewProblem(technique, view, {"reference"}); !problem.empty())
