@@ -563,7 +563,9 @@ private:
         state_.pathCamera = camera;
         state_.pathLight = app_.light();
         state_.path = std::move(path);
-        state_.pathName = name;
+        // A path file by its absolute name, so a session saved on it loads from any folder.
+        std::error_code ec;
+        state_.pathName = std::filesystem::is_regular_file(name, ec) ? std::filesystem::absolute(name).lexically_normal().string() : name;
         state_.pathFrames = 0;
         state_.pathFrame = 0;
         state_.pathClock = 0.0f;
