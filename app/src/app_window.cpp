@@ -130,7 +130,7 @@ private:
                                           state_.compareLayout, state_.wipe);
         if (surfaceSize_.x > 0 && surfaceSize_.y > 0) {
             renderSides(comparing);
-            markStaleMeasurement(comparing);
+            markStaleMeasurement();
         }
         ui_.draw(app_, state_, seconds, surface_, surfaceSize_);
         if (!held) recordFrame();
@@ -324,8 +324,7 @@ private:
     }
 
     // The heatmap and figures say when they no longer describe the view.
-    void markStaleMeasurement(bool comparing) {
-        (void)comparing;
+    void markStaleMeasurement() {
         const std::vector<std::string> sides = shownTechniques(state_);
         state_.staleReason.clear();
         for (size_t s = 0; s < state_.measurement.size() && s < sides.size() && state_.staleReason.empty(); ++s)
