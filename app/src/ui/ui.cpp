@@ -764,8 +764,7 @@ void Ui::drawComparePicker(App& app, UiState& state) {
         ImGui::RadioButton("wipe", &layout, int(CompareLayout::Wipe));
         ImGui::SameLine();
         ImGui::RadioButton("difference", &layout, int(CompareLayout::Difference));
-        ImGui::SameLine();
-        ImGui::RadioButton("grid", &layout, int(CompareLayout::Grid));
+        ImGui::RadioButton("grid (three or four: C and D below)", &layout, int(CompareLayout::Grid));   // its own line: the panel is narrow
         state.compareLayout = CompareLayout(layout);
     }
     if (!state.compareTechnique.empty() && state.compareLayout == CompareLayout::Grid) {
