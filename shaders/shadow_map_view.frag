@@ -1,7 +1,8 @@
 // Host debug views of the reported shadow maps over the last frame's G-buffer:
 //   mode 0: texel footprint m (pixels per texel, worst direction; seed 002 eq. 8.1) as a heat map
 //           of log2 m: blue m <= 1/16, grey-green 1, red >= 16 (footprintHeatmap's colours)
-//   mode 1: the map's texel grid projected on the receivers, over the lit image
+//   mode 1: the map's texel grid projected on the receivers, over the lit image (every n-th edge
+//           in cyan where edges would be under 8 pixels apart)
 //   mode 2: which map serves each pixel (cascade colours), over the lit image
 //   mode 3: the lit image dimmed, under the focus body B's edges and the maps' volumes
 //   mode 4: the lit image a little dimmed, under the filter kernel's footprint
@@ -71,13 +72,19 @@ void main() {
             return;
         }
         // Texel edges where the texel coordinate crosses an integer, one pixel wide on screen.
+        // Where edges would come closer than 8 pixels (texels near or under a pixel, which used
+        // to wash the view yellow) only every n-th is drawn, n a power of two so the lines of
+        // neighbouring n nest, in cyan; the legend says so.
+        // Each axis has its own n: on a receiver seen at a grazing angle the texels are squeezed
+        // along one direction only.
         vec2 texel = texelOf(map, position.xyz);
         vec2 width = max(fwidth(texel), vec2(1e-6));
-        vec2 distance = abs(fract(texel + 0.5) - 0.5) / width;
+        vec2 n = exp2(max(vec2(0.0), ceil(log2(8.0 * width))));
+        vec2 distance = abs(fract(texel / n + 0.5) - 0.5) / (width / n);
         float line = 1.0 - clamp(min(distance.x, distance.y), 0.0, 1.0);
-        // Where texels are smaller than a pixel, lines would fill everything: fade them out.
-        line *= clamp(1.5 - max(width.x, width.y), 0.0, 1.0);
-        outColor = vec4(mix(lit, vec3(1.0, 0.85, 0.1), 0.8 * line), 1.0);
+        float nearest = distance.x < distance.y ? n.x : n.y;
+        vec3 colour = nearest > 1.0 ? vec3(0.1, 0.85, 1.0) : vec3(1.0, 0.85, 0.1);
+        outColor = vec4(mix(lit, colour, 0.8 * line), 1.0);
     } else {
         vec3 tint = map < 0 ? vec3(0.0) : kMapColours[map % 8];
         outColor = vec4(map < 0 ? lit * 0.3 : mix(lit, tint, 0.45), 1.0);

@@ -6,11 +6,16 @@
 
 #include <chrono>
 #include <fstream>
+#include <set>
 
 #include <unistd.h>
 
+#include <GLFW/glfw3.h>
+
+#include "camera.h"
 #include "test_support.h"
 #include "ui/classroom.h"
+#include "ui/keys.h"
 #include "ui/session.h"
 
 using namespace shadowlab;
@@ -80,12 +85,20 @@ TEST(ClassroomLayout, ThePanelNeverHidesTheScene) {
     }
 }
 
-// UI scale for a projector: the panel grows with it, but the view always keeps 55% of the window.
+// UI scale for a projector: the panel grows with it, but the view always keeps 55% of the window,
+// and two thirds of a wide one (issue 29: at --ui-scale 2 on 1280x720 the panel took 576 px).
 TEST(ClassroomLayout, UiScaleWidensThePanelUpToAShareOfTheWindow) {
     EXPECT_EQ(panelWidthFor(1.0f, 1920), 360);
     EXPECT_EQ(panelWidthFor(1.5f, 1920), 540);
-    EXPECT_EQ(panelWidthFor(2.0f, 1280), 576) << "45% of 1280";
+    EXPECT_EQ(panelWidthFor(2.0f, 1280), 460) << "36% of 1280";
+    EXPECT_EQ(panelWidthFor(1.0f, 960), 360) << "a narrow window keeps the panel's 360 px";
     EXPECT_EQ(panelWidthFor(1.0f, 640), 288) << "45% of 640";
+    for (const int width : {1024, 1280, 1600, 1920, 2560})
+        for (const float scale : {1.0f, 1.5f, 2.0f, 3.0f}) {
+            const ViewLayout layout = computeViewLayout({width, 720}, true, panelWidthFor(scale, width), false,
+                                                        CompareLayout::SideBySide, 0.5f);
+            EXPECT_GE(layout.view.size.x, int(0.64 * width)) << width << " px at UI scale " << scale;
+        }
 }
 
 TEST(ClassroomLayout, HiddenUiGivesTheWholeWindowToTheView) {
@@ -224,4 +237,54 @@ TEST(ClassroomCompare, EachSideIsMeasuredForItsOwnTechnique) {
     EXPECT_GT(right.gpuBytes, left.gpuBytes) << "a shadow map has memory, none has none";
     EXPECT_EQ(left.heatmap.width, 160);
     EXPECT_EQ(right.key.technique, "shadowmap");
+}
+
+// Issue 29: the help overlay (`?`) lists the keys from the table the window dispatches through, so
+// every bound key is on it once with what it does, and no key does two things.
+TEST(ClassroomKeys, TheHelpOverlayListsEveryBoundKey) {
+    const auto lines = keyHelpLines();
+    std::set<int> keys;
+    for (const KeyBinding& binding : keyBindings()) {
+        EXPECT_TRUE(keys.insert(binding.key).second) << binding.name << " is bound twice";
+        int listed = 0;
+        for (const std::string& line : lines) {
+            const std::string names = line.substr(0, line.find(": "));
+            for (size_t at = 0; at <= names.size();) {
+                const size_t end = std::min(names.find(" / ", at), names.size());
+                listed += names.substr(at, end - at) == binding.name;
+                at = end + 3;
+            }
+        }
+        EXPECT_EQ(listed, 1) << binding.name << " should be on the overlay once";
+    }
+    for (const int key : {GLFW_KEY_SLASH, GLFW_KEY_P, GLFW_KEY_F12, GLFW_KEY_H, GLFW_KEY_RIGHT, GLFW_KEY_ESCAPE})
+        EXPECT_TRUE(keys.count(key)) << "key " << key << " unbound";
+    EXPECT_EQ(keysFor(KeyAction::NextStep), (std::vector<int>{GLFW_KEY_RIGHT, GLFW_KEY_PAGE_DOWN}));
+}
+
+// Issue 29: the orbit camera stays above the receivers. Dragging up by a whole screen, panning
+// down and zooming out leave the eye above the ground of `contact` (y = 0); the same input
+// without the floor takes it under the ground, so the check can fail.
+TEST(ClassroomCamera, TheOrbitEyeStaysAboveTheReceivers) {
+    const Scene scene = loadScene("contact");
+    const float ground = scene.worldBounds(DrawSet::Receivers).min.y;
+    auto lowest = [&](bool floor) {
+        CameraController camera;
+        camera.reset(scene.camera);
+        if (floor) camera.setFloor(ground);
+        float low = 1e30f;
+        auto eye = [&] { low = std::min(low, camera.pose().position.y); };
+        for (int i = 0; i < 20; ++i) camera.look({3.0f, -60.0f}), eye();   // the mouse dragged up: the eye goes down
+        for (int i = 0; i < 10; ++i) camera.pan({0.0f, -80.0f}), eye();    // the view dragged down
+        for (int i = 0; i < 10; ++i) camera.zoom(-3.0f), eye();            // zoomed out
+        for (int i = 0; i < 20; ++i) camera.look({0.0f, 60.0f}), eye();    // and back over the top
+        return low;
+    };
+    EXPECT_GT(lowest(true), ground) << "the eye went under the receivers";
+    EXPECT_LT(lowest(false), ground) << "without the floor the same drags go under the ground (the defect)";
+    // The scene's own camera is untouched by the floor: resetting gives the scene's view back.
+    CameraController camera;
+    camera.setFloor(ground);
+    camera.reset(scene.camera);
+    EXPECT_LT(glm::distance(camera.pose().position, scene.camera.position), 1e-4f);
 }

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "bench/accuracy_columns.h"
+#include "app_paths.h"
 #include "groundtruth/reference_technique.h"
 #include "plugin/plugin_library.h"
 #include "test_support.h"
@@ -659,4 +660,43 @@ TEST(TourExpect, TheWindowAndTheToursJudgeATechniqueAgainstTheSameReference) {
     // The window starts on that rule (0: each technique's own), unless --measure-reference says hard or soft.
     EXPECT_EQ(UiState{}.referenceMode, 0);
     EXPECT_EQ(InteractiveOptions{}.referenceMode, 0);
+// Issue 29: a session saved while a path plays keeps the path: the saved step is the path's start
+// (camera and light) and the path itself, so loading it plays the same frames again rather than
+// freezing the frame it was saved on.
+TEST(Sessions, ASessionSavedOnAPathKeepsItsPath) {
+    auto app = test::makeHeadlessApp("cube", {160, 96});
+    ASSERT_TRUE(app);
+    std::string error;
+    TourStep start;
+    start.title = "orbiting";
+    start.scene = "cube";
+    start.technique = "shadowmap";
+    start.path = "orbit";
+    start.pathFrames = 24;
+    start.camera = TourCamera{{3.0f, 2.0f, 4.0f}, {0.0f, 0.4f, 0.0f}, 45.0};
+    start.caption = "c";
+    UiState state;
+    ASSERT_TRUE(applyTourStep(*app, start, state, error)) << error;
+    ASSERT_TRUE(state.path.has_value());
+    setPathFrame(*app, *state.path, 7, state.pathCamera, state.pathLight);   // the window on frame 8
+    const SceneCamera onFrame7 = app->camera().pose();
+    ASSERT_GT(glm::distance(onFrame7.position, start.camera->position), 0.1f);
+
+    const json saved = tourStepJson(captureSession(*app, state));
+    EXPECT_EQ(saved.value("path", ""), "orbit");
+    EXPECT_EQ(saved.value("pathFrames", 0), 24);
+    TourStep step;
+    ASSERT_TRUE(parseTourStep(json::parse(saved.dump()), "session.json", {}, step, error)) << error;
+    ASSERT_TRUE(checkTourStep(step, "session.json", realTechniques(), error)) << error;
+    ASSERT_TRUE(step.camera.has_value());
+    EXPECT_LT(glm::distance(step.camera->position, start.camera->position), 1e-4f) << "saved the path's start, not frame 8";
+
+    auto other = test::makeHeadlessApp("spheres", {160, 96});
+    ASSERT_TRUE(other);
+    UiState restored;
+    ASSERT_TRUE(applyTourStep(*other, step, restored, error)) << error;
+    ASSERT_TRUE(restored.path.has_value()) << "the restored session lost its path";
+    EXPECT_EQ(restored.path->frames, 24);
+    setPathFrame(*other, *restored.path, 7, restored.pathCamera, restored.pathLight);
+    EXPECT_LT(glm::distance(other->camera().pose().position, onFrame7.position), 1e-3f) << "frame 8 of the restored path differs";
 }

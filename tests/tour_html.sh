@@ -21,7 +21,7 @@ dump() {
   rm -rf "$tmp/profile"
   timeout 120 "$chromium" --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
     --disable-background-networking --disable-component-update --disable-sync --user-data-dir="$tmp/profile" \
-    --virtual-time-budget=10000 --dump-dom "file://$1" >"$2" 2>"$tmp/chromium.log" ||
+    --window-size=1280,800 --virtual-time-budget=10000 --dump-dom "file://$1" >"$2" 2>"$tmp/chromium.log" ||
     { cat "$tmp/chromium.log"; echo "FAIL: chromium failed on $1"; exit 1; }
 }
 
@@ -34,7 +34,9 @@ for tour in shadow-mapping soft-shadows large-scenes coloured-shadows; do
   page="$tmp/$tour/index.html"
   ! grep -qi "<script" "$page" || { echo "FAIL: $page has a script"; exit 1; }
   # The checking copy: the page plus a load handler that writes what it found into the DOM.
-  sed 's#</body>#<script>window.addEventListener("load", () => { for (const i of document.images) i.dataset.naturalWidth = i.naturalWidth; document.body.dataset.checked = "yes"; });</script></body>#' \
+  # It also records how wide the page is in a 1280-pixel window (issue 29: no sideways scrolling)
+  # and the right edge of its widest table, image or list against the body's.
+  sed 's#</body>#<script>window.addEventListener("load", () => { for (const i of document.images) i.dataset.naturalWidth = i.naturalWidth; const b = document.body; b.dataset.scrollWidth = document.documentElement.scrollWidth; b.dataset.widest = Math.max(...[...document.querySelectorAll("table,img,figure,dl,p")].map(e => e.getBoundingClientRect().right)); b.dataset.bodyRight = b.getBoundingClientRect().right; b.dataset.checked = "yes"; });</script></body>#' \
     "$page" >"$tmp/$tour/check.html"
   sed '0,/src="step-01.png"/s//src="missing.png"/' "$tmp/$tour/check.html" >"$tmp/$tour/broken.html"
   dump "$tmp/$tour/check.html" "$tmp/$tour/check.dom"
@@ -52,7 +54,9 @@ class Page(html.parser.HTMLParser):
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
         if tag == 'img': self.images.append((a.get('src'), a.get('data-natural-width')))
-        if tag == 'body': self.checked = a.get('data-checked') == 'yes'
+        if tag == 'body':
+            self.checked = a.get('data-checked') == 'yes'
+            self.widths = {k: float(a.get('data-' + k, 'nan')) for k in ('scroll-width', 'widest', 'body-right')}
         if tag == 'figcaption': self.inside, self.text = True, ''
     def handle_endtag(self, tag):
         if tag == 'figcaption': self.inside = False; self.captions.append(' '.join(self.text.split()))
@@ -64,6 +68,9 @@ def read(name):
 
 good = read('check.dom')
 assert good.checked, 'the load handler did not run (page not loaded?)'
+w = good.widths
+assert w['scroll-width'] <= 1280, f'the page scrolls sideways in a 1280-pixel window ({w["scroll-width"]:.0f} px wide)'
+assert w['widest'] <= w['body-right'] + 1, f'a table or image reaches x {w["widest"]:.0f}, past the body ({w["body-right"]:.0f})'
 # A step with a path shows its first frame, then its middle and last frames beside it.
 path_steps = [i for i, s in enumerate(tour['steps']) if s.get('path')]
 assert len(good.images) == len(captions) + 2 * len(path_steps), f'{len(good.images)} images for {len(captions)} steps'

@@ -63,8 +63,12 @@ def count(path, rgb, tol, box=None):
     return n
 yellow = (255, 217, 0)
 near = count(f"{tmp}/box.png", yellow, 8, (160 - 40, 200 - 40, 160 + 40, 200 + 40))
+# The magnified inset (issue 29) at the top right (the probe is in the lower half) shows the box
+# again, larger; every other yellow pixel is near the probe.
+inset = count(f"{tmp}/box.png", yellow, 8, (200, 0, 319, 130))
 total = count(f"{tmp}/box.png", yellow, 8)
-assert near > 8 and near == total, f"the box is drawn around the probe (160,200): {near} of {total} yellow pixels near it"
+assert near > 8 and near + inset == total, f"the box is drawn around the probe (160,200): {near} of {total} yellow pixels near it, {inset} in the inset"
+assert inset > near, f"the inset does not magnify the box ({inset} yellow pixels in it, {near} around the probe)"
 white_body = count(f"{tmp}/body.png", (255, 255, 255), 6)
 white_scene = count(f"{tmp}/scene.png", (255, 255, 255), 6)
 assert white_body > 100 and white_scene < 5, f"B's outline: {white_body} white pixels with fit=focus-body, {white_scene} with fit=scene"

@@ -16,7 +16,8 @@ packages=(build-essential cmake ninja-build pkg-config python3 python3-glad
           libegl-dev libgl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri
           libgtest-dev libcli11-dev libpng-dev nlohmann-json3-dev libembree-dev
           glslang-tools python3-matplotlib xvfb xauth xdotool fonts-dejavu-core
-          chromium)
+          chromium
+          ffmpeg)   # optional for the app (--export needs it, and says so); lecturer_cli checks exports with it
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -28,6 +28,7 @@ App::~App() {
     if (techniques_) techniques_->unloadAll();
     techniques_.reset();
     shadowMapViews_.release();
+    depthRange_.reset();
     gpuReference_.reset();
     renderer_.reset();
     timer_.reset();
@@ -72,6 +73,7 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
     }
     renderer_->setScene(*scene_);
     camera_.reset(scene_->camera);
+    setCameraFloor();
     light_ = scene_->light;
     applyLightOverrides();
     if (options.depthPrepass) setDepthPrepassMode(*options.depthPrepass);
@@ -90,6 +92,14 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
         return false;
     }
     return true;
+}
+
+// The orbit camera stays above the receivers' lowest point (not the scene camera's own height:
+// a scene may start below it, and then the floor is under the camera).
+void App::setCameraFloor() {
+    const Bounds receivers = scene_->worldBounds(DrawSet::Receivers);
+    if (receivers.min.y > receivers.max.y) return;
+    camera_.setFloor(std::min(receivers.min.y, scene_->camera.position.y));
 }
 
 void App::applyLightOverrides() {
@@ -115,6 +125,7 @@ bool App::loadScene(const std::string& nameOrPath, const std::map<std::string, d
         depthPrepassRule_.reset();   // another scene, another depth complexity
         renderer_->setScene(*scene_);
         camera_.reset(scene_->camera);
+        setCameraFloor();
         light_ = scene_->light;
         applyLightOverrides();
         return true;
@@ -445,6 +456,64 @@ KernelProbe App::probeKernel(const std::string& technique, std::string& error) {
     return shadowlab::probeKernel(footprint, maps.front(), quad, pixel, fetch);
 }
 
+std::optional<glm::ivec2> App::shadowEdgePixel(const std::string& technique) {
+    std::string error;
+    if (!renderFrame(technique, error, FrameOutputs::Accuracy)) return std::nullopt;
+    const glm::ivec2 size = renderer_->size();
+    const std::vector<glm::vec4> term = renderer_->readTarget(MainTarget::Visibility);
+    const std::vector<glm::vec4> position = renderer_->readTarget(MainTarget::Position);
+    auto at = [&](int x, int y) { return size_t(y) * size_t(size.x) + size_t(x); };
+    auto drawn = [&](int x, int y) { return position[at(x, y)].w > 0.5f; };
+    std::optional<glm::ivec2> best;
+    float bestDistance = 1e30f;
+    const glm::vec2 centre = 0.5f * glm::vec2(size);
+    // Two pixels in from the border, so the kernel's footprint around it stays in the image.
+    for (int y = 2; y + 2 < size.y; ++y)
+        for (int x = 2; x + 2 < size.x; ++x) {
+            if (!drawn(x, y) || !drawn(x + 1, y) || !drawn(x, y + 1)) continue;
+            const float v = term[at(x, y)].x;
+            const bool edge = (v > 0.1f && v < 0.9f) || std::abs(v - term[at(x + 1, y)].x) > 0.5f ||
+                              std::abs(v - term[at(x, y + 1)].x) > 0.5f;
+            const float distance = glm::distance(glm::vec2(x, y), centre);
+            if (edge && distance < bestDistance) {
+                bestDistance = distance;
+                best = glm::ivec2(x, size.y - 1 - y);   // rows are bottom-up
+            }
+        }
+    return best;
+}
+
+// A technique's debug image at its true aspect ratio, letterboxed in the view (a square map was
+// stretched to 16:9), a depth map's values stretched from the nearest to the farthest depth it
+// holds (render/depth_range.h).
+void App::presentDebugImage(const DebugImage& image, GLuint fbo, glm::ivec2 size) {
+    glm::ivec2 texels(0);
+    glGetTextureLevelParameteriv(image.texture, 0, GL_TEXTURE_WIDTH, &texels.x);
+    glGetTextureLevelParameteriv(image.texture, 0, GL_TEXTURE_HEIGHT, &texels.y);
+    glm::ivec2 rect = size, origin(0);
+    if (texels.x > 0 && texels.y > 0) {
+        const float scale = std::min(float(size.x) / float(texels.x), float(size.y) / float(texels.y));
+        rect = glm::max(glm::ivec2(glm::round(glm::vec2(texels) * scale)), glm::ivec2(1));
+        origin = (size - rect) / 2;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, size.x, size.y);
+    glDisable(GL_SCISSOR_TEST);
+    glClearColor(0.09f, 0.09f, 0.11f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glm::vec2 range(0.0f, 1.0f);
+    if (image.kind == DebugImageKind::Depth) {
+        if (!depthRange_) depthRange_ = std::make_unique<DepthRange>();
+        if (inWindowLoop_) depthRange_->update(image.texture);
+        else depthRange_->measureNow(image.texture);
+        range = depthRange_->range(image.texture);
+    }
+    const PresentMode mode = image.kind == DebugImageKind::Depth     ? PresentMode::Depth
+                             : image.kind == DebugImageKind::Moments ? PresentMode::Moments
+                                                                     : PresentMode::Color;
+    renderer_->present(mode, image.texture, fbo, rect, range, origin);
+}
+
 std::string App::debugViewsOf(const std::string& technique) {
     std::string error, views;
     LoadedTechnique* loaded = techniques_->get(technique, error);
@@ -525,10 +594,7 @@ bool App::presentView(const std::string& technique, const ViewSelection& view, G
         std::string names;
         for (const DebugImage& image : loaded->host().debugImages()) {
             if (image.name == view.debugImage) {
-                const PresentMode mode = image.kind == DebugImageKind::Depth    ? PresentMode::Depth
-                                         : image.kind == DebugImageKind::Moments ? PresentMode::Moments
-                                                                                 : PresentMode::Color;
-                renderer_->present(mode, image.texture, fbo, size);
+                presentDebugImage(image, fbo, size);
                 return true;
             }
             appendListItem(names, image.name);

@@ -25,6 +25,7 @@
 #include "render/gpu_reference.h"
 #include "render/gpu_timer.h"
 #include "render/renderer.h"
+#include "render/depth_range.h"
 #include "render/shadow_map_views.h"
 #include "render/shader_library.h"
 #include "render/texture_readback.h"
@@ -219,6 +220,11 @@ public:
     // The pixel the kernel view probes, in main-target pixels from the top left (as images and
     // the mouse count); none: nothing probed. The probe is measured when the view is drawn.
     void setProbePixel(std::optional<glm::ivec2> pixel) { probePixel_ = pixel; }
+    // A pixel worth probing when none is given: of a frame of `technique`, the drawn pixel on a
+    // shadow edge (shadow term between 0.1 and 0.9, or a hard step of more than half to a
+    // neighbour) nearest the image's centre, from the top left; none when the frame has no edge.
+    // Reads the frame back (a slide's set-up, never the frame loop).
+    std::optional<glm::ivec2> shadowEdgePixel(const std::string& technique);
     std::optional<glm::ivec2> probePixel() const { return probePixel_; }
     // The footprint of the last kernel view drawn (valid = false with its problem otherwise).
     const KernelProbe& lastProbe() const { return lastProbe_; }
@@ -306,6 +312,8 @@ public:
 
 private:
     void applyLightOverrides();
+    void setCameraFloor();
+    void presentDebugImage(const DebugImage& image, GLuint fbo, glm::ivec2 size);
     // The camera pre-pass this frame's flags ask for, timed, or the shared view's (beginSharedView).
     void cameraPrepassFor(uint32_t flags);
     struct SharedPrepass {
@@ -322,6 +330,8 @@ private:
     std::unique_ptr<GpuTimer> timer_;
     std::unique_ptr<Renderer> renderer_;
     ShadowMapViews shadowMapViews_;
+    std::unique_ptr<DepthRange> depthRange_;   // the `shadow map` view's stretch (render/depth_range.h)
+    bool inWindowLoop_ = false;                // runInteractive: read the depth range without waiting
     std::optional<glm::ivec2> probePixel_;
     KernelProbe lastProbe_;
     std::vector<float> probeDepths_;       // the probed map's depths (read back when the view is drawn)

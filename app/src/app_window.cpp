@@ -25,13 +25,16 @@
 #include "bench/accuracy_columns.h"
 #include "render/view_compositor.h"
 #include "ui/async_measurement.h"
+#include "ui/keys.h"
 #include "ui/session.h"
 #include "ui/tour_player.h"
 #include "ui/ui.h"
 #include "util/log.h"
 #include "util/paths.h"
 #include "util/progress.h"
+#include "util/scratch_dir.h"
 #include "util/text_file.h"
+#include "util/video_export.h"
 
 namespace shadowlab {
 
@@ -51,6 +54,7 @@ public:
                 break;
             }
         }
+        if (recording() && exitCode_ == 0) finishRecording();   // --export: the frames of the run
         cancelMeasurement("the window closed");   // the worker is joined before anything it reads goes
         app_.camera().setFramingAspect(0.0f);
         ui_.shutdown();
@@ -76,9 +80,11 @@ private:
         }
         state_.technique = options_.technique.empty() ? app_.firstTechnique() : options_.technique;
         state_.compareTechnique = options_.compareTechnique;
+        state_.gridTechniques = options_.gridTechniques;
         state_.compareLayout = options_.compareLayout;
         state_.wipe = options_.wipe;
         state_.showUi = options_.showUi;
+        if (options_.presenter) setPresenter(state_, true);
         state_.view = options_.view;
         if (options_.probe) app_.setProbePixel(options_.probe);
         state_.uiScale = options_.uiScale;
@@ -94,6 +100,12 @@ private:
         }
         if (!options_.session.empty()) runCommand({UiCommand::Kind::LoadSession, options_.session});
         if (!options_.session.empty() && state_.sessionStatusIsError) return 2;   // refused before the first frame, as --tour
+        state_.pathSpeed = options_.pathSpeed;
+        if (!options_.playPath.empty()) {
+            runCommand({UiCommand::Kind::PlayPath, options_.playPath});
+            if (!state_.path) return 2;   // named in the log by playPath
+        }
+        if (!options_.exportFile.empty() && !startRecording(options_.exportFile, 0)) return 1;
         return 0;
     }
 
@@ -112,15 +124,17 @@ private:
             advancePath();
             queueTimedMeasurement();
         }
+        followPresenter();
         if (!prepareSurface()) return false;
         const bool comparing = !state_.compareTechnique.empty();
         state_.layout = computeViewLayout(surfaceSize_, state_.showUi, panelWidthFor(state_.uiScale, surfaceSize_.x), comparing,
                                           state_.compareLayout, state_.wipe);
         if (surfaceSize_.x > 0 && surfaceSize_.y > 0) {
             renderSides(comparing);
-            markStaleMeasurement(comparing);
+            markStaleMeasurement();
         }
         ui_.draw(app_, state_, seconds, surface_, surfaceSize_);
+        if (!held) recordFrame();
         runQueuedCommands(held);
         app_.backend().swapBuffers();
         ++presentedFrames_;
@@ -136,6 +150,11 @@ private:
         glfwGetCursorPos(window_, &mouse.x, &mouse.y);
         const glm::vec2 delta = glm::vec2(mouse - lastMouse_);
         lastMouse_ = mouse;
+        // A press on the wipe's handle starts its drag before the camera sees the motion (the
+        // overlay, drawn later in the frame, would start it a frame late and the camera orbit).
+        if (!ui_.wantsMouse())
+            for (const glm::vec2 press : state_.leftPresses)
+                if (ui_.onWipeHandle(state_, press)) state_.draggingWipe = true;
         if (!ui_.wantsMouse() && !state_.draggingWipe) {
             if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) camera.look(delta);
             if (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS) camera.pan(delta);
@@ -144,10 +163,15 @@ private:
         state_.scroll = 0.0f;
         if (!ui_.wantsKeyboard() && camera.mode() == CameraController::Mode::Fly) {
             glm::vec3 move(0.0f);
-            auto pressed = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS ? 1.0f : 0.0f; };
-            move.z = pressed(GLFW_KEY_W) - pressed(GLFW_KEY_S);
-            move.x = pressed(GLFW_KEY_D) - pressed(GLFW_KEY_A);
-            move.y = pressed(GLFW_KEY_E) - pressed(GLFW_KEY_Q);
+            // The held keys of the table (ui/keys.h), which the help overlay lists.
+            auto pressed = [&](KeyAction action) {
+                for (const int key : keysFor(action))
+                    if (glfwGetKey(window_, key) == GLFW_PRESS) return 1.0f;
+                return 0.0f;
+            };
+            move.z = pressed(KeyAction::FlyForward) - pressed(KeyAction::FlyBack);
+            move.x = pressed(KeyAction::FlyRight) - pressed(KeyAction::FlyLeft);
+            move.y = pressed(KeyAction::FlyUp) - pressed(KeyAction::FlyDown);
             camera.fly(move, seconds);
         }
     }
@@ -175,7 +199,8 @@ private:
     // frame is drawn, so frame k of a step shows path frame k).
     void advancePath() {
         if (!state_.path || !state_.pathPlaying || state_.path->frames <= 0) return;
-        state_.pathFrame %= state_.path->frames;
+        state_.pathClock = std::fmod(std::max(state_.pathClock, 0.0f), float(state_.path->frames));
+        state_.pathFrame = std::min(int(state_.pathClock), state_.path->frames - 1);
         setPathFrame(app_, *state_.path, state_.pathFrame, state_.pathCamera, state_.pathLight);
     }
 
@@ -185,6 +210,27 @@ private:
         const int at = options_.frames > 0 ? std::max(1, std::min(options_.frames - 2, GpuTimer::kFramesInFlight + 2))
                                            : GpuTimer::kFramesInFlight + 2;
         if (options_.measure && frameIndex_ == at) state_.commands.push_back({UiCommand::Kind::Measure, ""});
+    }
+
+    // Presenter mode takes the whole screen and gives the window back when it ends (offscreen:
+    // the surface keeps --size).
+    void followPresenter() {
+        if (!window_ || state_.presenter == fullscreen_) return;
+        fullscreen_ = state_.presenter;
+        GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+        const GLFWvidmode* mode = monitor ? glfwGetVideoMode(monitor) : nullptr;
+        if (fullscreen_ && mode) {
+            glfwGetWindowPos(window_, &windowedRect_.x, &windowedRect_.y);
+            glfwGetWindowSize(window_, &windowedRect_.z, &windowedRect_.w);
+            glfwSetWindowMonitor(window_, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
+            logInfo("presenter mode: full screen at " + std::to_string(mode->width) + "x" + std::to_string(mode->height));
+        } else if (fullscreen_) {
+            glfwMaximizeWindow(window_);   // no monitor to take: as large as the desktop allows
+            logInfo("presenter mode: no monitor reported, the window maximised");
+        } else if (windowedRect_.z > 0) {
+            glfwSetWindowMonitor(window_, nullptr, windowedRect_.x, windowedRect_.y, windowedRect_.z, windowedRect_.w, 0);
+            logInfo("presenter mode ended");
+        }
     }
 
     // The surface: the window's framebuffer, or the offscreen one.
@@ -214,17 +260,18 @@ private:
         glClearColor(0.09f, 0.09f, 0.11f, 1.0f);
         glClear(GL_COLOR_BUFFER_BIT);
         state_.frameError.clear();
-        const std::string sides[2] = {state_.technique, state_.compareTechnique};
+        const std::vector<std::string> sides = shownTechniques(state_);
         const bool difference = comparing && state_.compareLayout == CompareLayout::Difference;
         const FrameOutputs outputs =
             difference || state_.view.needsAccuracyTargets() ? FrameOutputs::Accuracy : FrameOutputs::Colour;
         probeUnderMouse();
         // One camera and scene: both sides share one camera pre-pass (the full one if either needs it).
-        if (comparing) app_.beginSharedView({sides[0], sides[1]});
-        for (int s = 0; s < (comparing ? 2 : 1); ++s) {
-            if (!app_.renderFrame(sides[s], error, outputs)) {
+        if (comparing) app_.beginSharedView(sides);
+        for (int s = 0; s < int(sides.size()); ++s) {
+            if (!app_.renderFrame(sides[size_t(s)], error, outputs)) {
                 state_.frameError = error;
                 if (s == 1) state_.compareTechnique.clear();
+                if (s > 1) state_.gridTechniques.clear();
                 break;
             }
             state_.sideTimings[s] = app_.timer().latest();   // this side's: the sides alternate frame by frame
@@ -235,13 +282,13 @@ private:
                     ViewCompositor::blitDisplay(renderer, surface_, surfaceSize_, layout.view.origin, layout.view.size, 0);
                 continue;
             }
-            presentSide(s, sides[s]);
-            const PixelRect& rect = layout.halves[s];
+            presentSide(s, sides[size_t(s)]);
+            const PixelRect& rect = layout.cells[s];
             const int sourceX = comparing && state_.compareLayout == CompareLayout::Wipe ? rect.origin.x - layout.view.origin.x : 0;
             ViewCompositor::blitDisplay(renderer, surface_, surfaceSize_, rect.origin, rect.size, sourceX);
         }
         app_.endSharedView();
-        if (!comparing) state_.sideTimings[1].clear();
+        for (size_t s = sides.size(); s < size_t(kMaxGridSides); ++s) state_.sideTimings[s].clear();
     }
 
     // The kernel view probes the pixel under the mouse (over the view, not the panel); without a
@@ -278,12 +325,12 @@ private:
     }
 
     // The heatmap and figures say when they no longer describe the view.
-    void markStaleMeasurement(bool comparing) {
-        const std::string sides[2] = {state_.technique, state_.compareTechnique};
+    void markStaleMeasurement() {
+        const std::vector<std::string> sides = shownTechniques(state_);
         state_.staleReason.clear();
-        for (size_t s = 0; s < state_.measurement.size() && state_.staleReason.empty(); ++s)
+        for (size_t s = 0; s < state_.measurement.size() && s < sides.size() && state_.staleReason.empty(); ++s)
             state_.staleReason = staleReason(state_.measurement[s].key, currentMeasurementKey(app_, sides[s]));
-        if (state_.measurement.size() != (comparing ? 2u : 1u) && !state_.measurement.empty())
+        if (state_.measurement.size() != sides.size() && !state_.measurement.empty())
             state_.staleReason = "the comparison changed";
     }
 
@@ -300,7 +347,9 @@ private:
             for (const auto& [at, file] : options_.screenshotsAt)
                 if (at == frameIndex_ && !(finalShot && file == options_.screenshot))
                     commands.insert(commands.begin(), UiCommand{UiCommand::Kind::Screenshot, file});
-        if (state_.path && state_.pathPlaying && !held) ++state_.pathFrame;   // a step applied by a command below starts at 0
+        // The path's speed in path frames per window frame (1 in tours); a step applied by a
+        // command below starts at 0.
+        if (state_.path && state_.pathPlaying && !held) state_.pathClock += state_.pathSpeed;
         for (const UiCommand& command : commands) runCommand(command);
     }
 
@@ -314,6 +363,8 @@ private:
         case UiCommand::Kind::LoadTour: return cancelMeasurement("a tour was loaded"), loadTour(command.argument);
         case UiCommand::Kind::SaveSession: return saveSession(command.argument);
         case UiCommand::Kind::LoadSession: return cancelMeasurement("a session was loaded"), loadSession(command.argument);
+        case UiCommand::Kind::PlayPath: return playPath(command.argument);
+        case UiCommand::Kind::ExportPath: return exportPath();
         }
     }
 
@@ -349,9 +400,9 @@ private:
     // (pollMeasurement takes the result); the GPU tracer draws with GL, so it measures here, at once.
     void measure() {
         state_.measureError.clear();
-        const std::string sides[2] = {state_.technique, state_.compareTechnique};
+        const std::vector<std::string> sides = shownTechniques(state_);
         std::vector<AsyncMeasurement::Side> requests;
-        for (int s = 0; s < (state_.compareTechnique.empty() ? 1 : 2); ++s) {
+        for (size_t s = 0; s < sides.size(); ++s) {
             const TechniqueInfo* info = app_.techniques().find(sides[s]);
             AsyncMeasurement::Side side{sides[s], {}, 0.0};
             side.options.mode = state_.referenceMode == 2 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
@@ -406,9 +457,7 @@ private:
     void pollMeasurement() {
         if (measurement_.running()) {
             const std::vector<std::string> measured = measurement_.techniques();
-            std::vector<std::string> shown{state_.technique};
-            if (!state_.compareTechnique.empty()) shown.push_back(state_.compareTechnique);
-            if (measured != shown) cancelMeasurement("the technique changed");
+            if (measured != shownTechniques(state_)) cancelMeasurement("the technique changed");
         }
         switch (measurement_.poll()) {
         case AsyncMeasurement::Status::Idle: state_.measuring = false; return;
@@ -493,6 +542,114 @@ private:
         tourStep("0");
     }
 
+    // The panel's "Paths" section outside tours: a built-in path or a file, made from the camera
+    // and light on screen now, played as a tour step's ("" stops it).
+    void playPath(const std::string& name) {
+        state_.pathStatus.clear();
+        if (name.empty()) {
+            state_.path.reset();
+            state_.pathName.clear();
+            return;
+        }
+        TourStep step;
+        step.technique = state_.technique;
+        step.path = name;
+        CameraPath path;
+        std::string error;
+        const SceneCamera camera = app_.camera().pose();
+        if (!resolveTourPath(app_, step, camera, app_.light(), path, error)) {
+            bool unused = false;
+            return failed(state_.pathStatus, unused, "path '" + name + "': " + error, 2);
+        }
+        state_.pathCamera = camera;
+        state_.pathLight = app_.light();
+        state_.path = std::move(path);
+        // A path file by its absolute name, so a session saved on it loads from any folder.
+        std::error_code ec;
+        state_.pathName = std::filesystem::is_regular_file(name, ec) ? std::filesystem::absolute(name).lexically_normal().string() : name;
+        state_.pathFrames = 0;
+        state_.pathFrame = 0;
+        state_.pathClock = 0.0f;
+        state_.pathPlaying = true;
+        logInfo("path " + name + ": " + std::to_string(state_.path->frames) + " frames, playing");
+    }
+
+    // Export (--export, or the panel's "Export path"): the view of each frame drawn (the panel
+    // cropped off; overlays such as labels and presenter captions kept) written as a numbered
+    // PNG, then encoded by ffmpeg (util/video_export.h). Reading the surface back waits for the
+    // GPU: it happens only while exporting, as a screenshot does.
+    bool recording() const { return !recordOut_.empty(); }
+
+    bool startRecording(const std::filesystem::path& out, int frames) {
+        std::string error;
+        const std::filesystem::path scratch = scratchDir(error);
+        if (scratch.empty()) return logError(error), false;
+        recordFolder_ = scratch / ("export-" + std::to_string(++recordings_));
+        std::error_code ec;
+        std::filesystem::remove_all(recordFolder_, ec);
+        std::filesystem::create_directories(recordFolder_, ec);
+        if (ec) return logError(recordFolder_.string() + ": " + ec.message()), false;
+        recordOut_ = out;
+        recordTarget_ = frames;
+        recordedFrames_ = 0;
+        logInfo("exporting to " + out.string() + (frames > 0 ? " (" + std::to_string(frames) + " frames)" : ""));
+        return true;
+    }
+
+    void recordFrame() {
+        if (!recording() || surfaceSize_.x <= 0) return;
+        const Image surface = ViewCompositor::readSurface(surface_, surfaceSize_);
+        const PixelRect& view = state_.layout.view;
+        Image image{view.size.x, view.size.y, 4, std::vector<uint8_t>(size_t(view.size.x) * size_t(view.size.y) * 4)};
+        const int y0 = surfaceSize_.y - (view.origin.y + view.size.y);   // rows are bottom-up
+        for (int y = 0; y < view.size.y; ++y)
+            std::copy_n(surface.pixels.begin() + ((ptrdiff_t(y0 + y) * surfaceSize_.x + view.origin.x) * 4), size_t(view.size.x) * 4,
+                        image.pixels.begin() + ptrdiff_t(y) * view.size.x * 4);
+        char name[32];
+        std::snprintf(name, sizeof(name), "frame_%05d.png", recordedFrames_);
+        std::string error;
+        if (!writePng(recordFolder_ / name, image, error)) {
+            bool unused = false;
+            failed(state_.pathStatus, unused, error, 1);
+            recordOut_.clear();
+            return;
+        }
+        if (++recordedFrames_ == recordTarget_) finishRecording();
+    }
+
+    void finishRecording() {
+        std::string error;
+        const std::filesystem::path out = recordOut_;
+        recordOut_.clear();
+        const bool encoded = encodeFrames(recordFolder_, 30, out, error);
+        std::error_code ec;
+        std::filesystem::remove_all(recordFolder_, ec);
+        if (!encoded) {
+            bool unused = false;
+            return failed(state_.pathStatus, unused, error, 1);
+        }
+        state_.pathStatus = "exported " + out.string() + " (" + std::to_string(recordedFrames_) + " frames)";
+        logInfo("wrote " + out.string() + " (" + std::to_string(recordedFrames_) + " frames)");
+    }
+
+    // The panel's "Export path": one loop of the playing path from its first frame, into
+    // exports/<scene>-<technique>-<date>.gif.
+    void exportPath() {
+        bool unused = false;
+        if (!state_.path || state_.path->frames <= 0) return failed(state_.pathStatus, unused, "Export path: no path is playing", 0);
+        std::error_code ec;
+        std::filesystem::create_directories(options_.exportFolder, ec);
+        std::filesystem::path file = uniqueScreenshotPath(options_.exportFolder, app_.scene().name, state_.technique,
+                                                          state_.pathName.find('/') == std::string::npos ? state_.pathName : "path",
+                                                          std::chrono::system_clock::now());
+        file.replace_extension(".gif");
+        if (const std::string problem = exportProblem("Export path", file); !problem.empty())
+            return failed(state_.pathStatus, unused, problem, 0);
+        state_.pathClock = 0.0f;
+        state_.pathPlaying = true;
+        startRecording(file, std::max(1, int(std::ceil(float(state_.path->frames) / std::max(state_.pathSpeed, 0.01f)))));
+    }
+
     void saveSession(const std::string& argument) {
         std::filesystem::path file = argument;
         if (file.empty()) {
@@ -532,6 +689,13 @@ private:
     int exitCode_ = 0;
     std::chrono::steady_clock::time_point last_;
     glm::dvec2 lastMouse_{0.0};
+    bool fullscreen_ = false;
+    std::filesystem::path recordOut_;  // the export being recorded ("" = none)
+    std::filesystem::path recordFolder_;
+    int recordTarget_ = 0;             // frames to record (0: until the run ends)
+    int recordedFrames_ = 0;
+    int recordings_ = 0;
+    glm::ivec4 windowedRect_{0};       // x, y, width, height before presenter mode took the screen
     long presentedFrames_ = 0;         // swaps, held frames included
     long measureStartFrame_ = 0;
     float longestFrameGap_ = 0.0f;     // seconds between two frames while measuring (the click's frame included)
@@ -539,6 +703,11 @@ private:
     AsyncMeasurement measurement_{app_};   // last: joined and released before the rest goes
 };
 
-int App::runInteractive(const InteractiveOptions& options) { return WindowSession(*this, options).run(); }
+int App::runInteractive(const InteractiveOptions& options) {
+    inWindowLoop_ = true;   // read-backs of the frame loop never wait (render/depth_range.h)
+    const int code = WindowSession(*this, options).run();
+    inWindowLoop_ = false;
+    return code;
+}
 
 } // namespace shadowlab

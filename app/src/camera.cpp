@@ -79,6 +79,17 @@ void CameraController::setMode(Mode mode) {
 void CameraController::orbit(glm::vec2 d) {
     yaw_ += d.x * 0.005f;
     pitch_ = std::clamp(pitch_ - d.y * 0.005f, -1.5f, 1.5f);
+    keepAboveFloor();
+}
+
+// eye.y = target.y - sin(pitch) d >= floor + margin bounds sin(pitch) from above; a target
+// panned under the floor is lifted onto it first.
+void CameraController::keepAboveFloor() {
+    if (mode_ != Mode::Orbit || floor_ <= -1e29f) return;
+    const float margin = std::max(0.01f, 0.01f * distance_);
+    target_.y = std::max(target_.y, floor_);
+    const float highest = (target_.y - floor_ - margin) / distance_;
+    if (std::sin(pitch_) > highest) pitch_ = std::asin(std::clamp(highest, -1.0f, 1.0f));
 }
 
 void CameraController::pan(glm::vec2 d) {
@@ -86,9 +97,13 @@ void CameraController::pan(glm::vec2 d) {
     const glm::vec3 up = glm::cross(right, forward());
     const float scale = distance_ * 0.0015f;
     target_ += (-right * d.x + up * d.y) * scale;
+    keepAboveFloor();
 }
 
-void CameraController::zoom(float wheel) { distance_ = std::clamp(distance_ * std::pow(0.9f, wheel), 0.05f, far_); }
+void CameraController::zoom(float wheel) {
+    distance_ = std::clamp(distance_ * std::pow(0.9f, wheel), 0.05f, far_);
+    keepAboveFloor();
+}
 
 void CameraController::fly(glm::vec3 move, float seconds) {
     const glm::vec3 right = glm::normalize(glm::cross(forward(), glm::vec3(0, 1, 0)));

@@ -20,6 +20,11 @@ public:
     // framed for stays in view. 0 (the default, headless renders and benchmarks): fovY as given.
     void setFramingAspect(float aspect) { framingAspect_ = aspect; }
 
+    // The orbit camera's eye stays above this height (the receivers' lowest point, set with each
+    // scene): orbiting, panning and zooming never take it under the ground to look at the
+    // receivers from below. Fly mode is free.
+    void setFloor(float y) { floor_ = y; }
+
     // Input, in pixels of mouse motion and seconds.
     void orbit(glm::vec2 mouseDelta);
     void pan(glm::vec2 mouseDelta);
@@ -34,6 +39,7 @@ public:
 
 private:
     glm::vec3 forward() const;
+    void keepAboveFloor();
     Mode mode_ = Mode::Orbit;
     glm::vec3 target_{0.0f};
     glm::vec3 position_{0.0f, 2.0f, 5.0f};
@@ -42,6 +48,7 @@ private:
     float distance_ = 5.0f;
     float fovY_ = 0.785f, near_ = 0.1f, far_ = 100.0f;
     float framingAspect_ = 0.0f;
+    float floor_ = -1e30f;
 };
 
 // Fills the derived fields of a camera whose view and projection are set: inverse

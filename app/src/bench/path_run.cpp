@@ -220,7 +220,7 @@ int benchPath(App& app, const PathBenchOptions& options, std::vector<nlohmann::j
 }
 
 int renderPath(App& app, const std::string& technique, const std::string& pathText, int frames, const std::string& view,
-               const std::filesystem::path& outDir, std::string& error) {
+               const std::filesystem::path& outDir, std::string& error, bool video) {
     CameraPath path;
     BuiltinPathOptions pathOptions;
     pathOptions.frames = frames;
@@ -254,7 +254,7 @@ int renderPath(App& app, const std::string& technique, const std::string& pathTe
     }
     logInfo("wrote " + std::to_string(path.frames) + " frames of path '" + path.name + "' to " + outDir.string());
     // A video for slides when ffmpeg is installed (it is not a dependency).
-    if (std::system("command -v ffmpeg > /dev/null 2>&1") == 0) {
+    if (video && std::system("command -v ffmpeg > /dev/null 2>&1") == 0) {
         const std::string command = "ffmpeg -loglevel error -y -framerate 60 -i '" + (outDir / "frame_%05d.png").string() +
                                     "' -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' '" + (outDir / "frames.mp4").string() + "'";
         if (std::system(command.c_str()) == 0) logInfo("wrote " + (outDir / "frames.mp4").string());

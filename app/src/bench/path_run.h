@@ -75,7 +75,8 @@ int benchPath(App& app, const PathBenchOptions& options, std::vector<nlohmann::j
 
 // `render --path`: every frame of the path as a numbered PNG in `outDir` (frame_00000.png, ...),
 // and frames.mp4 when ffmpeg is on PATH. Returns the exit code with `error` set.
+// `video` false: the frames only (`render --export` encodes them itself).
 int renderPath(App& app, const std::string& technique, const std::string& pathText, int frames, const std::string& view,
-               const std::filesystem::path& outDir, std::string& error);
+               const std::filesystem::path& outDir, std::string& error, bool video = true);
 
 } // namespace shadowlab

@@ -207,8 +207,11 @@ std::string expectHtml(const StepPage& page) {
 std::string htmlPage(const Tour& tour, const std::vector<StepPage>& pages, const TourPageOptions& options) {
     std::ostringstream html;
     html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << htmlEscape(tour.title)
+         // Never wider than the window (a 1280-pixel projector included): the tables take the
+         // page's width and wrap their cells rather than scroll sideways.
          << "</title>\n<style>\nbody{font-family:sans-serif;max-width:" << options.size.x + 40
-         << "px;margin:2em auto;line-height:1.45;color:#222}\nfigure{margin:0 0 1em}\nimg{max-width:100%;height:auto;"
+         << "px;margin:2em auto;padding:0 1em;box-sizing:border-box;line-height:1.45;color:#222;overflow-wrap:anywhere}\n"
+            "table{width:100%;table-layout:fixed}\nfigure{margin:0 0 1em}\nimg{max-width:100%;height:auto;"
             "border:1px solid #ccc}\nfigcaption{margin-top:.5em}\ntable{border-collapse:collapse;margin:.5em 0 2em}\n"
             "td,th{border:1px solid #ccc;padding:.2em .5em;text-align:right}\ntd:first-child,th:first-child{text-align:left}\n"
             "dt{font-weight:bold}\nul.expect{margin:.3em 0;padding-left:1.2em;font-size:90%}\nli.passed{color:#2a6a2a}\n"

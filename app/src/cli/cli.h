@@ -79,6 +79,10 @@ struct WindowOptions {
     double wipe = 0.5;
     double uiScale = 1.0;
     bool hideUi = false;
+    bool presenter = false;
+    std::string exportFile;      // --export: the run's frames as a .gif, .mp4 or .webm
+    std::string playPath;        // --play-path: a path played from the start (the panel's "Paths")
+    double pathSpeed = 1.0;
     bool measure = false;
     std::string measureReference = "auto";   // the reference of "Measure accuracy": auto (each technique's own) | hard | soft
     int measureSamples = 64;                 // its rays per pixel when soft

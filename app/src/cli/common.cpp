@@ -31,6 +31,7 @@
 #include "bench/tour_pages.h"
 #include "util/log.h"
 #include "util/paths.h"
+#include "util/video_export.h"
 #include "util/strings.h"
 #include "util/text_file.h"
 #include "host_shared/translucent_layers_shared.h"
@@ -189,17 +190,38 @@ bool parseProbe(const std::string& text, glm::ivec2& pixel) {
 // Checks the window options against each other and the techniques; fills `out`.
 int windowOptionsProblem(App& app, const WindowOptions& w, const std::string& technique, InteractiveOptions& out) {
     out.technique = technique;
-    out.compareTechnique = w.compare;
-    if (!w.compare.empty() && !app.techniques().find(w.compare)) {
+    // --compare B, or B,C[,D]: a grid of three or four with --technique as A.
+    std::vector<std::string> others;
+    if (std::string error; !w.compare.empty() && !splitList(w.compare, "--compare", others, error)) return fail(error, kExitBadInput);
+    for (const std::string& id : others) {
+        if (app.techniques().find(id)) continue;
         std::string known;
         for (const auto& t : app.techniques().techniques()) appendListItem(known, t.id);
-        return fail("--compare '" + w.compare + "': no such technique (available: " + known + ")", kExitBadInput);
+        return fail("--compare '" + id + "': no such technique (available: " + known + ")", kExitBadInput);
     }
+    if (others.size() > size_t(kMaxGridSides - 1))
+        return fail("--compare '" + w.compare + "': at most three techniques beside --technique (a grid of four)", kExitBadInput);
+    out.compareTechnique = others.empty() ? std::string() : others.front();
+    if (others.size() > 1) out.gridTechniques.assign(others.begin() + 1, others.end());
     if (!parseCompareLayout(w.compareLayout, out.compareLayout))
-        return fail("--compare-layout '" + w.compareLayout + "': expected side-by-side, wipe or difference", kExitBadInput);
+        return fail("--compare-layout '" + w.compareLayout + "': expected side-by-side, wipe, difference or grid", kExitBadInput);
+    if (others.size() > 1 && out.compareLayout != CompareLayout::Grid && out.compareLayout != CompareLayout::SideBySide)
+        return fail("--compare-layout " + w.compareLayout + ": compares two techniques; three or four share the view as a grid",
+                    kExitBadInput);
+    if (others.size() > 1) out.compareLayout = CompareLayout::Grid;
     out.wipe = float(w.wipe);
     out.uiScale = float(w.uiScale);
     out.showUi = !w.hideUi;
+    out.presenter = w.presenter;
+    out.playPath = w.playPath;
+    out.pathSpeed = float(w.pathSpeed);
+    if (!w.exportFile.empty()) {
+        if (w.frames <= 0)
+            return fail("--export " + w.exportFile + ": records the frames of a run of --frames N (a tour step, a path)",
+                        kExitBadInput);
+        if (const std::string problem = exportProblem("--export", w.exportFile); !problem.empty()) return fail(problem, kExitBadInput);
+        out.exportFile = w.exportFile;
+    }
     out.measure = w.measure;
     if (w.measureReference != "auto" && w.measureReference != "hard" && w.measureReference != "soft")
         return fail("--measure-reference '" + w.measureReference + "': expected auto, hard or soft", kExitBadInput);

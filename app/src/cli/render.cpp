@@ -26,9 +26,11 @@
 #include "util/log.h"
 #include "util/paths.h"
 #include "util/progress.h"
+#include "util/scratch_dir.h"
 #include "util/stats.h"
 #include "util/strings.h"
 #include "util/text_file.h"
+#include "util/video_export.h"
 
 namespace shadowlab::cli {
 namespace {
@@ -83,9 +85,74 @@ int renderProbeSlide(App& app, const std::string& technique, const std::string& 
     return 0;
 }
 
+// `render --path P --export FILE`: the path's frames into a scratch folder (or --out when given)
+// and encoded by ffmpeg into FILE.
+int renderPathExport(App& app, const std::string& technique, const std::string& path, int pathFrames, const std::string& view,
+                     const std::string& out, const std::string& exportFile) {
+    std::string error;
+    std::filesystem::path folder = out;
+    if (folder.empty()) {
+        const std::filesystem::path scratch = scratchDir(error);
+        if (scratch.empty()) return fail(error, kExitFailure);
+        folder = scratch / "export-frames";
+        std::filesystem::remove_all(folder);
+    }
+    if (const int code = renderPath(app, technique, path, pathFrames, view, folder, error, false)) return fail(error, code);
+    if (!encodeFrames(folder, 30, exportFile, error)) return fail("--export " + error, kExitFailure);
+    if (out.empty()) std::filesystem::remove_all(folder);
+    logInfo("wrote " + exportFile);
+    return 0;
+}
+
+// A host debug view as a slide: the window's frame loop offscreen without the panel, with the
+// view's legend drawn over it.
+int renderViewSlide(App& app, const std::string& technique, const std::string& view, int frames, const std::string& out) {
+    WindowOptions w;
+    w.frames = std::max(frames, 1);
+    w.screenshot = out;
+    w.hideUi = true;
+    InteractiveOptions options;
+    if (int code = windowOptionsProblem(app, w, technique, options)) return code;
+    options.view = parseView(view);
+    const int code = app.runInteractive(options);
+    if (code == 0) logInfo("wrote " + out);
+    return code;
+}
+
+// --out and --export, checked before the app starts: a missing encoder costs no frames.
+int renderOutputsProblem(const std::string& out, const std::string& exportFile, const std::string& path) {
+    if (out.empty() && exportFile.empty()) return fail("--out: required (or --path P --export FILE)", kExitBadInput);
+    if (exportFile.empty()) return 0;
+    if (path.empty())
+        return fail("--export " + exportFile + ": exports a path (--path P); a tour step is exported by the window: "
+                    "--tour T --tour-step N --frames N --export FILE",
+                    kExitBadInput);
+    if (const std::string problem = exportProblem("--export", exportFile); !problem.empty()) return fail(problem, kExitBadInput);
+    if (std::string error; !outputProblem("--export", exportFile, false, error)) return fail(error, kExitBadInput);
+    return 0;
+}
+
+// --technique and the techniques --compare names beside it ("B" or "B,C,D"), each known.
+int unknownTechniqueProblem(App& app, const std::string& technique, const std::string& others) {
+    std::vector<std::string> named;
+    std::string error;
+    if (!others.empty() && !splitList(others, "--compare", named, error)) return fail(error, kExitBadInput);
+    named.insert(named.begin(), technique);
+    for (const std::string& id : named) {
+        if (id.empty() || app.techniques().find(id)) continue;
+        std::string known;
+        for (const auto& t : app.techniques().techniques()) appendListItem(known, t.id);
+        return fail(std::string(others.empty() ? "--technique '" : "--compare: '") + id + "': no such technique (available: " +
+                        known + ")",
+                    kExitBadInput);
+    }
+    return 0;
+}
+
 int commandRender(const CommonOptions& common, const std::string& out, const std::string& view, int frames,
                   const std::string& reference, int samples, const WindowOptions& compare, const std::string& path,
-                  int pathFrames, const std::string& probe) {
+                  int pathFrames, const std::string& probe, const std::string& exportFile) {
+    if (int code = renderOutputsProblem(out, exportFile, path)) return code;
     glm::ivec2 probePixel(0);
     if (!probe.empty()) {
         // Checked before the app starts: a bad value costs no context.
@@ -97,7 +164,7 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
             return fail("--probe: one technique, one frame (without --compare or --path)", kExitBadInput);
     }
     std::string error;
-    if (!outputProblem("--out", out, !path.empty(), error)) return fail(error, kExitBadInput);
+    if (!out.empty() && !outputProblem("--out", out, !path.empty(), error)) return fail(error, kExitBadInput);
     App app;
     if (int code = startApp(app, common, false)) return code;
     if (!probe.empty()) {
@@ -116,41 +183,34 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         if (!app.techniques().find(technique)) return fail("--technique '" + technique + "': no such technique", kExitBadInput);
         if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
         if (const std::string problem = app.viewProblem(technique, view); !problem.empty()) return fail("--" + problem, kExitBadInput);
+        if (!exportFile.empty()) return renderPathExport(app, technique, path, pathFrames, view, out, exportFile);
         const int code = renderPath(app, technique, path, pathFrames, view, out, error);
         return code ? fail(error, code) : 0;
     }
-    // --compare A,B (or --compare B with --technique A): both techniques in one image, labelled.
-    std::string other;
+    // --compare A,B (or --compare B with --technique A): both techniques in one image, labelled;
+    // A,B,C[,D]: a grid of three or four.
+    std::string other, others;
     if (!compare.compare.empty()) {
-        const auto comma = compare.compare.find(',');
-        if (comma == std::string::npos) {
-            other = compare.compare;
-        } else {
-            technique = compare.compare.substr(0, comma);
-            other = compare.compare.substr(comma + 1);
-        }
-        if (technique.empty() || other.empty() || other.find(',') != std::string::npos)
-            return fail("--compare '" + compare.compare + "': expected A,B (two technique ids, e.g. pcss,reference) or "
-                        "one id to compare --technique with",
+        std::vector<std::string> ids;
+        if (!splitList(compare.compare, "--compare", ids, error)) return fail(error, kExitBadInput);
+        if (ids.size() > 1) technique = ids.front();
+        for (size_t i = ids.size() > 1 ? 1 : 0; i < ids.size(); ++i) others += (others.empty() ? "" : ",") + ids[i];
+        other = ids.size() > 1 ? ids[1] : ids.front();
+        if (technique.empty() || other.empty() || ids.size() > size_t(kMaxGridSides))
+            return fail("--compare '" + compare.compare + "': expected A,B (two technique ids, e.g. pcss,reference), "
+                        "A,B,C[,D] (a grid) or one id to compare --technique with",
                         kExitBadInput);
         if (view != "lit" && view != "visibility")
             return fail("--view " + view + ": --compare shows lit or visibility", kExitBadInput);
     }
-    for (const std::string& id : {technique, other}) {
-        if (id.empty() || app.techniques().find(id)) continue;
-        std::string known;
-        for (const auto& t : app.techniques().techniques()) appendListItem(known, t.id);
-        return fail(std::string(other.empty() ? "--technique '" : "--compare: '") + id + "': no such technique (available: " +
-                        known + ")",
-                    kExitBadInput);
-    }
+    if (int code = unknownTechniqueProblem(app, technique, others)) return code;
     if (!app.applyAssignments(common.sets, technique, error)) return fail(error, kExitBadInput);
     // The one check of a view name (tours and sessions get it too), before the first frame kept.
     if (const std::string problem = app.viewProblem(technique, view, {"reference"}); !problem.empty())
         return fail("--" + problem, kExitBadInput);
     if (!other.empty()) {
         WindowOptions w = compare;
-        w.compare = other;
+        w.compare = others;
         w.frames = std::max(frames, 1);
         w.screenshot = out;
         w.hideUi = true;   // a slide: the view and the two labels
@@ -161,7 +221,21 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
         if (code == 0) logInfo("wrote " + out);
         return code;
     }
-    if (!probe.empty()) return renderProbeSlide(app, technique, view, frames, out, probePixel);
+    // The host's debug views are slides of the window's frame loop (their legends are drawn with
+    // its overlays); the kernel view without --probe probes a shadow edge near the centre.
+    const ViewSelection::Kind kind = parseView(view).kind;
+    if (kind == ViewSelection::Kind::Kernel && probe.empty()) {
+        const std::optional<glm::ivec2> edge = app.shadowEdgePixel(technique);
+        if (!edge) return fail("--view kernel: no shadow edge in the frame to probe; give --probe X,Y", kExitBadInput);
+        probePixel = *edge;
+        app.setProbePixel(probePixel);
+        logInfo("--view kernel: probing " + std::to_string(edge->x) + "," + std::to_string(edge->y) +
+                ", the shadow edge nearest the centre (--probe X,Y picks another)");
+    }
+    if (kind == ViewSelection::Kind::Kernel) return renderProbeSlide(app, technique, view, frames, out, probePixel);
+    if (kind == ViewSelection::Kind::Footprint || kind == ViewSelection::Kind::TexelGrid ||
+        kind == ViewSelection::Kind::MapCoverage || kind == ViewSelection::Kind::FocusBody)
+        return renderViewSlide(app, technique, view, frames, out);
     Progress progress("render: drawing " + technique, uint64_t(std::max(frames, 1)), "frames");   // a huge scene on llvmpipe
     for (int i = 0; i < std::max(frames, 1); ++i) {
         if (!app.renderFrame(technique, error)) return fail(error, kExitFailure);
@@ -196,7 +270,7 @@ class RenderCommand final : public Command {
 public:
     CLI::App* declare(CLI::App& cli) override {
         auto* render = command_ = cli.add_subcommand("render", "render one frame headless to a PNG file");
-        render->add_option("--out,-o", out_, "PNG file to write")->required();
+        render->add_option("--out,-o", out_, "PNG file to write (with --path: the folder of frames)");
         render->add_option("--view", view_,
                            "lit | visibility | error (heatmap vs the reference) | reference | footprint (texel footprint m, "
                            "log2 heat map) | texel-grid | coverage (which map serves a pixel, and the light frusta) | "
@@ -210,10 +284,10 @@ public:
         render->add_option("--samples", samples_, "soft reference: rays per pixel, traced adaptively (default 1024)")
             ->check(CLI::Range(1, 4096));
         render->add_option("--compare", compare_.compare,
-                           "A,B: both techniques in one image with their labels (B may be 'reference', the ground truth)");
+                           "A,B: both techniques in one image with their labels (B may be 'reference', the ground truth); A,B,C[,D]: a grid of three or four");
         // Options that mean something only with another are refused alone (CLI11's needs: exit 2).
         CLI::Option* compare = render->get_option("--compare");
-        render->add_option("--compare-layout", compare_.compareLayout, "with --compare: side-by-side (default) | wipe | difference")
+        render->add_option("--compare-layout", compare_.compareLayout, "with --compare: side-by-side (default) | wipe | difference | grid (A,B,C[,D] give a grid)")
             ->needs(compare);
         render->add_option("--wipe", compare_.wipe, "with --compare-layout wipe: divider position, 0..1 (default 0.5)")
             ->check(CLI::Range(0.0, 1.0))
@@ -228,6 +302,9 @@ public:
             ->check(CLI::Range(1, 100000))
             ->needs(render->get_option("--path"));
         render->get_option("--frames")->excludes(render->get_option("--path"));   // a path draws its own frames
+        render->add_option("--export", export_,
+                           "with --path: the path as an animated image or video, FILE.gif, .mp4 or .webm (30 frames a "
+                           "second; needs the ffmpeg program on PATH); --out then keeps the frames");
         return render;
     }
     int run(const CommonOptions& common) override {
@@ -240,7 +317,7 @@ public:
                             kExitBadInput);
         if (given("--wipe") && compare_.compareLayout != "wipe")
             return fail("--wipe: places the divider of --compare-layout wipe", kExitBadInput);
-        return commandRender(common, out_, view_, frames_, reference_, samples_, compare_, path_, pathFrames_, probe_);
+        return commandRender(common, out_, view_, frames_, reference_, samples_, compare_, path_, pathFrames_, probe_, export_);
     }
     std::vector<Unused> unusedCommonOptions() const override {
         if (view_ == "error" || view_ == "reference") return {};
@@ -249,7 +326,7 @@ public:
     }
 
 private:
-    std::string out_, view_ = "lit", probe_, reference_ = "auto", path_;
+    std::string out_, view_ = "lit", probe_, reference_ = "auto", path_, export_;
     int frames_ = 3, samples_ = BenchSpec{}.referenceSamples, pathFrames_ = 0;
     WindowOptions compare_;
     CLI::App* command_ = nullptr;

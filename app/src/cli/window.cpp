@@ -61,10 +61,11 @@ void MainJob::declare(CLI::App& cli) {
     auto windowOption = [&](CLI::Option* option) { return option->group("Window"); };
     windowOption(cli.add_option("--smoke-test", window_.smokeFrames, "window: draw N frames cycling every technique, then exit"))
         ->check(CLI::Range(1, 1000000));
-    windowOption(cli.add_option("--compare", window_.compare, "window: compare this technique (B) with --technique (A)"));
+    windowOption(cli.add_option("--compare", window_.compare,
+                                "window: compare this technique (B) with --technique (A); B,C[,D]: a grid of three or four"));
     // Options that mean something only with another are refused alone (CLI11's needs: exit 2).
     CLI::Option* compare = cli.get_option("--compare");
-    windowOption(cli.add_option("--compare-layout", window_.compareLayout, "side-by-side (default) | wipe | difference"))
+    windowOption(cli.add_option("--compare-layout", window_.compareLayout, "side-by-side (default) | wipe | difference | grid (three or four techniques)"))
         ->needs(compare);
     windowOption(cli.add_option("--wipe", window_.wipe, "wipe divider position across the view, 0..1 (default 0.5)"))
         ->check(CLI::Range(0.0, 1.0))
@@ -76,6 +77,17 @@ void MainJob::declare(CLI::App& cli) {
     windowOption(cli.add_option("--ui-scale", window_.uiScale, "window: size of the panel's text and widgets (1.5-2 for a projector)"))
         ->check(CLI::Range(0.5, 4.0));
     windowOption(cli.add_flag("--hide-ui", window_.hideUi, "window: start with the panel hidden (F1 or H toggles it)"));
+    windowOption(cli.add_option("--export", window_.exportFile,
+                                "window: with --frames N, the N frames drawn (the view, without the panel) as FILE.gif, "
+                                ".mp4 or .webm, e.g. a tour step's path (needs the ffmpeg program)"));
+    windowOption(cli.add_option("--play-path", window_.playPath,
+                                "window: play a camera or light path from the start, as the panel's \"Camera and light "
+                                "paths\" does: built-in (orbit, dolly, sweep, walk, static) or a path file"));
+    windowOption(cli.add_option("--path-speed", window_.pathSpeed, "window: path frames per window frame (0.1-4, default 1)"))
+        ->check(CLI::Range(0.1, 4.0));
+    windowOption(cli.add_flag("--presenter", window_.presenter,
+                              "window: presenter mode (P toggles it): full screen, the panel hidden, the tour step's "
+                              "caption large on the view with its figures beside it; ? lists every key"));
     windowOption(cli.add_option("--probe", window_.probe,
                                 "window: X,Y, the pixel of the view (from its top left) the kernel view probes until the "
                                 "mouse moves over the view (offscreen slides keep it)"));

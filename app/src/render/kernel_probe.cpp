@@ -378,3 +378,26 @@ glm::vec3 onReceiverPlane(const ShadowMapInfo& map, const KernelProbe& probe, gl
 }
 
 } // namespace shadowlab
+
+namespace shadowlab {
+
+float kernelPixelRadius(const ShadowMapInfo& map, const KernelProbe& probe, const glm::mat4& viewProjection, glm::ivec2 viewport) {
+    auto pixel = [&](glm::vec3 world) {
+        const glm::vec4 clip = viewProjection * glm::vec4(world, 1.0f);
+        return clip.w > 1e-6f ? (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(viewport) : glm::vec2(1e9f);
+    };
+    const glm::vec2 centre(probe.coord);
+    std::vector<glm::vec2> rim;
+    if (probe.kernel == FilterKernel::Box) {
+        rim = {probe.boxMin, probe.boxMax, {probe.boxMin.x, probe.boxMax.y}, {probe.boxMax.x, probe.boxMin.y}};
+    } else {
+        const float r = std::max(probe.searchRadiusTexels, probe.filterRadiusTexels) / std::max(probe.resolution, 1.0f);
+        for (int i = 0; i < 8; ++i) rim.push_back(centre + r * glm::vec2(std::cos(0.785398f * float(i)), std::sin(0.785398f * float(i))));
+    }
+    const glm::vec2 at = pixel(onReceiverPlane(map, probe, centre));
+    float radius = 0.0f;
+    for (const glm::vec2 uv : rim) radius = std::max(radius, glm::distance(at, pixel(onReceiverPlane(map, probe, uv))));
+    return std::min(radius, 1e6f);
+}
+
+} // namespace shadowlab

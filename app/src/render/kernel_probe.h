@@ -74,5 +74,9 @@ std::string describeProbe(const KernelProbe& probe);
 // A point of the map (uv) on the receiver's tangent plane at the probed point: where the light ray
 // through that map position meets it (for drawing the footprint in the camera view).
 glm::vec3 onReceiverPlane(const ShadowMapInfo& map, const KernelProbe& probe, glm::vec2 uv);
+// How far the kernel's footprint reaches from the probed point on screen, in pixels of a view
+// `camera` draws at `viewport` (the box's corners, the discs' rims): the kernel view's inset
+// magnifies that much around the probe.
+float kernelPixelRadius(const ShadowMapInfo& map, const KernelProbe& probe, const glm::mat4& viewProjection, glm::ivec2 viewport);
 
 } // namespace shadowlab

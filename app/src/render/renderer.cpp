@@ -961,9 +961,10 @@ GLuint Renderer::target(MainTarget which) const {
     return 0;
 }
 
-void Renderer::present(PresentMode mode, GLuint texture, GLuint framebuffer, glm::ivec2 viewport, glm::vec2 range) {
+void Renderer::present(PresentMode mode, GLuint texture, GLuint framebuffer, glm::ivec2 viewport, glm::vec2 range,
+                       glm::ivec2 origin) {
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    glViewport(0, 0, viewport.x, viewport.y);
+    glViewport(origin.x, origin.y, viewport.x, viewport.y);
     glDisable(GL_FRAMEBUFFER_SRGB);   // present.frag encodes sRGB itself
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_STENCIL_TEST);

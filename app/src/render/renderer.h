@@ -191,7 +191,9 @@ public:
     GLuint contactTexture() const { return contactTerm_.get(); }
 
     // Present pass into `framebuffer` (0 = window) or, with framebuffer = ~0u, the display texture.
-    void present(PresentMode mode, GLuint texture, GLuint framebuffer, glm::ivec2 viewport, glm::vec2 range = {0, 1});
+    // `origin`: the viewport's lower left corner in the framebuffer (a letterboxed debug image).
+    void present(PresentMode mode, GLuint texture, GLuint framebuffer, glm::ivec2 viewport, glm::vec2 range = {0, 1},
+                 glm::ivec2 origin = {0, 0});
     GLuint target(MainTarget which) const;
     GLuint displayTexture() const { return displayColor_.get(); }
     GLuint displayFramebuffer() const { return displayFbo_.get(); }

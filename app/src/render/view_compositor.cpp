@@ -71,7 +71,7 @@ bool ViewCompositor::drawDifference(Renderer& renderer) {
 
 void ViewCompositor::setHeatmap(int side, const Image& heatmap) {
     const glm::ivec2 size{heatmap.width, heatmap.height};
-    side &= 1;
+    if (side < 0 || side >= kSides) return;
     if (heatmapSizes_[side] != size) {
         heatmaps_[side] = makeTexture(GL_RGBA8, size);
         heatmapSizes_[side] = size;

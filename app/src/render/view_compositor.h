@@ -36,7 +36,7 @@ public:
 
     // A side's error heatmap over its dimmed frame (RGBA8), shown in place of its view.
     void setHeatmap(int side, const Image& heatmap);
-    GLuint heatmap(int side) const { return heatmaps_[side & 1].get(); }
+    GLuint heatmap(int side) const { return side >= 0 && side < kSides ? heatmaps_[side].get() : 0; }
 
     // The display texture into `target` (of size `surface`) at the rectangle whose top-left corner
     // is `origin` (window pixels from the top left), from the part of the display `sourceX` pixels in.
@@ -53,8 +53,9 @@ private:
     glm::ivec2 surfaceSize_{0};
     GlTexture firstTerm_;
     glm::ivec2 firstTermSize_{0};
-    GlTexture heatmaps_[2];
-    glm::ivec2 heatmapSizes_[2]{};
+    static constexpr int kSides = 4;   // a grid's four cells
+    GlTexture heatmaps_[kSides];
+    glm::ivec2 heatmapSizes_[kSides]{};
 };
 
 } // namespace shadowlab

@@ -14,12 +14,13 @@ const char* compareLayoutName(CompareLayout layout) {
     case CompareLayout::SideBySide: return "side-by-side";
     case CompareLayout::Wipe: return "wipe";
     case CompareLayout::Difference: return "difference";
+    case CompareLayout::Grid: return "grid";
     }
     return "?";
 }
 
 bool parseCompareLayout(const std::string& text, CompareLayout& layout) {
-    for (CompareLayout l : {CompareLayout::SideBySide, CompareLayout::Wipe, CompareLayout::Difference})
+    for (CompareLayout l : {CompareLayout::SideBySide, CompareLayout::Wipe, CompareLayout::Difference, CompareLayout::Grid})
         if (text == compareLayoutName(l)) {
             layout = l;
             return true;
@@ -30,7 +31,11 @@ bool parseCompareLayout(const std::string& text, CompareLayout& layout) {
 int panelWidthFor(float uiScale, int windowWidth) {
     // 360 px holds the longest label on one line beside nothing (labels sit above their widgets).
     const int wanted = int(std::lround(360.0f * std::clamp(uiScale, 0.5f, 4.0f)));
-    return std::clamp(wanted, 1, std::max(1, int(std::floor(0.45 * windowWidth))));
+    // A large UI scale on a projector's 1280 px would take 45% (576 px at scale 2): the panel
+    // stops at 36% of a wide window, labels wrap, and the view keeps two thirds. Narrow windows
+    // keep 360 px up to 45%, since below that the parameter labels no longer fit.
+    const double share = std::min(0.45 * windowWidth, std::max(360.0, 0.36 * windowWidth));
+    return std::clamp(wanted, 1, std::max(1, int(std::floor(share))));
 }
 
 ViewLayout computeViewLayout(glm::ivec2 window, bool panelVisible, int panelWidth, bool comparing, CompareLayout layout,
@@ -42,9 +47,19 @@ ViewLayout computeViewLayout(glm::ivec2 window, bool panelVisible, int panelWidt
     out.view = {{panel, 0}, {window.x - panel, window.y}};
     out.comparing = comparing;
     out.halves[0] = out.halves[1] = out.view;
+    for (PixelRect& cell : out.cells) cell = out.view;
     out.renderSize = out.view.size;
     out.wipeX = out.view.origin.x + int(std::lround(std::clamp(wipe, 0.0f, 1.0f) * float(out.view.size.x)));
     if (!comparing) return out;
+    if (layout == CompareLayout::Grid) {
+        // Quarters of one size (a pixel row or column may stay unused), A B over C D.
+        out.renderSize = glm::max(out.view.size / 2, glm::ivec2(1));
+        for (int i = 0; i < kMaxGridSides; ++i)
+            out.cells[i] = {out.view.origin + glm::ivec2(i % 2, i / 2) * out.renderSize, out.renderSize};
+        out.halves[0] = out.cells[0];
+        out.halves[1] = out.cells[1];
+        return out;
+    }
     if (layout == CompareLayout::SideBySide) {
         const int left = std::max(1, out.view.size.x / 2);
         out.halves[0] = {out.view.origin, {left, out.view.size.y}};
@@ -55,6 +70,8 @@ ViewLayout computeViewLayout(glm::ivec2 window, bool panelVisible, int panelWidt
         out.halves[0] = {out.view.origin, {out.wipeX - out.view.origin.x, out.view.size.y}};
         out.halves[1] = {{out.wipeX, 0}, {out.view.origin.x + out.view.size.x - out.wipeX, out.view.size.y}};
     }
+    out.cells[0] = out.halves[0];
+    out.cells[1] = out.halves[1];
     return out;
 }
 

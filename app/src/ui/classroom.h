@@ -19,7 +19,10 @@ namespace shadowlab {
 //               camera, aspect of the half), so both techniques show the same objects.
 //   Wipe:       one framing; technique A left of a draggable divider, B right of it, same pixels.
 //   Difference: one framing; |shadow term A - shadow term B| (see shaders/compare_difference.frag).
-enum class CompareLayout { SideBySide, Wipe, Difference };
+//   Grid:       three or four techniques (A, B and C, D) in the quarters of the view, each quarter
+//               with the whole camera framing, as side by side.
+enum class CompareLayout { SideBySide, Wipe, Difference, Grid };
+constexpr int kMaxGridSides = 4;
 const char* compareLayoutName(CompareLayout layout);
 bool parseCompareLayout(const std::string& text, CompareLayout& layout);
 
@@ -40,13 +43,14 @@ struct ViewLayout {
     PixelRect panel;          // empty when the UI is hidden
     PixelRect view;           // the free part of the window: the scene is framed here
     PixelRect halves[2];      // where technique A and B are shown (view itself when not comparing)
-    glm::ivec2 renderSize{0}; // size of the main targets (a half for SideBySide)
+    PixelRect cells[kMaxGridSides];   // where each side is shown: halves[0..1], or Grid's quarters (A B / C D)
+    glm::ivec2 renderSize{0}; // size of the main targets (a half for SideBySide, a quarter for Grid)
     int wipeX = 0;            // Wipe: divider position in window pixels
     bool comparing = false;
 };
 
 // Panel width for a UI scale: wide enough for the longest parameter label at that scale, at
-// most 45% of the window so the view keeps the larger part.
+// most 36% of a wide window (360 px, up to 45%, in a narrow one) so the view keeps the larger part.
 int panelWidthFor(float uiScale, int windowWidth);
 // `wipe` is the divider's position across the view, 0..1.
 ViewLayout computeViewLayout(glm::ivec2 window, bool panelVisible, int panelWidth, bool comparing, CompareLayout layout,

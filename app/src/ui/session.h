@@ -22,6 +22,7 @@ namespace shadowlab {
 struct InteractiveOptions {
     std::string technique;
     std::string compareTechnique;                  // non-empty: compare `technique` (A) with it (B)
+    std::vector<std::string> gridTechniques;       // the grid's C and D (compareLayout Grid)
     CompareLayout compareLayout = CompareLayout::SideBySide;
     float wipe = 0.5f;                             // Wipe: divider across the view, 0..1
     int frames = 0;                                // > 0: draw that many, save `screenshot`, return
@@ -32,10 +33,15 @@ struct InteractiveOptions {
     int referenceMode = 0;                         // the panel's reference at the start: 0 own, 1 hard, 2 soft (UiState)
     int referenceSamples = 64;                     // its rays per pixel
     bool showUi = true;                            // false: the view (and comparison labels) only
+    bool presenter = false;                        // presenter mode at the start (full screen, caption large)
     ViewSelection view;                            // the image shown at the start (lit, visibility, ...)
     std::optional<glm::ivec2> probe;               // the kernel view's pixel at the start (main-target pixels)
     float uiScale = 1.0f;
     std::filesystem::path screenshotFolder = "screenshots";   // F12
+    std::filesystem::path exportFile;              // --export: every frame of the run into this .gif/.mp4/.webm
+    std::filesystem::path exportFolder = "exports";          // the panel's "Export path"
+    std::string playPath;                          // a path played from the start, as the panel's "Paths" plays one
+    float pathSpeed = 1.0f;                        // path frames per window frame
     // A guided tour, started at `tourStep` (from 0), and/or a session file applied at the start
     // (both checked whole before: tour.h). The session folder is where "Save session" writes.
     std::shared_ptr<const Tour> tour;

@@ -7,6 +7,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "app_paths.h"
 #include "ui/ui.h"
 
 namespace shadowlab {
@@ -34,6 +35,12 @@ void Ui::drawTourPlayer(App& app, UiState& state) {
     const int count = int(tour.steps.size());
     const int index = std::clamp(state.tourStep, 0, count - 1);
     const TourStep& step = tour.steps[size_t(index)];
+    // A new step brings the panel back to its caption, wherever the reader had scrolled to.
+    if (index != scrolledToStep_ || state.tour.get() != scrolledTour_) {
+        ImGui::SetScrollHereY(0.0f);
+        scrolledToStep_ = index;
+        scrolledTour_ = state.tour.get();
+    }
     wrappedText(tour.title, ImVec4(0.55f, 0.8f, 1.0f, 1.0f));
     wrappedText("step " + std::to_string(index + 1) + " of " + std::to_string(count) + ": " + step.title);
     ImGui::BeginDisabled(index == 0);
@@ -62,6 +69,38 @@ void Ui::drawTourPlayer(App& app, UiState& state) {
     if (!state.tourStatus.empty()) wrappedText(state.tourStatus, state.tourStatusIsError ? kErrorColour : kDimColour);
     wrappedText("Right / Page Down: next, Left / Page Up: previous, Home: restart the step", kDimColour);
     ImGui::Separator();
+}
+
+// Camera and light paths outside tours: a built-in path or a file, from the camera and light on
+// screen, played in a loop at a chosen speed (a tour step's path shows here too).
+void Ui::drawPathSection(App& app, UiState& state) {
+    (void)app;
+    if (!ImGui::CollapsingHeader("Camera and light paths")) return;
+    ImGui::TextUnformatted("path (built-in, or a JSON path file)");
+    ImGui::SetNextItemWidth(-FLT_MIN);
+    if (ImGui::BeginCombo("##path-builtin", pathChoice_.c_str())) {
+        for (const std::string& name : builtinPathNames())
+            if (ImGui::Selectable(name.c_str(), name == pathChoice_)) pathChoice_ = name;
+        ImGui::EndCombo();
+    }
+    ImGui::SetNextItemWidth(-FLT_MIN);
+    ImGui::InputText("##path-file", &pathChoice_);
+    if (ImGui::Button("Play from here")) state.commands.push_back({UiCommand::Kind::PlayPath, pathChoice_});
+    if (state.path) {
+        ImGui::SameLine();
+        if (ImGui::Button(state.pathPlaying ? "Pause (Space)" : "Play (Space)")) state.pathPlaying = !state.pathPlaying;
+        ImGui::SameLine();
+        if (ImGui::Button("Stop")) state.commands.push_back({UiCommand::Kind::PlayPath, ""});
+        if (ImGui::Button("Export path (GIF, ffmpeg)")) state.commands.push_back({UiCommand::Kind::ExportPath, ""});
+        if (state.path->frames > 0)
+            wrappedText("path " + state.pathName + ": frame " + std::to_string(state.pathFrame % state.path->frames + 1) + " of " +
+                            std::to_string(state.path->frames),
+                        kDimColour);
+    }
+    ImGui::TextUnformatted("speed (path frames per window frame)");
+    ImGui::SetNextItemWidth(-FLT_MIN);
+    ImGui::SliderFloat("##path-speed", &state.pathSpeed, 0.1f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    if (!state.pathStatus.empty()) wrappedText(state.pathStatus, kErrorColour);
 }
 
 // Tours to load and sessions to save or restore.

@@ -53,7 +53,10 @@ bool applyTourStep(App& app, const TourStep& step, UiState& state, std::string& 
         state.pathCamera = app.camera().pose();
         state.pathLight = app.light();
         state.path = std::move(path);
+        state.pathName = step.path;
+        state.pathFrames = step.pathFrames;
         state.pathFrame = 0;
+        state.pathClock = 0.0f;
         state.pathPlaying = true;
     }
     state.technique = step.technique;
@@ -141,9 +144,16 @@ TourStep captureSession(App& app, const UiState& state) {
         for (size_t i = 0; i < info->params.size(); ++i)
             step.parameters.emplace_back(prefix + info->params[i].id, exactValueText(info->params[i], values[i]));
     }
-    const SceneCamera pose = app.camera().pose();
+    // On a path the step is the path's: its start (camera and light) and the path itself, so the
+    // session plays it again rather than freezing the frame it was saved on.
+    const bool onPath = state.path.has_value() && !state.pathName.empty();
+    if (onPath) {
+        step.path = state.pathName;
+        step.pathFrames = state.pathFrames;
+    }
+    const SceneCamera pose = onPath ? state.pathCamera : app.camera().pose();
     step.camera = TourCamera{pose.position, pose.target, glm::degrees(pose.fovY)};
-    const LightInfo& light = app.light();
+    const LightInfo& light = onPath ? state.pathLight : app.light();
     step.light.direction = light.direction;
     step.light.size = light.type == LightType::Directional ? double(glm::degrees(light.size)) : double(light.size);
     step.view = stepViewName(state.view);

@@ -12,6 +12,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <imgui_stdlib.h>
 
+#include "ui/keys.h"
 #include "util/log.h"
 
 namespace shadowlab {
@@ -21,6 +22,7 @@ namespace {
 // ImGui's built-in 13 px bitmap font scaled up.
 constexpr const char* kFontFile = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 constexpr float kFontPixels = 15.0f;
+constexpr float kPresenterFontPixels = 28.0f;
 
 void scrollCallback(GLFWwindow* window, double, double dy) {
     if (auto* state = static_cast<UiState*>(glfwGetWindowUserPointer(window))) state->scroll += float(dy);
@@ -197,6 +199,30 @@ void timingsTable(const char* id, const std::map<std::string, double>& timings) 
     ImGui::EndTable();
 }
 
+// What a key of the table does (the fly keys are held, read by the frame loop).
+void runKeyAction(KeyAction action, UiState& state) {
+    switch (action) {
+    case KeyAction::Screenshot: return state.commands.push_back({UiCommand::Kind::Screenshot, ""});
+    case KeyAction::ToggleUi: state.showUi = !state.showUi; return;
+    case KeyAction::Measure: return state.commands.push_back({UiCommand::Kind::Measure, ""});
+    case KeyAction::SaveSession: return state.commands.push_back({UiCommand::Kind::SaveSession, ""});
+    case KeyAction::Quit: state.quitRequested = true; return;
+    case KeyAction::Presenter: return setPresenter(state, !state.presenter);
+    case KeyAction::Help: state.showHelp = !state.showHelp; return;
+    case KeyAction::PlayPath: state.pathPlaying = !state.pathPlaying; return;
+    case KeyAction::NextStep:
+        if (state.tour) state.commands.push_back({UiCommand::Kind::TourStep, "next"});
+        return;
+    case KeyAction::PreviousStep:
+        if (state.tour) state.commands.push_back({UiCommand::Kind::TourStep, "previous"});
+        return;
+    case KeyAction::RestartStep:
+        if (state.tour) state.commands.push_back({UiCommand::Kind::TourStep, "restart"});
+        return;
+    default: return;   // fly keys: held, read each frame
+    }
+}
+
 } // namespace
 
 bool Ui::init(GLFWwindow* window, float uiScale) {
@@ -234,8 +260,11 @@ void Ui::applyScale(float scale) {
     const bool uploaded = appliedScale_ > 0.0f && io.Fonts->IsBuilt();
     io.Fonts->Clear();
     std::error_code ec;
+    largeFont_ = nullptr;
     if (std::filesystem::exists(kFontFile, ec)) {
-        io.Fonts->AddFontFromFileTTF(kFontFile, std::round(kFontPixels * scale));
+        io.Fonts->AddFontFromFileTTF(kFontFile, std::round(kFontPixels * scale));   // the first font is the default
+        // Presenter captions: read from the back of a room.
+        largeFont_ = io.Fonts->AddFontFromFileTTF(kFontFile, std::round(kPresenterFontPixels * scale));
         io.FontGlobalScale = 1.0f;
     } else {
         io.Fonts->AddFontDefault();
@@ -264,6 +293,13 @@ void Ui::shutdown() {
 bool Ui::wantsMouse() const { return initialised_ && ImGui::GetIO().WantCaptureMouse; }
 bool Ui::wantsKeyboard() const { return initialised_ && ImGui::GetIO().WantCaptureKeyboard; }
 
+bool Ui::onWipeHandle(const UiState& state, glm::vec2 p) const {
+    const ViewLayout& layout = state.layout;
+    if (!layout.comparing || state.compareLayout != CompareLayout::Wipe) return false;
+    const float r = 0.7f * kFontPixels * std::max(appliedScale_, 0.5f);   // the handle's radius at this UI scale
+    return std::abs(p.x - float(layout.wipeX)) < r && layout.view.contains(p);
+}
+
 void Ui::draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, glm::ivec2 display) {
     applyScale(state.uiScale);
     if (window_) {
@@ -279,22 +315,11 @@ void Ui::draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, 
     ImGui::NewFrame();
     smoothedFrameMs_ = smoothedFrameMs_ == 0.0f ? frameSeconds * 1000.0f : 0.95f * smoothedFrameMs_ + 0.05f * frameSeconds * 1000.0f;
 
-    // Keys typed into a text field are the field's.
-    if (!ImGui::GetIO().WantCaptureKeyboard) {
-        for (const int key : state.pressedKeys) {
-            if (key == GLFW_KEY_F12) state.commands.push_back({UiCommand::Kind::Screenshot, ""});
-            if (key == GLFW_KEY_F1 || key == GLFW_KEY_H) state.showUi = !state.showUi;
-            if (key == GLFW_KEY_M) state.commands.push_back({UiCommand::Kind::Measure, ""});
-            if (key == GLFW_KEY_F5) state.commands.push_back({UiCommand::Kind::SaveSession, ""});
-            if (key == GLFW_KEY_ESCAPE) state.quitRequested = true;
-            // The tour player: next, previous, restart the step.
-            if (state.tour) {
-                if (key == GLFW_KEY_RIGHT || key == GLFW_KEY_PAGE_DOWN) state.commands.push_back({UiCommand::Kind::TourStep, "next"});
-                if (key == GLFW_KEY_LEFT || key == GLFW_KEY_PAGE_UP) state.commands.push_back({UiCommand::Kind::TourStep, "previous"});
-                if (key == GLFW_KEY_HOME) state.commands.push_back({UiCommand::Kind::TourStep, "restart"});
-            }
-        }
-    }
+    // Keys typed into a text field are the field's; every key is the table's (ui/keys.h).
+    if (!ImGui::GetIO().WantCaptureKeyboard)
+        for (const int key : state.pressedKeys)
+            for (const KeyBinding& binding : keyBindings())
+                if (binding.key == key) runKeyAction(binding.action, state);
     state.pressedKeys.clear();
 
     // The latest hot-reload line of the log (plugin or shader), for the status line.
@@ -312,10 +337,13 @@ void Ui::draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, 
     }
 
     drawViewOverlay(app, state);
+    drawViewLegend(app, state);
     state.leftPresses.clear();
     state.leftRelease.reset();
     if (state.showUi) drawPanel(app, state);
     else drawStatusLine(app, state, true);
+    if (state.presenter) drawPresenterOverlay(app, state);
+    if (state.showHelp) drawHelpOverlay(state);
 
     ImGui::Render();
     renderer_.render(ImGui::GetDrawData(), framebuffer);
@@ -351,7 +379,22 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
         const std::string a = "A: " + techniqueTitle(app, state.technique);
         const std::string b = "B: " + techniqueTitle(app, state.compareTechnique);
         const float left = float(layout.view.origin.x) + 8.0f, right = float(layout.view.origin.x + layout.view.size.x) - 8.0f;
-        if (state.compareLayout == CompareLayout::Difference) {
+        if (state.compareLayout == CompareLayout::Grid) {
+            // A B over C D: lines between the quarters and each one's label in its lower left corner.
+            const PixelRect& first = layout.cells[0];
+            const float midX = float(first.origin.x + first.size.x), midY = float(first.origin.y + first.size.y);
+            for (const ImU32 colour : {IM_COL32(0, 0, 0, 160), IM_COL32(255, 255, 255, 230)}) {
+                const float width = colour == IM_COL32(0, 0, 0, 160) ? 4.0f : 2.0f;
+                draw->AddLine(ImVec2(midX, float(layout.view.origin.y)), ImVec2(midX, bottom + 8.0f), colour, width);
+                draw->AddLine(ImVec2(left - 8.0f, midY), ImVec2(right + 8.0f, midY), colour, width);
+            }
+            const std::vector<std::string> sides = shownTechniques(state);
+            for (size_t i = 0; i < sides.size(); ++i) {
+                const PixelRect& cell = layout.cells[i];
+                labelBox(draw, ImVec2(float(cell.origin.x) + 8.0f, float(cell.origin.y + cell.size.y) - 8.0f),
+                         std::string(1, char('A' + i)) + ": " + techniqueTitle(app, sides[i]), false);
+            }
+        } else if (state.compareLayout == CompareLayout::Difference) {
             labelBox(draw, ImVec2(left, bottom),
                      "difference of the shadow terms\n" + a + "\n" + b + "\norange: A darker, blue: B darker", false,
                      IM_COL32(255, 255, 255, 255), left, right);
@@ -372,10 +415,9 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
                 draw->AddCircleFilled(ImVec2(divider, y), r, IM_COL32(255, 255, 255, 230));
                 draw->AddCircle(ImVec2(divider, y), r, IM_COL32(0, 0, 0, 200), 0, 2.0f);
                 const ImGuiIO& io = ImGui::GetIO();
-                auto onHandle = [&](glm::vec2 p) { return std::abs(p.x - divider) < r && layout.view.contains(p); };
-                const bool near = onHandle({io.MousePos.x, io.MousePos.y});
+                const bool near = onWipeHandle(state, {io.MousePos.x, io.MousePos.y});
                 for (const glm::vec2 press : state.leftPresses)
-                    if (onHandle(press) && !io.WantCaptureMouse) state.draggingWipe = true;
+                    if (onWipeHandle(state, press) && !io.WantCaptureMouse) state.draggingWipe = true;
                 // Follow the cursor; a release ends the drag where the button went up (a slow
                 // frame may see the release and later moves together).
                 const bool released = state.leftRelease.has_value() || !ImGui::IsMouseDown(0);
@@ -397,6 +439,7 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
         const float height = ImGui::CalcTextSize(text.c_str()).y + 0.8f * ImGui::GetFontSize();
         labelBox(draw, ImVec2(float(layout.view.origin.x) + 8.0f, top ? float(layout.view.origin.y) + 8.0f + height : bottom),
                  text, false);
+        if (app.probePixel()) drawKernelInset(app, state, *app.probePixel(), top);
     }
     if (state.showUi && state.view.kind == ViewSelection::Kind::ErrorHeatmap && !state.measurement.empty()) {
         // Say so when the heatmap no longer shows what is on screen, and offer to measure again.
@@ -416,6 +459,45 @@ void Ui::drawViewOverlay(App& app, UiState& state) {
         if (ImGui::Button("Back to lit")) state.view = {};
         ImGui::End();
     }
+}
+
+// The kernel view's inset: the pixels around the probe magnified (nearest texels, so the taps and
+// the box read as the shader's pixels), at the view's right edge on the side away from the probe,
+// with a cross on the probed pixel and the kernel's size under it.
+void Ui::drawKernelInset(App& app, const UiState& state, glm::ivec2 probe, bool top) {
+    const ViewLayout& layout = state.layout;
+    // Pixels either side of the probe: the kernel's reach on screen and a little more, at least 8
+    // (a kernel of a few pixels is what needs magnifying) and at most 96.
+    std::string error;
+    LoadedTechnique* loaded = app.techniques().get(state.technique, error);
+    if (!loaded || loaded->host().shadowMaps().empty() || !app.lastProbe().valid) return;
+    const float reach = kernelPixelRadius(loaded->host().shadowMaps().front(), app.lastProbe(),
+                                          app.camera().info(layout.renderSize).viewProjection, layout.renderSize);
+    const float side = std::min(16.0f * ImGui::GetFontSize(), 0.4f * float(layout.view.size.y));
+    const float kRadius = std::min(std::clamp(std::ceil(1.2f * reach) + 2.0f, 8.0f, 96.0f), 0.5f * side);   // magnified, never shrunk
+    const glm::vec2 render(layout.renderSize);
+    if (render.x <= 2.0f * kRadius || render.y <= 2.0f * kRadius) return;
+    const glm::vec2 centre = glm::clamp(glm::vec2(probe) + 0.5f, glm::vec2(kRadius), render - kRadius);
+    const glm::vec2 lo = centre - kRadius, hi = centre + kRadius;
+    const float right = float(layout.view.origin.x + layout.view.size.x) - 8.0f;
+    const float y0 = top ? float(layout.view.origin.y) + 8.0f : float(layout.view.origin.y + layout.view.size.y) - 8.0f - side - 1.6f * ImGui::GetFontSize();
+    const KernelProbe& kernel = app.lastProbe();
+    const float scale = side / (2.0f * kRadius);
+    char caption[96];
+    std::snprintf(caption, sizeof caption, "x%.0f around %d,%d: %.1f texels wide, lit %.3f", scale, probe.x, probe.y,
+                  double(kernel.kernelTexels), double(kernel.lit));
+    const float captionWidth = ImGui::CalcTextSize(caption).x, font = ImGui::GetFontSize();
+    const ImVec2 min(right - side, y0), max(right, y0 + side);
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    draw->AddRectFilled(ImVec2(right - std::max(side, captionWidth) - 4.0f, min.y - 4.0f), ImVec2(max.x + 4.0f, max.y + 1.6f * font),
+                        IM_COL32(0, 0, 0, 200), 4.0f);
+    // The display texture is bottom-up: v runs against the view's rows.
+    draw->AddImage(reinterpret_cast<ImTextureID>(intptr_t(app.renderer().displayTexture())), min, max,
+                   ImVec2(lo.x / render.x, 1.0f - lo.y / render.y), ImVec2(hi.x / render.x, 1.0f - hi.y / render.y));
+    const ImVec2 at(min.x + (float(probe.x) + 0.5f - lo.x) * scale, min.y + (float(probe.y) + 0.5f - lo.y) * scale);
+    draw->AddLine(ImVec2(at.x - scale, at.y), ImVec2(at.x + scale, at.y), IM_COL32(255, 255, 255, 255), 1.0f);
+    draw->AddLine(ImVec2(at.x, at.y - scale), ImVec2(at.x, at.y + scale), IM_COL32(255, 255, 255, 255), 1.0f);
+    draw->AddText(ImVec2(right - captionWidth, max.y + 0.2f * font), IM_COL32(225, 225, 225, 255), caption);
 }
 
 // The panel's "View" section.
@@ -546,7 +628,7 @@ void Ui::drawAccuracySection(App& app, UiState& state) {
         for (size_t s = 0; s < state.measurement.size(); ++s) {
             const SideMeasurement& side = state.measurement[s];
             const AccuracyMetrics& m = side.metrics;
-            if (state.measurement.size() > 1) ImGui::TextUnformatted(s == 0 ? "A" : "B");
+            if (state.measurement.size() > 1) ImGui::Text("%c", char('A' + s));
             ImGui::TextWrapped("%s", side.label.c_str());
             ImGui::TextWrapped("MAE %.4f   RMSE %.4f\nfalse shadow %.3f%%   false light %.3f%%\n"
                                "MAE in penumbra %.4f, elsewhere %.4f\ncompared %.1f%% of pixels (traced in %.2f s)\n"
@@ -600,11 +682,10 @@ void Ui::drawTimingSection(App& app, UiState& state) {
     if (ImGui::CollapsingHeader("Timing and memory", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::TextWrapped("%.1f FPS  (%.2f ms per frame, host CPU %.3f ms)", 1000.0f / std::max(smoothedFrameMs_, 1e-3f),
                            smoothedFrameMs_, app.lastCpuFrameMs());
-        const bool comparing = !state.compareTechnique.empty();
-        const std::string sides[2] = {state.technique, state.compareTechnique};
-        for (int s = 0; s < (comparing ? 2 : 1); ++s) {
-            if (comparing) ImGui::TextWrapped("%s: %s", s == 0 ? "A" : "B", techniqueTitle(app, sides[s]).c_str());
-            timingsTable(s == 0 ? "passes-a" : "passes-b", state.sideTimings[s]);
+        const std::vector<std::string> sides = shownTechniques(state);
+        for (size_t s = 0; s < sides.size(); ++s) {
+            if (sides.size() > 1) ImGui::TextWrapped("%c: %s", char('A' + s), techniqueTitle(app, sides[s]).c_str());
+            timingsTable(("passes-" + std::to_string(s)).c_str(), state.sideTimings[s]);
             std::string error;
             if (LoadedTechnique* loaded = app.techniques().get(sides[s], error)) {
                 ImGui::Text("technique GPU memory: %.2f MiB", double(loaded->host().gpuBytes()) / (1024.0 * 1024.0));
@@ -666,6 +747,46 @@ void Ui::drawHostSection(App& app) {
     }
 }
 
+// "compare with (B)", the layout, and the grid's C and D.
+void Ui::drawComparePicker(App& app, UiState& state) {
+    fieldLabel("compare with (B)",
+               "Side by side: the view split in two, both halves with the whole camera framing. Wipe: one framing, A left "
+               "of a divider you drag, B right of it. Difference: where the two shadow terms differ.");
+    const TechniqueInfo* compareInfo = app.techniques().find(state.compareTechnique);
+    if (ImGui::BeginCombo("##compare", compareInfo ? compareInfo->displayName.c_str() : "(nothing)")) {
+        if (ImGui::Selectable("(nothing)", state.compareTechnique.empty())) state.compareTechnique.clear();
+        for (const auto& t : app.techniques().techniques())
+            if (ImGui::Selectable((t.displayName + "##compare" + t.id).c_str(), t.id == state.compareTechnique))
+                state.compareTechnique = t.id;
+        ImGui::EndCombo();
+    }
+    if (!state.compareTechnique.empty()) {
+        int layout = int(state.compareLayout);
+        ImGui::RadioButton("side by side", &layout, int(CompareLayout::SideBySide));
+        ImGui::SameLine();
+        ImGui::RadioButton("wipe", &layout, int(CompareLayout::Wipe));
+        ImGui::SameLine();
+        ImGui::RadioButton("difference", &layout, int(CompareLayout::Difference));
+        ImGui::RadioButton("grid (three or four: C and D below)", &layout, int(CompareLayout::Grid));   // its own line: the panel is narrow
+        state.compareLayout = CompareLayout(layout);
+    }
+    if (!state.compareTechnique.empty() && state.compareLayout == CompareLayout::Grid) {
+        // C and D: the grid's lower quarters (D may stay empty).
+        state.gridTechniques.resize(2);
+        for (int i = 0; i < 2; ++i) {
+            std::string& id = state.gridTechniques[size_t(i)];
+            const TechniqueInfo* cell = app.techniques().find(id);
+            fieldLabel(i == 0 ? "grid: C (lower left)" : "grid: D (lower right)");
+            if (ImGui::BeginCombo(i == 0 ? "##grid-c" : "##grid-d", cell ? cell->displayName.c_str() : "(nothing)")) {
+                if (ImGui::Selectable("(nothing)", id.empty())) id.clear();
+                for (const auto& t : app.techniques().techniques())
+                    if (ImGui::Selectable((t.displayName + "##grid" + std::to_string(i) + t.id).c_str(), t.id == id)) id = t.id;
+                ImGui::EndCombo();
+            }
+        }
+    }
+}
+
 void Ui::drawPanel(App& app, UiState& state) {
     const PixelRect& panel = state.layout.panel;
     ImGui::SetNextWindowPos(ImVec2(float(panel.origin.x), float(panel.origin.y)), ImGuiCond_Always);
@@ -673,7 +794,8 @@ void Ui::drawPanel(App& app, UiState& state) {
     ImGui::Begin("shadowlab", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
     drawStatusLine(app, state, false);
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("F1 or H hides this panel, F12 saves a screenshot, M measures accuracy, F5 saves the session");
+    ImGui::TextWrapped("? lists every key. F1 or H hides this panel, P presents, F12 saves a screenshot, M measures "
+                       "accuracy, F5 saves the session");
     ImGui::PopStyleColor();
     ImGui::Separator();
     drawTourPlayer(app, state);
@@ -695,26 +817,7 @@ void Ui::drawPanel(App& app, UiState& state) {
         }
         ImGui::EndCombo();
     }
-    fieldLabel("compare with (B)",
-               "Side by side: the view split in two, both halves with the whole camera framing. Wipe: one framing, A left "
-               "of a divider you drag, B right of it. Difference: where the two shadow terms differ.");
-    const TechniqueInfo* compareInfo = app.techniques().find(state.compareTechnique);
-    if (ImGui::BeginCombo("##compare", compareInfo ? compareInfo->displayName.c_str() : "(nothing)")) {
-        if (ImGui::Selectable("(nothing)", state.compareTechnique.empty())) state.compareTechnique.clear();
-        for (const auto& t : app.techniques().techniques())
-            if (ImGui::Selectable((t.displayName + "##compare" + t.id).c_str(), t.id == state.compareTechnique))
-                state.compareTechnique = t.id;
-        ImGui::EndCombo();
-    }
-    if (!state.compareTechnique.empty()) {
-        int layout = int(state.compareLayout);
-        ImGui::RadioButton("side by side", &layout, int(CompareLayout::SideBySide));
-        ImGui::SameLine();
-        ImGui::RadioButton("wipe", &layout, int(CompareLayout::Wipe));
-        ImGui::SameLine();
-        ImGui::RadioButton("difference", &layout, int(CompareLayout::Difference));
-        state.compareLayout = CompareLayout(layout);
-    }
+    drawComparePicker(app, state);
     info = app.techniques().find(state.technique);
     if (info) {
         ImGui::TextDisabled("%s  |  %s", info->category.c_str(), info->id.c_str());
@@ -751,6 +854,8 @@ void Ui::drawPanel(App& app, UiState& state) {
     drawViewSection(app, state);
 
     drawLessonSection(app, state);
+
+    drawPathSection(app, state);
 
     drawTimingSection(app, state);
 

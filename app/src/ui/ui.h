@@ -26,15 +26,17 @@ namespace shadowlab {
 // --session at the start, and the headless `tour` command (one step per run) all apply a step
 // with the same command.
 struct UiCommand {
-    enum class Kind { Measure, CancelMeasure, Screenshot, LoadScene, TourStep, LoadTour, SaveSession, LoadSession } kind;
+    enum class Kind { Measure, CancelMeasure, Screenshot, LoadScene, TourStep, LoadTour, SaveSession, LoadSession, PlayPath, ExportPath } kind;
     // LoadScene, LoadTour, LoadSession: name or path; SaveSession: path ("" = a new name under
-    // the session folder); TourStep: "next", "previous", "restart" or a step index from 0.
+    // the session folder); TourStep: "next", "previous", "restart" or a step index from 0;
+    // PlayPath: a built-in path or a path file, from the camera and light on screen ("" stops it).
     std::string argument;
 };
 
 struct UiState {
     std::string technique;
     std::string compareTechnique;     // non-empty: `technique` is A (left), this one B (right)
+    std::vector<std::string> gridTechniques;   // Grid: C and D (one or two) beside A and B
     CompareLayout compareLayout = CompareLayout::SideBySide;
     float wipe = 0.5f;                // Wipe: divider across the view, 0..1 (dragged in the view)
     bool draggingWipe = false;
@@ -48,6 +50,10 @@ struct UiState {
     bool quitRequested = false;
     bool showUi = true;               // F1 or H toggles; false: nothing over the view but labels
     float uiScale = 1.0f;             // fonts and sizes (a projector wants 1.5 to 2)
+    // Presenter mode (P, --presenter): full screen, the panel hidden, the step's caption large
+    // on the view with its figures beside it. `showHelp`: the overlay of every key (`?`).
+    bool presenter = false;
+    bool showHelp = false;
     ViewLayout layout;                // this frame's (the session computes it before the panel)
     std::string frameError;
     std::vector<UiCommand> commands;
@@ -65,11 +71,19 @@ struct UiState {
     // The shown step's camera and light path (a step with "path"): one path frame per window
     // frame from `pathCamera` and `pathLight` (the step's), looping; restarting the step starts
     // it again. Paused, the camera is the user's again.
+    // Outside tours the panel's "Paths" section plays one the same way. `pathName` and
+    // `pathFrames` are what the step (or the panel) asked for, so a saved session keeps them;
+    // `pathSpeed` path frames per window frame (the fraction accumulates in `pathClock`).
     std::optional<CameraPath> path;
+    std::string pathName;
+    int pathFrames = 0;
     SceneCamera pathCamera;
     LightInfo pathLight;
     int pathFrame = 0;
+    float pathSpeed = 1.0f;
+    float pathClock = 0.0f;
     bool pathPlaying = true;
+    std::string pathStatus;           // what the panel's last PlayPath said (an error names the path)
 
     // Accuracy measured on demand ("Measure accuracy"): one result per side of the view, and
     // every measurement of this session for the error-against-milliseconds plot.
@@ -86,7 +100,7 @@ struct UiState {
     float measureProgress = 0.0f;     // 0..1
     std::string measureStage;         // what it is doing ("tracing the reference, image 1 of 2")
     std::string staleReason;          // why the shown measurement no longer matches the view ("" = current)
-    std::map<std::string, double> sideTimings[2];   // GPU ms per pass of each side's latest frame
+    std::map<std::string, double> sideTimings[kMaxGridSides];   // GPU ms per pass of each side's latest frame
     struct MeasuredPoint {
         std::string label;
         double gpuMs;
@@ -94,6 +108,13 @@ struct UiState {
     };
     std::vector<MeasuredPoint> measured;
 };
+
+// The techniques on screen, in the order of their cells: A; A and B when comparing; A, B, C (and
+// D) in the grid layout.
+std::vector<std::string> shownTechniques(const UiState& state);
+
+// Presenter mode on or off: on hides the panel (and the help overlay); off shows it again.
+void setPresenter(UiState& state, bool on);
 
 class Ui {
 public:
@@ -104,11 +125,15 @@ public:
     void draw(App& app, UiState& state, float frameSeconds, GLuint framebuffer, glm::ivec2 display);
     bool wantsMouse() const;
     bool wantsKeyboard() const;
+    // Whether `p` (window pixels) grabs the wipe's divider: the frame loop asks before it moves
+    // the camera, the overlay before it starts a drag, so a drag of the handle never orbits.
+    bool onWipeHandle(const UiState& state, glm::vec2 p) const;
 
 private:
     void applyScale(float scale);
     void drawViewOverlay(App& app, UiState& state);
     void drawPanel(App& app, UiState& state);
+    void drawComparePicker(App& app, UiState& state);
     // Sections of the panel (ui.cpp).
     void drawViewSection(App& app, UiState& state);
     void drawAccuracySection(App& app, UiState& state);
@@ -117,11 +142,20 @@ private:
     void drawReloadSection(App& app);
     void drawHostSection(App& app);
     void drawStatusLine(App& app, const UiState& state, bool overlay);
+    void drawPresenterOverlay(App& app, const UiState& state);   // presenter.cpp
+    void drawHelpOverlay(const UiState& state);                   // presenter.cpp
+    void drawViewLegend(App& app, const UiState& state);          // view_legends.cpp
+    void drawKernelInset(App& app, const UiState& state, glm::ivec2 probe, bool top);
+    void drawPathSection(App& app, UiState& state);               // tour_panel.cpp
     void drawTourPlayer(App& app, UiState& state);   // tour_panel.cpp
     void drawLessonSection(App& app, UiState& state); // tour_panel.cpp
     bool initialised_ = false;
     GLFWwindow* window_ = nullptr;
     ImGuiGlRenderer renderer_;
+    ImFont* largeFont_ = nullptr;     // presenter captions (null: the panel's font, scaled)
+    int scrolledToStep_ = -1;         // the tour step the panel last scrolled back to
+    const Tour* scrolledTour_ = nullptr;
+    std::string pathChoice_ = "orbit";
     glm::vec2 initialCursor_{0.0f};
     float appliedScale_ = 0.0f;
     float smoothedFrameMs_ = 0.0f;
