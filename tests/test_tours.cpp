@@ -660,6 +660,8 @@ TEST(TourExpect, TheWindowAndTheToursJudgeATechniqueAgainstTheSameReference) {
     // The window starts on that rule (0: each technique's own), unless --measure-reference says hard or soft.
     EXPECT_EQ(UiState{}.referenceMode, 0);
     EXPECT_EQ(InteractiveOptions{}.referenceMode, 0);
+}
+
 // Issue 29: a session saved while a path plays keeps the path: the saved step is the path's start
 // (camera and light) and the path itself, so loading it plays the same frames again rather than
 // freezing the frame it was saved on.
