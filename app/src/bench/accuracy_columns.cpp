@@ -84,31 +84,37 @@ bool referenceModesFor(const std::string& reference, const TechniqueInfo& info, 
     return true;
 }
 
-bool addAccuracyColumns(App& app, const TechniqueInfo& info, const AccuracyRequest& request, nlohmann::json& columns,
-                        std::string& error, const std::function<void(const AccuracyPass&, const Evaluation&)>& each) {
+bool captureAccuracy(App& app, const TechniqueInfo& info, AccuracyCapture& capture, nlohmann::json& columns,
+                     std::string& error) {
     // Physical in the plain columns (hard_mae, ...), the technique's own model where it differs
     // in hard_own_* / soft_own_* (docs/benchmarks.md, "Translucency models").
     columns["translucency_model"] = translucencyModelName(info.translucencyModel);
-    const std::vector<TranslucencyModel> models = judgedModels(info.translucencyModel, app.scene());
+    capture.models = judgedModels(info.translucencyModel, app.scene());
     // One re-render and readback serves every pass: the passes differ in the reference only.
-    EvaluationInput input;
     ImmediateReader reader;
     const auto captureStart = std::chrono::steady_clock::now();
-    if (!app.captureEvaluation(input, reader, error)) return false;
+    if (!app.captureEvaluation(capture.input, reader, error)) return false;
     columns["seconds_accuracy_render"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - captureStart).count();
+    return true;
+}
+
+bool evaluateAccuracy(App& app, const AccuracyRequest& request, const AccuracyCapture& capture, nlohmann::json& columns,
+                      std::string& error, const std::function<void(const AccuracyPass&, const Evaluation&)>& each) {
     bool footprintDone = false;
     for (const ReferenceOptions::Mode mode : request.modes) {
-        for (const TranslucencyModel model : models) {
+        for (const TranslucencyModel model : capture.models) {
             ReferenceOptions options;
             options.mode = mode;
             options.samplesPerPixel = request.samples;
             options.adaptive = request.adaptive;
             options.model = model;
+            options.threads = request.threads;
             Evaluation evaluation;
             // The footprint depends on the capture only; addPassColumns reads it from the
             // first physical pass.
             const bool withFootprint = !footprintDone && model == TranslucencyModel::Physical;
-            if (!app.evaluateCapture(input, options, evaluation, error, {withFootprint, false, request.contactBand})) return false;
+            if (!app.evaluateCapture(capture.input, options, evaluation, error, {withFootprint, false, request.contactBand}))
+                return false;
             footprintDone = footprintDone || withFootprint;
             // Where the evaluation's wall time went (docs/benchmarks.md, seconds_row).
             columns["seconds_reference"] = columns.value("seconds_reference", 0.0) + evaluation.traceSeconds;
@@ -123,6 +129,12 @@ bool addAccuracyColumns(App& app, const TechniqueInfo& info, const AccuracyReque
         }
     }
     return true;
+}
+
+bool addAccuracyColumns(App& app, const TechniqueInfo& info, const AccuracyRequest& request, nlohmann::json& columns,
+                        std::string& error, const std::function<void(const AccuracyPass&, const Evaluation&)>& each) {
+    AccuracyCapture capture;
+    return captureAccuracy(app, info, capture, columns, error) && evaluateAccuracy(app, request, capture, columns, error, each);
 }
 
 } // namespace shadowlab

@@ -48,6 +48,9 @@ struct BenchSpec {
     bool referenceAdaptive = true;
     bool depthFloor = false;                 // add "depth-floor" rows (bare depth pass per resolution)
     bool contactBand = false;                // hard_contact_* columns (one more shadow ray a pixel)
+    // A row's evaluation beside the next row's timed frames (bench.cpp, PendingEvaluation); not
+    // a spec key: --overlap-accuracy off of bench and report, to compare timings without it.
+    bool overlapAccuracy = true;
     bool fromCommandLine = false;            // errors name options (--sweep) rather than fields (sweep)
     // The file it was read from ("spec.json", or "spec.json: spec 2" in an array): checkBenchSpec's
     // errors start with it, so a bad technique in a file does not read like a command-line error.
