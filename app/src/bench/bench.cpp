@@ -334,7 +334,7 @@ class BenchRun {
 public:
     BenchRun(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows, const BenchHooks& hooks, size_t jobs)
         : app_(app), spec_(spec), rows_(rows), hooks_(hooks), jobs_(jobs), none_(app.techniques().find("none")),
-          environment_(benchEnvironment(app)), savedHost_(app.hostValues()) {}
+          environment_(benchEnvironment(app)), savedHost_(app.hostValues()), rowsBefore_(rows.size()) {}
     ~BenchRun() { app_.params().values(hostParams()) = savedHost_; }   // host.* sweeps change them per row
 
     bool run(const std::vector<BenchJob>& jobs, std::string& error) {
@@ -454,9 +454,10 @@ private:
     bool completeRow(nlohmann::json& row, bool timeRow = true) {
         if (timeRow) row["seconds_row"] = secondsSince(rowStart_);
         rows_.push_back(row);
+        const size_t done = rows_.size() - rowsBefore_;   // rows_ may hold earlier specs' rows
         const double elapsed = secondsSince(started_);
-        const double left = elapsed / double(rows_.size()) * double(jobs_ - std::min(jobs_, rows_.size()));
-        std::fprintf(stderr, "bench: row %zu of %zu, %s elapsed, about %s left\n", rows_.size(), jobs_,
+        const double left = elapsed / double(done) * double(jobs_ - std::min(jobs_, done));
+        std::fprintf(stderr, "bench: row %zu of %zu, %s elapsed, about %s left\n", done, jobs_,
                      durationText(elapsed).c_str(), durationText(left).c_str());
         if (hooks_.onRow) hooks_.onRow(row);
         return true;
@@ -474,6 +475,7 @@ private:
     const TechniqueInfo* none_;
     const nlohmann::json environment_;
     const std::vector<double> savedHost_;
+    const size_t rowsBefore_;
     const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
     std::chrono::steady_clock::time_point rowStart_;
     LightInfo sceneLight_;
