@@ -1,0 +1,118 @@
+// Trapezoidal shadow maps (Martin and Tan 2004; seed 002 sec. 7.3): the camera frustum, focused on
+// the visible scene, is approximated in the light's post-perspective space by a trapezoid, which
+// the 2D perspective transform N_T stretches onto the whole map, so texels crowd towards the
+// viewer. The trapezoid's projection centre is placed so that the focus point (a fraction `focus`
+// of the visible depth range along the view axis) lands on the map's 80% line (`line`): the paper's
+// 80% rule. kit/trapezoid.h derives it (seed 002 gives no equation for TSM).
+// Depth: the paper's fix for the polygon-offset problem of a warped depth, depth kept out of N_T:
+// the map stores linear depth along the light written per fragment, with eq. 5.2's bias there, or
+// the two-layer biases of ch. 5 (kit::LayeredDepthMap).
+// Known artefacts: like LiSPSM it degenerates to the focused uniform map when view and light are
+// nearly parallel (duelling frusta); the focus point far along the view (focus near 1) weakens the
+// warp, near 0 warps hardest (far shadows blocky). Point lights: the focused uniform map.
+#include <shadowlab/kit/focus.h>
+#include <shadowlab/kit/layered_depth.h>
+#include <shadowlab/kit/params.h>
+#include <shadowlab/kit/technique_base.h>
+#include <shadowlab/kit/trapezoid.h>
+
+namespace {
+
+using namespace shadowlab;
+
+constexpr ParamDesc kFocus{"focus", "focus point", ParamType::Float, 0.01, 0.95, 0.3, "of the depth range",
+     "Where the focus point lies along the view axis, as a fraction of the visible depth range (nearest to "
+     "farthest visible point): the paper's focus region, whose far end is mapped to the `line` line of the "
+     "map. Smaller warps harder (near shadows sharper, far ones blockier); larger tends to the uniform map.",
+     nullptr};
+constexpr ParamDesc kLine{"line", "focus line", ParamType::Float, 0.1, 0.9, 0.8, "of the map",
+     "The paper's 80% rule: the fraction of the map, from the near (top) edge of the trapezoid, that the "
+     "focus region fills.", nullptr};
+
+#define TSM_PARAMS(X)                                    \
+    X(int, resolution, kit::resolutionParam())           \
+    X(float, focus, kFocus)                              \
+    X(float, line, kLine)                                \
+    SHADOWLAB_BIAS_PARAMS(X, 65536, 2)                   \
+    X(bool, hardware_filter, kit::hardwareFilterParam()) \
+    X(bool, snap, kit::snapParam())                      \
+    SHADOWLAB_TWO_LAYER_PARAMS(X)
+SHADOWLAB_PARAMS(Params, TSM_PARAMS);
+
+class TrapezoidalShadowMaps final : public kit::TechniqueBase {
+    bool setup(std::string& error) override { return maps_.create(host(), error); }
+
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        const Params p = Params::read(params);
+        const kit::DepthMapConfig config = kit::depthMapConfig(p);
+        GpuPass pass(host(), "shadow map");
+        const kit::FocusedLightSpace focused =
+            kit::focusLightSpace(host(), frame, {kit::Fit::FocusBody, p.snap}, config.resolution);
+        LightSpace lightSpace = focused.light;
+        const auto trapezoid = trapezoidFor(frame, p, focused);
+        if (trapezoid) {
+            lightSpace.viewProjection = trapezoid->viewProjection;
+            lightSpace.projection = trapezoid->viewProjection * glm::inverse(lightSpace.view);
+            lightSpace.perspective = true;
+        }
+        host().reportStatistic("warped", trapezoid ? 1.0 : 0.0);
+        host().reportStatistic("eta / lambda", trapezoid ? trapezoid->eta / trapezoid->lambda : 0.0);
+        kit::LayeredDepthConfig layered = kit::layeredDepthConfig(p);
+        layered.fragmentBias = true;
+        layered.linearDepthPlane = kit::linearDepthPlane(lightSpace, focused.body, host().bounds(DrawSet::All));
+        // N_T's z is 0: depth clamp keeps casters from being clipped by it; depth is written per fragment.
+        glEnable(GL_DEPTH_CLAMP);
+        maps_.draw(lightSpace, config, layered, focused.cullPlanes);
+        glDisable(GL_DEPTH_CLAMP);
+        maps_.map().setFocusBody(focused.body);
+        maps_.map().reportToHost();
+    }
+
+    // The trapezoid around B's image, its centre line along the view axis from the nearest to the
+    // farthest visible point (V n S, as lispsm focuses), the focus point `focus` along it.
+    std::optional<tsm::Trapezoid> trapezoidFor(const FrameContext& frame, const Params& p,
+                                               const kit::FocusedLightSpace& focused) const {
+        if (frame.light.type == LightType::Point || focused.body.empty()) return std::nullopt;
+        kit::ConvexBody visible = kit::frustumBody(frame.camera.inverseViewProjection);
+        kit::clip(visible, host().bounds(DrawSet::All));
+        float nearest = 1e30f, farthest = 0.0f;
+        for (const glm::vec3& v : visible.vertices()) {
+            const float depth = -(frame.camera.view * glm::vec4(v, 1.0f)).z;
+            nearest = std::min(nearest, depth);
+            farthest = std::max(farthest, depth);
+        }
+        nearest = std::max(nearest, frame.camera.nearPlane);
+        if (!(farthest > nearest)) return std::nullopt;
+        const glm::vec3 eye = frame.camera.position;
+        const glm::vec3 view = -glm::normalize(glm::vec3(frame.camera.view[0][2], frame.camera.view[1][2], frame.camera.view[2][2]));
+        const tsm::TrapezoidInput input{.body = focused.body.vertices(),
+                                        .nearCentre = eye + view * nearest,
+                                        .farCentre = eye + view * farthest,
+                                        .focusPoint = eye + view * (nearest + p.focus * (farthest - nearest)),
+                                        .line = p.line};
+        return tsm::fitTrapezoid(focused.light.viewProjection, input);
+    }
+
+    void bindMainPass(const FrameContext&, const ParamValues& params) override {
+        maps_.bindMainPass(Params::read(params).hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+    }
+
+    kit::LayeredDepthMap maps_;
+};
+
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
+    {.id = "tsm",
+     .displayName = "Trapezoidal shadow maps",
+     .category = "hard",
+     .explanation = "Shadow mapping focused on the visible scene, then warped by the 2D perspective that stretches a "
+                    "trapezoid around the camera frustum's image in the light's view onto the whole map (Martin and "
+                    "Tan 2004; seed 002 sec. 7.3): near shadows get the texels. The focus point (focus, along the "
+                    "view) is mapped to the 80% line (line) of the map. Depth is linear along the light, kept out "
+                    "of the warp, so one bias fits near and far. Looking along the light it falls back to the "
+                    "plain focused map, like lispsm. Compare with lispsm and psm on forest-002 and aliasing-plane.",
+     .shadowGlsl = "tsm.glsl"},
+    Params::table);
+
+} // namespace
+
+SHADOWLAB_PLUGIN(TrapezoidalShadowMaps, kDescriptor)

@@ -1,0 +1,131 @@
+// Trapezoidal shadow maps (kit/trapezoid.h, plugins/tsm), LiSPSM's spot-light warp (sec. 8.2.4 /
+// 9.2.3, lispsm_warp.h's spotWarp) and the kit's two-layer biases in shadowmap and psm
+// (kit/layered_depth.h, seed 002 eq. 5.1): the matrices by hand, then rendered against the
+// reference.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "camera.h"
+#include "render/light_space.h"
+#include "shadowlab/kit/focus.h"
+#include "shadowlab/kit/lispsm_warp.h"
+#include "shadowlab/kit/trapezoid.h"
+#include "test_support.h"
+
+using namespace shadowlab;
+
+namespace {
+
+const Bounds kTsmScene{{-50, 0, -50}, {50, 20, 50}};
+
+CameraInfo tsmCamera(glm::vec3 eye, glm::vec3 target, float nearPlane, float farPlane) {
+    CameraInfo c{};
+    c.position = eye;
+    c.view = glm::lookAt(eye, target, glm::vec3(0, 1, 0));
+    c.projection = glm::perspective(glm::radians(60.0f), 1.0f, nearPlane, farPlane);
+    c.viewProjection = c.projection * c.view;
+    c.nearPlane = nearPlane;
+    c.farPlane = farPlane;
+    c.fovY = glm::radians(60.0f);
+    c.aspect = 1.0f;
+    completeCameraInfo(c);
+    return c;
+}
+
+glm::vec3 tsmNdc(const glm::mat4& m, glm::vec3 p) {
+    const glm::vec4 c = m * glm::vec4(p, 1.0f);
+    EXPECT_GT(c.w, 0.0f);
+    return glm::vec3(c) / c.w;
+}
+
+// The focused light space and B of a directional light straight down, as the plugin builds them.
+struct TsmSetup {
+    CameraInfo camera;
+    kit::FocusedLightSpace focused;
+    tsm::TrapezoidInput input;
+};
+
+TsmSetup tsmSetup(glm::vec3 target) {
+    TsmSetup s;
+    s.camera = tsmCamera({0, 5, 0}, target, 1.0f, 40.0f);
+    LightInfo light{};
+    light.type = LightType::Directional;
+    light.direction = {0, -1, 0};
+    s.focused = kit::focusLightSpace(fitLightSpace(light, kTsmScene), s.camera, light, kTsmScene,
+                                     {kit::Fit::FocusBody, false}, 1024);
+    const glm::vec3 v = glm::normalize(target - s.camera.position);
+    s.input = {.body = s.focused.body.vertices(), .nearCentre = s.camera.position + v * 1.0f,
+               .farCentre = s.camera.position + v * 40.0f, .focusPoint = s.camera.position + v * 12.7f, .line = 0.8};
+    return s;
+}
+
+} // namespace
+
+// The paper's construction on the seed's optimal case (view level, light straight down): the whole
+// of B inside the map, the trapezoid's corners on the square's, the focus point on the 80% line
+// (y = 0.6, eta by the re-derived formula), light rays kept (same texel at every height), and the
+// degenerate view along the light refused (the uniform fallback).
+TEST(Tsm, TrapezoidHoldsTheBodyAndPutsTheFocusPointOnThe80PercentLine) {
+    const TsmSetup s = tsmSetup({0, 5, -10});
+    ASSERT_FALSE(s.focused.body.empty());
+    const auto t = tsm::fitTrapezoid(s.focused.light.viewProjection, s.input);
+    ASSERT_TRUE(t);
+    for (const glm::vec3& p : s.input.body) {
+        const glm::vec3 q = tsmNdc(t->viewProjection, p);
+        EXPECT_LE(std::abs(q.x), 1.0f + 1e-4f);
+        EXPECT_LE(std::abs(q.y), 1.0f + 1e-4f);
+    }
+    EXPECT_NEAR(tsmNdc(t->viewProjection, s.input.focusPoint).y, 0.6f, 1e-4f);
+    EXPECT_NEAR(tsmNdc(t->viewProjection, s.input.nearCentre).y, -1.0f, 1e-4f) << "the near plane is the top line";
+    const double xi = 0.6;
+    EXPECT_NEAR(t->eta, t->lambda * t->deltaPrime * (1 - xi) / (t->lambda * (1 + xi) - 2 * t->deltaPrime), 1e-9);
+    for (int i = 0; i < 4; ++i) {
+        const glm::vec4 c = t->nt * glm::vec4(t->corners[i], 0.0f, 1.0f);
+        EXPECT_NEAR(std::abs(c.x / c.w), 1.0f, 1e-4f) << i;
+        EXPECT_NEAR(c.y / c.w, i < 2 ? -1.0f : 1.0f, 1e-4f) << i;
+    }
+    const glm::vec3 low = tsmNdc(t->viewProjection, {3, 0, -20}), high = tsmNdc(t->viewProjection, {3, 15, -20});
+    EXPECT_NEAR(glm::distance(glm::vec2(low), glm::vec2(high)), 0.0f, 1e-5f);
+    // Texels towards the viewer: a metre of ground near the eye spans more of the map than one far.
+    const float nearSpan = glm::distance(tsmNdc(t->viewProjection, {0, 0, -2}), tsmNdc(t->viewProjection, {0, 0, -3}));
+    const float farSpan = glm::distance(tsmNdc(t->viewProjection, {0, 0, -30}), tsmNdc(t->viewProjection, {0, 0, -31}));
+    EXPECT_GT(nearSpan, 5.0f * farSpan);
+    // Looking straight down the light: no trapezoid.
+    const TsmSetup down = tsmSetup({0.001f, -10, 0});
+    EXPECT_FALSE(tsm::fitTrapezoid(down.focused.light.viewProjection, down.input));
+}
+
+// The general case (sec. 8.2.4 / 9.2.3): a spot light's warp built in its post-perspective space.
+// B stays inside the map, rays from the spot stay rays of the map (one texel, depth growing along
+// them), and the texels crowd towards the viewer compared with the focused uniform map.
+TEST(Lispsm, SpotWarpInThePostPerspectiveSpace) {
+    LightInfo spot{};
+    spot.type = LightType::Spot;
+    spot.position = {0, 15, -4};
+    spot.direction = {0, -1, 0};
+    spot.spotOuterAngle = glm::radians(40.0f);
+    const CameraInfo camera = tsmCamera({0, 2, 2}, {0, 1, -6}, 0.5f, 20.0f);
+    const kit::FocusedLightSpace focused =
+        kit::focusLightSpace(fitLightSpace(spot, kTsmScene), camera, spot, kTsmScene, {kit::Fit::FocusBody, false}, 1024);
+    ASSERT_FALSE(focused.body.empty());
+    const auto warp = lispsm::spotWarp(focused.body.vertices(), focused.light.viewProjection, camera, 0.5f, {});
+    ASSERT_TRUE(warp);
+    for (const glm::vec3& p : focused.body.vertices()) {
+        const glm::vec3 q = tsmNdc(warp->viewProjection, p);
+        EXPECT_LE(std::abs(q.x), 1.0f + 1e-3f);
+        EXPECT_LE(std::abs(q.y), 1.0f + 1e-3f);
+    }
+    const glm::vec3 ground{1, 0, -5}, along = glm::normalize(ground - spot.position);
+    const glm::vec3 a = tsmNdc(warp->viewProjection, spot.position + along * 5.0f), b = tsmNdc(warp->viewProjection, ground);
+    EXPECT_NEAR(glm::distance(glm::vec2(a), glm::vec2(b)), 0.0f, 1e-4f) << "a ray from the spot is one texel";
+    EXPECT_LT(a.z, b.z);
+    auto ratio = [&](const glm::mat4& m) {
+        const float nearSpan = glm::distance(tsmNdc(m, {0, 0, -0.5f}), tsmNdc(m, {0, 0, -1.0f}));
+        const float farSpan = glm::distance(tsmNdc(m, {0, 0, -9.5f}), tsmNdc(m, {0, 0, -10.0f}));
+        return nearSpan / farSpan;
+    };
+    std::printf("spot: near / far map span of half a metre: warped %.2f, uniform %.2f\n", ratio(warp->viewProjection),
+                ratio(focused.light.viewProjection));
+    EXPECT_GT(ratio(warp->viewProjection), 1.5f * ratio(focused.light.viewProjection));
+}
