@@ -15,6 +15,7 @@
 #include <shadowlab/kit/focus.h>
 #include <shadowlab/kit/layered_depth.h>
 #include <shadowlab/kit/params.h>
+#include <shadowlab/kit/receiver_range.h>
 #include <shadowlab/kit/technique_base.h>
 
 #include "shadowlab/kit/lispsm_warp.h"
@@ -52,6 +53,7 @@ constexpr ParamDesc kDepth{"depth", "stored depth", ParamType::Enum, 0, 1, 0, ""
     X(float, n_factor, kNFactor)                         \
     X(float, virtual_far, kVirtualFar)                   \
     X(bool, body_vector, kBodyVector)                    \
+    X(int, range, kit::warpRangeParam())                 \
     SHADOWLAB_BIAS_PARAMS(X, 65536, 2)                   \
     X(bool, hardware_filter, kit::hardwareFilterParam()) \
     X(bool, snap, kit::snapParam())                      \
@@ -61,7 +63,8 @@ SHADOWLAB_PARAMS(Params, LISPSM_PARAMS);
 using Id = Params::Id;
 
 class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
-    bool setup(std::string& error) override { return maps_.create(host(), error); }
+    bool setup(std::string& error) override { return maps_.create(host(), error) && range_.create(host(), error); }
+    void shutdown() override { range_.destroy(); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
@@ -101,15 +104,20 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
         kit::clip(visible, scene);
         lispsm::WarpOptions options;
         options.nFactor = p.n_factor;
-        // Sec. 9.2.5: n from the body of the virtual frustum (only where it is nearer than the real one).
-        if (p.virtual_far > 0.0f && p.virtual_far < frame.camera.farPlane)
-            options.bodyForN = kit::focusBody(lispsm::virtualViewBody(frame.camera, p.virtual_far), frame.light, scene,
+        // The near and far distances: the visible scene's, or the receivers' measured (kit/receiver_range.h).
+        const kit::DepthRange range = range_.range(frame, p.range == 1);
+        // Sec. 9.2.5: n from the body of the virtual frustum (only where it is nearer than the real one);
+        // with range = receivers the farthest receiver is one.
+        float farForN = p.virtual_far > 0.0f ? p.virtual_far : frame.camera.farPlane;
+        if (p.range == 1) farForN = std::min(farForN, range.farDistance);
+        if (farForN < frame.camera.farPlane)
+            options.bodyForN = kit::focusBody(lispsm::virtualViewBody(frame.camera, farForN), frame.light, scene,
                                               focused.light).vertices();
         // Sec. 9.2.6: the axis from the body vector of B's corners.
         if (p.body_vector)
             options.axisSource = lispsm::bodyVector(focused.body.corners(kit::focus_detail::toleranceFor(focused.body)),
                                                      frame.camera.position);
-        const float nearest = lispsm::nearestEyeDepth(frame.camera, visible.vertices());
+        const float nearest = std::max(lispsm::nearestEyeDepth(frame.camera, visible.vertices()), range.nearDistance);
         if (frame.light.type == LightType::Spot)
             return lispsm::spotWarp(focused.body.vertices(), focused.light.viewProjection, frame.camera, nearest, options);
         return lispsm::directionalWarp(focused.body.vertices(), frame.light.direction, frame.camera, nearest, options);
@@ -120,7 +128,10 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
     }
 
     kit::LayeredDepthMap maps_;
+    kit::ReceiverRange range_;
 };
+
+constexpr FlagCondition kFlagConditions[] = {kit::kReceiverRangeNeedsPrepass};
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "lispsm",
@@ -136,8 +147,9 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "views: footprint (the warp's texels per pixel, near against far), texel-grid and coverage "
                     "(the warped map and its volume), focus-body (B, seed 002 eq. 4.2), and the depth image.",
      .shadowGlsl = "lispsm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore},   // its map holds opaque casters only
-    Params::table);
+     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
+     .flags = kTechniqueNeedsCameraPrepass},           // range = receivers reduces the pre-pass's depth
+    Params::table, kFlagConditions);
 
 } // namespace
 

@@ -13,6 +13,7 @@
 #include <shadowlab/kit/focus.h>
 #include <shadowlab/kit/layered_depth.h>
 #include <shadowlab/kit/params.h>
+#include <shadowlab/kit/receiver_range.h>
 #include <shadowlab/kit/technique_base.h>
 #include <shadowlab/kit/trapezoid.h>
 
@@ -33,6 +34,7 @@ constexpr ParamDesc kLine{"line", "focus line", ParamType::Float, 0.1, 0.9, 0.8,
     X(int, resolution, kit::resolutionParam())           \
     X(float, focus, kFocus)                              \
     X(float, line, kLine)                                \
+    X(int, range, kit::warpRangeParam())                 \
     SHADOWLAB_BIAS_PARAMS(X, 65536, 2)                   \
     X(bool, hardware_filter, kit::hardwareFilterParam()) \
     X(bool, snap, kit::snapParam())                      \
@@ -40,7 +42,8 @@ constexpr ParamDesc kLine{"line", "focus line", ParamType::Float, 0.1, 0.9, 0.8,
 SHADOWLAB_PARAMS(Params, TSM_PARAMS);
 
 class TrapezoidalShadowMaps final : public kit::TechniqueBase {
-    bool setup(std::string& error) override { return maps_.create(host(), error); }
+    bool setup(std::string& error) override { return maps_.create(host(), error) && range_.create(host(), error); }
+    void shutdown() override { range_.destroy(); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
@@ -69,20 +72,13 @@ class TrapezoidalShadowMaps final : public kit::TechniqueBase {
     }
 
     // The trapezoid around B's image, its centre line along the view axis from the nearest to the
-    // farthest visible point (V n S, as lispsm focuses), the focus point `focus` along it.
+    // farthest visible point (V n S, as lispsm focuses, or the receivers' measured range), the focus
+    // point `focus` along it.
     std::optional<tsm::Trapezoid> trapezoidFor(const FrameContext& frame, const Params& p,
-                                               const kit::FocusedLightSpace& focused) const {
+                                               const kit::FocusedLightSpace& focused) {
         if (frame.light.type == LightType::Point || focused.body.empty()) return std::nullopt;
-        kit::ConvexBody visible = kit::frustumBody(frame.camera.inverseViewProjection);
-        kit::clip(visible, host().bounds(DrawSet::All));
-        float nearest = 1e30f, farthest = 0.0f;
-        for (const glm::vec3& v : visible.vertices()) {
-            const float depth = -(frame.camera.view * glm::vec4(v, 1.0f)).z;
-            nearest = std::min(nearest, depth);
-            farthest = std::max(farthest, depth);
-        }
-        nearest = std::max(nearest, frame.camera.nearPlane);
-        if (!(farthest > nearest)) return std::nullopt;
+        const kit::DepthRange range = range_.range(frame, p.range == 1);
+        const float nearest = range.nearDistance, farthest = range.farDistance;
         const glm::vec3 eye = frame.camera.position;
         const glm::vec3 view = -glm::normalize(glm::vec3(frame.camera.view[0][2], frame.camera.view[1][2], frame.camera.view[2][2]));
         const tsm::TrapezoidInput input{.body = focused.body.vertices(),
@@ -98,7 +94,10 @@ class TrapezoidalShadowMaps final : public kit::TechniqueBase {
     }
 
     kit::LayeredDepthMap maps_;
+    kit::ReceiverRange range_;
 };
+
+constexpr FlagCondition kFlagConditions[] = {kit::kReceiverRangeNeedsPrepass};
 
 constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
     {.id = "tsm",
@@ -110,8 +109,9 @@ constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
                     "view) is mapped to the 80% line (line) of the map. Depth is linear along the light, kept out "
                     "of the warp, so one bias fits near and far. Looking along the light it falls back to the "
                     "plain focused map, like lispsm. Compare with lispsm and psm on forest-002 and aliasing-plane.",
-     .shadowGlsl = "tsm.glsl"},
-    Params::table);
+     .shadowGlsl = "tsm.glsl",
+     .flags = kTechniqueNeedsCameraPrepass},   // range = receivers reduces the pre-pass's depth
+    Params::table, kFlagConditions);
 
 } // namespace
 
