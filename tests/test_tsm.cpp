@@ -161,3 +161,75 @@ TEST(Tsm, Forest002NearThirdAgainstTheFocusedMapAndLispsm) {
     EXPECT_LT(trapezoid.footprint.medianByViewDepth[0], 0.5 * uniform.footprint.medianByViewDepth[0]);
     EXPECT_LT(trapezoid.metrics.maeByViewDepth[0], uniform.metrics.maeByViewDepth[0]);
 }
+
+// Sec. 8.2.1's optimal case (aliasing-plane, 64x1024): the trapezoid's error along depth near the
+// viewer (the first full bin, z about 1) far below the focused uniform map's, like LiSPSM's.
+TEST(Tsm, AliasingPlaneNearErrorFarBelowTheUniformMap) {
+    auto app = test::makeHeadlessApp("aliasing-plane", {64, 1024});
+    ASSERT_TRUE(app);
+    const auto firstFull = [](const Evaluation& e) {
+        for (const auto& bin : e.footprint.byViewDepth)
+            if (bin.pixels >= 32) return bin.depthError;
+        return 0.0;
+    };
+    const Evaluation uniform = tsmEvaluate(*app, "shadowmap", {"resolution=2048", "fit=focus-body"});
+    const Evaluation trapezoid = tsmEvaluate(*app, "tsm", {"resolution=2048"});
+    std::printf("aliasing-plane nearest bin dp/ds: uniform %.3f, tsm %.3f\n", firstFull(uniform), firstFull(trapezoid));
+    ASSERT_GT(firstFull(uniform), 0.0);
+    EXPECT_GT(firstFull(trapezoid), 0.0);
+    EXPECT_LT(firstFull(trapezoid), 0.25 * firstFull(uniform));
+}
+
+// LiSPSM's spot-light warp on `spotlight` against the hard reference: no worse than the focused
+// uniform map it replaces (shadowmap fit = focus-body, the old fallback), and smaller texels in
+// the near third.
+TEST(Lispsm, SpotlightWarpAgainstTheUniformFallback) {
+    auto app = test::makeHeadlessApp("spotlight", {320, 240});
+    ASSERT_TRUE(app);
+    const Evaluation uniform = tsmEvaluate(*app, "shadowmap", {"resolution=1024", "fit=focus-body", "cull=front"});
+    const Evaluation warped = tsmEvaluate(*app, "lispsm", {"resolution=1024"});
+    std::printf("spotlight MAE (false shadow, false light) / near-third median m: uniform %.4f (%.4f, %.4f) / %.3f, "
+                "lispsm %.4f (%.4f, %.4f) / %.3f\n",
+                uniform.metrics.mae, uniform.metrics.falseShadowRate, uniform.metrics.falseLightRate,
+                uniform.footprint.medianByViewDepth[0], warped.metrics.mae, warped.metrics.falseShadowRate,
+                warped.metrics.falseLightRate, warped.footprint.medianByViewDepth[0]);
+    EXPECT_LE(warped.metrics.mae, 1.1 * uniform.metrics.mae + 1e-4);
+    EXPECT_LT(warped.footprint.medianByViewDepth[0], 0.8 * uniform.footprint.medianByViewDepth[0]);
+}
+
+// The kit's two-layer biases (seed 002 eq. 5.1) outside lispsm: with no offset at all, shadowmap and
+// psm show acne; the midpoint of two peeled layers removes it without leaking.
+TEST(TwoLayerBias, MidpointRemovesAcneInShadowmapAndPsm) {
+    auto app = test::makeHeadlessApp("forest-002", {256, 160});
+    ASSERT_TRUE(app);
+    for (const char* technique : {"shadowmap", "psm"}) {
+        SCOPED_TRACE(technique);
+        const std::vector<std::string> bare = {"resolution=2048", "constant_bias=0", "slope_bias=0", "cull=none"};
+        std::vector<std::string> midpoint = bare;
+        midpoint.push_back("bias_method=midpoint");
+        const AccuracyMetrics acne = tsmEvaluate(*app, technique, bare).metrics;
+        const AccuracyMetrics fixed = tsmEvaluate(*app, technique, midpoint).metrics;
+        std::printf("%s false shadow / false light %%: no bias %.2f / %.2f, midpoint %.2f / %.2f\n", technique,
+                    100 * acne.falseShadowRate, 100 * acne.falseLightRate, 100 * fixed.falseShadowRate,
+                    100 * fixed.falseLightRate);
+        EXPECT_GT(acne.falseShadowRate, 0.1) << "constant bias 0: acne";
+        EXPECT_LT(fixed.falseShadowRate, 0.25 * acne.falseShadowRate);
+        EXPECT_LT(fixed.falseLightRate, 0.01);
+    }
+}
+
+// The warp's far distance from the visible receivers (range = receivers, the pre-pass's depth range
+// read back a few frames late) against the scene's, on forest-002 by view-depth thirds.
+TEST(WarpRange, ReceiversAgainstTheScene) {
+    auto app = test::makeHeadlessApp("forest-002", {256, 160});
+    ASSERT_TRUE(app);
+    for (const char* technique : {"lispsm", "tsm"}) {
+        SCOPED_TRACE(technique);
+        const AccuracyMetrics scene = tsmEvaluate(*app, technique, {"resolution=2048", "range=scene"}).metrics;
+        const AccuracyMetrics receivers = tsmEvaluate(*app, technique, {"resolution=2048", "range=receivers"}, 4).metrics;
+        std::printf("forest-002 %s MAE near / mid / far: range scene %.4f %.4f %.4f, receivers %.4f %.4f %.4f\n", technique,
+                    scene.maeByViewDepth[0], scene.maeByViewDepth[1], scene.maeByViewDepth[2], receivers.maeByViewDepth[0],
+                    receivers.maeByViewDepth[1], receivers.maeByViewDepth[2]);
+        EXPECT_LT(receivers.maeByViewDepth[2], scene.maeByViewDepth[2]);
+    }
+}

@@ -60,7 +60,6 @@ constexpr ParamDesc kDepth{"depth", "stored depth", ParamType::Enum, 0, 1, 0, ""
     X(int, depth, kDepth)                                \
     SHADOWLAB_TWO_LAYER_PARAMS(X)
 SHADOWLAB_PARAMS(Params, LISPSM_PARAMS);
-using Id = Params::Id;
 
 class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override { return maps_.create(host(), error) && range_.create(host(), error); }
@@ -68,13 +67,15 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
-        kit::DepthMapConfig config = kit::depthMapConfig(p);
+        const kit::DepthMapConfig config = kit::depthMapConfig(p);
+        // The near and far distances (kit/receiver_range.h): its reduction is a pass of its own, before the map's.
+        const kit::DepthRange range = range_.range(frame, p.range == 1);
         GpuPass pass(host(), "shadow map");
         // Step 1 of sec. 9.2.1: focus on B (the uniform fallback when there is no warp).
         const kit::FocusedLightSpace focused =
             kit::focusLightSpace(host(), frame, {kit::Fit::FocusBody, p.snap}, config.resolution);
         LightSpace lightSpace = focused.light;
-        const auto warp = warpFor(frame, p, focused);
+        const auto warp = warpFor(frame, p, focused, range);
         if (warp) {
             // The view stays the light's (the block's light axis reads it); W P L is the whole matrix.
             lightSpace.viewProjection = warp->viewProjection;
@@ -97,15 +98,14 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
 
     // Sec. 9.2.1-9.2.6: the warp of a directional light, or of a spot light in its post-perspective
     // space; none for point lights or where it would be uniform anyway.
-    std::optional<lispsm::Warp> warpFor(const FrameContext& frame, const Params& p, const kit::FocusedLightSpace& focused) {
+    std::optional<lispsm::Warp> warpFor(const FrameContext& frame, const Params& p, const kit::FocusedLightSpace& focused,
+                                        const kit::DepthRange& range) const {
         if (frame.light.type == LightType::Point || focused.body.empty()) return std::nullopt;
         const Bounds scene = host().bounds(DrawSet::All);
         kit::ConvexBody visible = kit::frustumBody(frame.camera.inverseViewProjection);
         kit::clip(visible, scene);
         lispsm::WarpOptions options;
         options.nFactor = p.n_factor;
-        // The near and far distances: the visible scene's, or the receivers' measured (kit/receiver_range.h).
-        const kit::DepthRange range = range_.range(frame, p.range == 1);
         // Sec. 9.2.5: n from the body of the virtual frustum (only where it is nearer than the real one);
         // with range = receivers the farthest receiver is one.
         float farForN = p.virtual_far > 0.0f ? p.virtual_far : frame.camera.farPlane;

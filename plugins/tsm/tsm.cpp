@@ -48,11 +48,13 @@ class TrapezoidalShadowMaps final : public kit::TechniqueBase {
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
         const kit::DepthMapConfig config = kit::depthMapConfig(p);
+        // The near and far distances (kit/receiver_range.h): its reduction is a pass of its own, before the map's.
+        const kit::DepthRange range = range_.range(frame, p.range == 1);
         GpuPass pass(host(), "shadow map");
         const kit::FocusedLightSpace focused =
             kit::focusLightSpace(host(), frame, {kit::Fit::FocusBody, p.snap}, config.resolution);
         LightSpace lightSpace = focused.light;
-        const auto trapezoid = trapezoidFor(frame, p, focused);
+        const auto trapezoid = trapezoidFor(frame, p, focused, range);
         if (trapezoid) {
             lightSpace.viewProjection = trapezoid->viewProjection;
             lightSpace.projection = trapezoid->viewProjection * glm::inverse(lightSpace.view);
@@ -75,9 +77,8 @@ class TrapezoidalShadowMaps final : public kit::TechniqueBase {
     // farthest visible point (V n S, as lispsm focuses, or the receivers' measured range), the focus
     // point `focus` along it.
     std::optional<tsm::Trapezoid> trapezoidFor(const FrameContext& frame, const Params& p,
-                                               const kit::FocusedLightSpace& focused) {
+                                               const kit::FocusedLightSpace& focused, const kit::DepthRange& range) const {
         if (frame.light.type == LightType::Point || focused.body.empty()) return std::nullopt;
-        const kit::DepthRange range = range_.range(frame, p.range == 1);
         const float nearest = range.nearDistance, farthest = range.farDistance;
         const glm::vec3 eye = frame.camera.position;
         const glm::vec3 view = -glm::normalize(glm::vec3(frame.camera.view[0][2], frame.camera.view[1][2], frame.camera.view[2][2]));
