@@ -12,11 +12,8 @@
 // Spot lights: the general case of sec. 8.2.4 / 9.2.3, the warp built in the spot's post-perspective
 // space, where its rays are parallel (lispsm_warp.h's spotWarp). Point lights: a focused uniform map.
 // Biasing (ch. 5) and linear depth: kit::LayeredDepthMap (bias_method, z_offset are the kit's).
-#include <shadowlab/kit/focus.h>
-#include <shadowlab/kit/layered_depth.h>
 #include <shadowlab/kit/params.h>
-#include <shadowlab/kit/receiver_range.h>
-#include <shadowlab/kit/technique_base.h>
+#include <shadowlab/kit/warped_map.h>
 
 #include "shadowlab/kit/lispsm_warp.h"
 
@@ -61,45 +58,13 @@ constexpr ParamDesc kDepth{"depth", "stored depth", ParamType::Enum, 0, 1, 0, ""
     SHADOWLAB_TWO_LAYER_PARAMS(X)
 SHADOWLAB_PARAMS(Params, LISPSM_PARAMS);
 
-class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
-    bool setup(std::string& error) override { return maps_.create(host(), error) && range_.create(host(), error); }
-    void shutdown() override { range_.destroy(); }
-
-    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const Params p = Params::read(params);
-        const kit::DepthMapConfig config = kit::depthMapConfig(p);
-        // The near and far distances (kit/receiver_range.h): its reduction is a pass of its own, before the map's.
-        const kit::DepthRange range = range_.range(frame, p.range == 1);
-        GpuPass pass(host(), "shadow map");
-        // Step 1 of sec. 9.2.1: focus on B (the uniform fallback when there is no warp).
-        const kit::FocusedLightSpace focused =
-            kit::focusLightSpace(host(), frame, {kit::Fit::FocusBody, p.snap}, config.resolution);
-        LightSpace lightSpace = focused.light;
-        const auto warp = warpFor(frame, p, focused, range);
-        if (warp) {
-            // The view stays the light's (the block's light axis reads it); W P L is the whole matrix.
-            lightSpace.viewProjection = warp->viewProjection;
-            lightSpace.projection = warp->viewProjection * glm::inverse(lightSpace.view);
-            lightSpace.perspective = true;
-        }
-        host().reportStatistic("warped", warp ? 1.0 : 0.0);
-        kit::LayeredDepthConfig layered = kit::layeredDepthConfig(p);
-        layered.fragmentBias = true;
-        // Linear depth along the map's axis over B (or the scene where B is empty), 0 to 1.
-        if (p.depth == 1) layered.linearDepthPlane = kit::linearDepthPlane(lightSpace, focused.body, host().bounds(DrawSet::All));
-        // Casters between B and the light's side of the scene are in B; depth clamp keeps any part of
-        // a kept caster beyond the warp's depth range in the map rather than clipping it away.
-        glEnable(GL_DEPTH_CLAMP);
-        maps_.draw(lightSpace, config, layered, focused.cullPlanes);
-        glDisable(GL_DEPTH_CLAMP);
-        maps_.map().setFocusBody(focused.body);
-        maps_.map().reportToHost();
-    }
+class LightSpacePerspectiveShadowMaps final : public kit::WarpedMapTechnique<Params> {
+    bool linearDepth(const Params& p) const override { return p.depth == 1; }
 
     // Sec. 9.2.1-9.2.6: the warp of a directional light, or of a spot light in its post-perspective
     // space; none for point lights or where it would be uniform anyway.
-    std::optional<lispsm::Warp> warpFor(const FrameContext& frame, const Params& p, const kit::FocusedLightSpace& focused,
-                                        const kit::DepthRange& range) const {
+    std::optional<glm::mat4> warp(const FrameContext& frame, const Params& p, const kit::FocusedLightSpace& focused,
+                                  const kit::DepthRange& range) override {
         if (frame.light.type == LightType::Point || focused.body.empty()) return std::nullopt;
         const Bounds scene = host().bounds(DrawSet::All);
         kit::ConvexBody visible = kit::frustumBody(frame.camera.inverseViewProjection);
@@ -118,17 +83,11 @@ class LightSpacePerspectiveShadowMaps final : public kit::TechniqueBase {
             options.axisSource = lispsm::bodyVector(focused.body.corners(kit::focus_detail::toleranceFor(focused.body)),
                                                      frame.camera.position);
         const float nearest = std::max(lispsm::nearestEyeDepth(frame.camera, visible.vertices()), range.nearDistance);
-        if (frame.light.type == LightType::Spot)
-            return lispsm::spotWarp(focused.body.vertices(), focused.light.viewProjection, frame.camera, nearest, options);
-        return lispsm::directionalWarp(focused.body.vertices(), frame.light.direction, frame.camera, nearest, options);
+        const auto w = frame.light.type == LightType::Spot
+                           ? lispsm::spotWarp(focused.body.vertices(), focused.light.viewProjection, frame.camera, nearest, options)
+                           : lispsm::directionalWarp(focused.body.vertices(), frame.light.direction, frame.camera, nearest, options);
+        return w ? std::optional(w->viewProjection) : std::nullopt;
     }
-
-    void bindMainPass(const FrameContext&, const ParamValues& params) override {
-        maps_.bindMainPass(Params::read(params).hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
-    }
-
-    kit::LayeredDepthMap maps_;
-    kit::ReceiverRange range_;
 };
 
 constexpr FlagCondition kFlagConditions[] = {kit::kReceiverRangeNeedsPrepass};
@@ -147,8 +106,8 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "views: footprint (the warp's texels per pixel, near against far), texel-grid and coverage "
                     "(the warped map and its volume), focus-body (B, seed 002 eq. 4.2), and the depth image.",
      .shadowGlsl = "lispsm.glsl",
-     .translucencyModel = TranslucencyModel::Ignore,   // its map holds opaque casters only
-     .flags = kTechniqueNeedsCameraPrepass},           // range = receivers reduces the pre-pass's depth
+     .flags = kTechniqueNeedsCameraPrepass,            // range = receivers reduces the pre-pass's depth
+     .translucencyModel = TranslucencyModel::Ignore},  // its map holds opaque casters only
     Params::table, kFlagConditions);
 
 } // namespace

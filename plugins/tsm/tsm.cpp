@@ -10,12 +10,9 @@
 // Known artefacts: like LiSPSM it degenerates to the focused uniform map when view and light are
 // nearly parallel (duelling frusta); the focus point far along the view (focus near 1) weakens the
 // warp, near 0 warps hardest (far shadows blocky). Point lights: the focused uniform map.
-#include <shadowlab/kit/focus.h>
-#include <shadowlab/kit/layered_depth.h>
 #include <shadowlab/kit/params.h>
-#include <shadowlab/kit/receiver_range.h>
-#include <shadowlab/kit/technique_base.h>
 #include <shadowlab/kit/trapezoid.h>
+#include <shadowlab/kit/warped_map.h>
 
 namespace {
 
@@ -41,43 +38,15 @@ constexpr ParamDesc kLine{"line", "focus line", ParamType::Float, 0.1, 0.9, 0.8,
     SHADOWLAB_TWO_LAYER_PARAMS(X)
 SHADOWLAB_PARAMS(Params, TSM_PARAMS);
 
-class TrapezoidalShadowMaps final : public kit::TechniqueBase {
-    bool setup(std::string& error) override { return maps_.create(host(), error) && range_.create(host(), error); }
-    void shutdown() override { range_.destroy(); }
-
-    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const Params p = Params::read(params);
-        const kit::DepthMapConfig config = kit::depthMapConfig(p);
-        // The near and far distances (kit/receiver_range.h): its reduction is a pass of its own, before the map's.
-        const kit::DepthRange range = range_.range(frame, p.range == 1);
-        GpuPass pass(host(), "shadow map");
-        const kit::FocusedLightSpace focused =
-            kit::focusLightSpace(host(), frame, {kit::Fit::FocusBody, p.snap}, config.resolution);
-        LightSpace lightSpace = focused.light;
-        const auto trapezoid = trapezoidFor(frame, p, focused, range);
-        if (trapezoid) {
-            lightSpace.viewProjection = trapezoid->viewProjection;
-            lightSpace.projection = trapezoid->viewProjection * glm::inverse(lightSpace.view);
-            lightSpace.perspective = true;
-        }
-        host().reportStatistic("warped", trapezoid ? 1.0 : 0.0);
-        host().reportStatistic("eta / lambda", trapezoid ? trapezoid->eta / trapezoid->lambda : 0.0);
-        kit::LayeredDepthConfig layered = kit::layeredDepthConfig(p);
-        layered.fragmentBias = true;
-        layered.linearDepthPlane = kit::linearDepthPlane(lightSpace, focused.body, host().bounds(DrawSet::All));
-        // N_T's z is 0: depth clamp keeps casters from being clipped by it; depth is written per fragment.
-        glEnable(GL_DEPTH_CLAMP);
-        maps_.draw(lightSpace, config, layered, focused.cullPlanes);
-        glDisable(GL_DEPTH_CLAMP);
-        maps_.map().setFocusBody(focused.body);
-        maps_.map().reportToHost();
-    }
+class TrapezoidalShadowMaps final : public kit::WarpedMapTechnique<Params> {
+    // N_T's z row is 0: linear depth along the light, written per fragment (the paper's fix).
+    bool linearDepth(const Params&) const override { return true; }
 
     // The trapezoid around B's image, its centre line along the view axis from the nearest to the
     // farthest visible point (V n S, as lispsm focuses, or the receivers' measured range), the focus
     // point `focus` along it.
-    std::optional<tsm::Trapezoid> trapezoidFor(const FrameContext& frame, const Params& p,
-                                               const kit::FocusedLightSpace& focused, const kit::DepthRange& range) const {
+    std::optional<glm::mat4> warp(const FrameContext& frame, const Params& p, const kit::FocusedLightSpace& focused,
+                                  const kit::DepthRange& range) override {
         if (frame.light.type == LightType::Point || focused.body.empty()) return std::nullopt;
         const float nearest = range.nearDistance, farthest = range.farDistance;
         const glm::vec3 eye = frame.camera.position;
@@ -87,15 +56,10 @@ class TrapezoidalShadowMaps final : public kit::TechniqueBase {
                                         .farCentre = eye + view * farthest,
                                         .focusPoint = eye + view * (nearest + p.focus * (farthest - nearest)),
                                         .line = p.line};
-        return tsm::fitTrapezoid(focused.light.viewProjection, input);
+        const auto trapezoid = tsm::fitTrapezoid(focused.light.viewProjection, input);
+        host().reportStatistic("eta / lambda", trapezoid ? trapezoid->eta / trapezoid->lambda : 0.0);
+        return trapezoid ? std::optional(trapezoid->viewProjection) : std::nullopt;
     }
-
-    void bindMainPass(const FrameContext&, const ParamValues& params) override {
-        maps_.bindMainPass(Params::read(params).hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
-    }
-
-    kit::LayeredDepthMap maps_;
-    kit::ReceiverRange range_;
 };
 
 constexpr FlagCondition kFlagConditions[] = {kit::kReceiverRangeNeedsPrepass};

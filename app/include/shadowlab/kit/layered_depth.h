@@ -104,6 +104,29 @@ public:
         map_.reportToHost();
     }
 
+    // A warped map's frame (lispsm, tsm): the map focused on B (`focused`), its matrix replaced by
+    // `warp` (world -> clip, projective) where there is one (the statistic "warped" says whether),
+    // the bias in the fragment stage, linear depth over B when asked, depth clamp on so that the
+    // parts of kept casters beyond the warp's depth range stay in the map, and B reported.
+    void drawWarped(const FocusedLightSpace& focused, const std::optional<glm::mat4>& warp, const DepthMapConfig& config,
+                    LayeredDepthConfig layered, bool linearDepth) {
+        LightSpace lightSpace = focused.light;
+        if (warp) {
+            // The view stays the light's (the block's light axis reads it); the warp is the whole matrix.
+            lightSpace.viewProjection = *warp;
+            lightSpace.projection = *warp * glm::inverse(lightSpace.view);
+            lightSpace.perspective = true;
+        }
+        host_->reportStatistic("warped", warp ? 1.0 : 0.0);
+        layered.fragmentBias = true;
+        if (linearDepth) layered.linearDepthPlane = linearDepthPlane(lightSpace, focused.body, host_->bounds(DrawSet::All));
+        glEnable(GL_DEPTH_CLAMP);
+        draw(lightSpace, config, layered, focused.cullPlanes);
+        glDisable(GL_DEPTH_CLAMP);
+        map_.setFocusBody(focused.body);
+        map_.reportToHost();
+    }
+
     // One depth pass, or two for the two-layer methods (the second peeled behind the first), from
     // `lightSpace` with the casters culled to `cullPlanes`. The caller owns depth clamp and the timer.
     void draw(const LightSpace& lightSpace, DepthMapConfig config, const LayeredDepthConfig& layered,
