@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "camera.h"
+#include "test_cameras.h"
 #include "render/light_space.h"
 #include "shadowlab/kit/focus.h"
 #include "shadowlab/kit/lispsm_warp.h"
@@ -18,20 +19,6 @@ using namespace shadowlab;
 namespace {
 
 const Bounds kTsmScene{{-50, 0, -50}, {50, 20, 50}};
-
-CameraInfo tsmCamera(glm::vec3 eye, glm::vec3 target, float nearPlane, float farPlane) {
-    CameraInfo c{};
-    c.position = eye;
-    c.view = glm::lookAt(eye, target, glm::vec3(0, 1, 0));
-    c.projection = glm::perspective(glm::radians(60.0f), 1.0f, nearPlane, farPlane);
-    c.viewProjection = c.projection * c.view;
-    c.nearPlane = nearPlane;
-    c.farPlane = farPlane;
-    c.fovY = glm::radians(60.0f);
-    c.aspect = 1.0f;
-    completeCameraInfo(c);
-    return c;
-}
 
 glm::vec3 tsmNdc(const glm::mat4& m, glm::vec3 p) {
     const glm::vec4 c = m * glm::vec4(p, 1.0f);
@@ -48,7 +35,7 @@ struct TsmSetup {
 
 TsmSetup tsmSetup(glm::vec3 target) {
     TsmSetup s;
-    s.camera = tsmCamera({0, 5, 0}, target, 1.0f, 40.0f);
+    s.camera = test::lookAtCamera({0, 5, 0}, target, 1.0f, 40.0f);
     LightInfo light{};
     light.type = LightType::Directional;
     light.direction = {0, -1, 0};
@@ -105,7 +92,7 @@ TEST(Lispsm, SpotWarpInThePostPerspectiveSpace) {
     spot.position = {0, 15, -4};
     spot.direction = {0, -1, 0};
     spot.spotOuterAngle = glm::radians(40.0f);
-    const CameraInfo camera = tsmCamera({0, 2, 2}, {0, 1, -6}, 0.5f, 20.0f);
+    const CameraInfo camera = test::lookAtCamera({0, 2, 2}, {0, 1, -6}, 0.5f, 20.0f);
     const kit::FocusedLightSpace focused =
         kit::focusLightSpace(fitLightSpace(spot, kTsmScene), camera, spot, kTsmScene, {kit::Fit::FocusBody, false}, 1024);
     ASSERT_FALSE(focused.body.empty());
