@@ -167,21 +167,44 @@ TEST(Tsm, AliasingPlaneNearErrorFarBelowTheUniformMap) {
     EXPECT_LT(firstFull(trapezoid), 0.25 * firstFull(uniform));
 }
 
-// LiSPSM's spot-light warp on `spotlight` against the hard reference: no worse than the focused
-// uniform map it replaces (shadowmap fit = focus-body, the old fallback), and smaller texels in
-// the near third.
+// LiSPSM's spot-light warp against the hard reference and the focused uniform map it replaces
+// (shadowmap fit = focus-body, the old fallback). On `spotlight` (the camera 10 m from a lit
+// patch seen between 7 and 15 m: eq. 8.13's z1 / z0 about 2, little to redistribute) no worse in
+// error; on a wide spot over a floor seen from 1.5 m up (2.7 to 30 m) the near texels are about
+// 3.7 times smaller and the error about 2.5 times lower (llvmpipe).
 TEST(Lispsm, SpotlightWarpAgainstTheUniformFallback) {
     auto app = test::makeHeadlessApp("spotlight", {320, 240});
     ASSERT_TRUE(app);
-    const Evaluation uniform = tsmEvaluate(*app, "shadowmap", {"resolution=1024", "fit=focus-body", "cull=front"});
-    const Evaluation warped = tsmEvaluate(*app, "lispsm", {"resolution=1024"});
-    std::printf("spotlight MAE (false shadow, false light) / near-third median m: uniform %.4f (%.4f, %.4f) / %.3f, "
-                "lispsm %.4f (%.4f, %.4f) / %.3f\n",
-                uniform.metrics.mae, uniform.metrics.falseShadowRate, uniform.metrics.falseLightRate,
-                uniform.footprint.medianByViewDepth[0], warped.metrics.mae, warped.metrics.falseShadowRate,
-                warped.metrics.falseLightRate, warped.footprint.medianByViewDepth[0]);
-    EXPECT_LE(warped.metrics.mae, 1.1 * uniform.metrics.mae + 1e-4);
-    EXPECT_LT(warped.footprint.medianByViewDepth[0], 0.8 * uniform.footprint.medianByViewDepth[0]);
+    const AccuracyMetrics uniform = tsmEvaluate(*app, "shadowmap", {"resolution=1024", "fit=focus-body", "cull=front"}).metrics;
+    const AccuracyMetrics warped = tsmEvaluate(*app, "lispsm", {"resolution=1024"}).metrics;
+    std::printf("spotlight MAE (false shadow, false light): uniform %.5f (%.4f, %.4f), lispsm %.5f (%.4f, %.4f)\n",
+                uniform.mae, uniform.falseShadowRate, uniform.falseLightRate, warped.mae, warped.falseShadowRate,
+                warped.falseLightRate);
+    EXPECT_LE(warped.mae, 1.1 * uniform.mae + 1e-4);
+
+    const test::SceneFile floor("spot_floor", R"({"name": "spot-floor", "description": "a wide spot over posts, seen from low",
+        "camera": {"position": [0, 1.5, 14], "target": [0, 0, 0], "fovY": 50, "near": 0.1, "far": 60},
+        "light": {"type": "spot", "position": [4, 12, 0], "target": [0, 0, 0], "outerAngle": 60, "innerAngle": 55},
+        "materials": {"grey": {"baseColor": [0.6, 0.6, 0.6]}},
+        "objects": [{"name": "floor", "shape": "plane", "size": [40, 40], "material": "grey"},
+                    {"name": "a", "shape": "box", "size": [0.5, 2, 0.5], "translate": [-2, 1, 9], "material": "grey"},
+                    {"name": "b", "shape": "box", "size": [0.5, 2, 0.5], "translate": [2, 1, 5], "material": "grey"},
+                    {"name": "c", "shape": "box", "size": [0.5, 2, 0.5], "translate": [-1, 1, 0], "material": "grey"},
+                    {"name": "d", "shape": "box", "size": [0.5, 2, 0.5], "translate": [1, 1, -6], "material": "grey"}]})");
+    auto across = test::makeHeadlessApp(floor.path(), {320, 240});
+    ASSERT_TRUE(across);
+    const Evaluation flat = tsmEvaluate(*across, "shadowmap", {"resolution=1024", "fit=focus-body", "cull=front"});
+    const Evaluation steep = tsmEvaluate(*across, "lispsm", {"resolution=1024"});
+    const auto nearest = [](const Evaluation& e) {
+        for (const auto& bin : e.footprint.byViewDepth)
+            if (bin.pixels >= 1000) return bin.m;
+        return 0.0;
+    };
+    std::printf("spot over a floor, nearest full bin m / MAE: uniform %.3f / %.5f, lispsm %.3f / %.5f\n", nearest(flat),
+                flat.metrics.mae, nearest(steep), steep.metrics.mae);
+    EXPECT_GT(nearest(steep), 0.0);
+    EXPECT_LT(nearest(steep), 0.5 * nearest(flat));
+    EXPECT_LT(steep.metrics.mae, 0.7 * flat.metrics.mae);
 }
 
 // The kit's two-layer biases (seed 002 eq. 5.1) outside lispsm: with no offset at all, shadowmap and
