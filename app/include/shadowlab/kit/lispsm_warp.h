@@ -8,7 +8,8 @@
 //   up     u = v projected off l, normalised  map y, the warp's axis (v: the view direction, or
 //                                             the body vector of sec. 9.2.6)
 //   depth  l (the light's travel direction)   map depth
-// rooted at the eye (directional lights). A point's frame coordinates are (a, b, c) = (s, u, l) .
+// rooted at the eye (directional lights; a spot light's warp is the same in its post-perspective
+// space, spotWarp() below). A point's frame coordinates are (a, b, c) = (s, u, l) .
 // (p - eye). P's projection centre C lies on the eye's (a, c) line, n behind B's near side b_min
 // along u (sec. 9.2.4: C_start on the near plane through e_ls, moved n back); with t = b - b_min + n
 // (the distance from C along u, in [n, n + d] over B):
