@@ -15,7 +15,8 @@ void main() {
     float depth = uLinearDepth == 1 ? vLinearDepth : gl_FragCoord.z;
     float slope = max(abs(dFdx(depth)), abs(dFdy(depth)));
     depth = clamp(depth, 0.0, 1.0) + uSlopeFactor * slope + uConstantUnits * exp2(-24.0);
-    // Same program, same depth for the same surface in both layers: a strict comparison peels it.
-    if (uPeel == 1 && depth <= texelFetch(uFirstLayer, ivec2(gl_FragCoord.xy), 0).r) discard;
+    // Same program, same depth for the same surface in both layers: a strict comparison peels it
+    // (with the stored value's rounding allowed for in a 16- or 24-bit map).
+    if (uPeel == 1 && depth <= texelFetch(uFirstLayer, ivec2(gl_FragCoord.xy), 0).r + uPeelTolerance) discard;
     gl_FragDepth = depth;
 }

@@ -147,6 +147,9 @@ public:
         block.uLinearDepth = layered.linearDepthPlane ? 1 : 0;
         block.uBiasMethod = twoLayers_ ? int(layered.method) : 0;
         block.uZOffset = layered.zOffset;
+        block.uPeelTolerance = config.format == GL_DEPTH_COMPONENT16   ? 1.0f / 65535.0f
+                               : config.format == GL_DEPTH_COMPONENT24 ? 1.0f / 16777215.0f
+                                                                       : 0.0f;
         if (twoLayers_ || layered.linearDepthPlane || layered.fragmentBias) {
             block.uSlopeFactor = config.slopeBias;
             block.uConstantUnits = config.constantBias;

@@ -16,7 +16,7 @@ SHADOWLAB_UNIFORM_BLOCK(LayeredDepthUniforms, 14) {
     float uZOffset;           // eq. 5.1's z_offset, in map depth units [0, 1]
     float uSlopeFactor;       // the slope-scaled bias done in the fragment stage (eq. 5.2), both depths
     float uConstantUnits;     //   and its constant part, in units of 2^-24
-    float uLayeredPad0;
+    float uPeelTolerance;     // peeling: a stored depth's rounding (one unit of a 16- or 24-bit format, 0 for 32F)
     float uLayeredPad1;
 };
 SHADOWLAB_SHARED_END
