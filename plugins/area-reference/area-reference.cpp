@@ -37,11 +37,10 @@ constexpr ParamDesc kResolution{"resolution", "resolution", ParamType::Int, 256,
      "Width and height of each sample's shadow map. Low values add each map's blocky edges to the penumbra; "
      "high values multiply the cost of every one of the N passes.", nullptr};
 
-#define AREA_REFERENCE_PARAMS(X)                      \
-    X(int, samples, kSamples)                         \
-    X(int, resolution, kResolution)                   \
-    X(float, constant_bias, kit::constantBiasParam()) \
-    X(float, slope_bias, kit::slopeBiasParam())
+#define AREA_REFERENCE_PARAMS(X)    \
+    X(int, samples, kSamples)       \
+    X(int, resolution, kResolution) \
+    SHADOWLAB_OFFSET_BIAS_PARAMS(X, 64)
 SHADOWLAB_PARAMS(Params, AREA_REFERENCE_PARAMS);
 
 // Van der Corput radical inverse in base 2: the second Hammersley coordinate.
@@ -163,7 +162,7 @@ class AreaReference final : public kit::TechniqueBase {
     glm::ivec2 viewport_{0};
 };
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueMapsUnviewed,
     {.id = "area-reference",
      .displayName = "Area light reference (N shadow maps)",
      .category = "reference",
@@ -173,9 +172,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "overlapping casters combine correctly. Slow by design (N shadow passes per frame): it is the target "
                    "that single-map techniques such as PCSS approximate. Few samples show banding.",
      .shadowGlsl = "area-reference.glsl",
-     .flags = kTechniqueNeedsCameraPrepass,
-     .translucencyModel = TranslucencyModel::Ignore,   // its maps hold opaque casters only
-     .debugViews = kit::views::kNone},
+     .flags = kTechniqueNeedsCameraPrepass},
     Params::table);
 
 } // namespace
