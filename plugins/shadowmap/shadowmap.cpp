@@ -10,8 +10,7 @@
 // hardware's 2x2 comparison filter (sampler2DShadow with linear filtering).
 // Point lights: a cube of six faces storing the linear distance (kit/cube_depth_map.h), with the
 // same resolution (per face), bias, culling and filter; `fit` and `snap` do not apply to it.
-#include <shadowlab/kit/cube_depth_map.h>
-#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/depth_maps.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
@@ -26,22 +25,18 @@ using namespace shadowlab;
 SHADOWLAB_PARAMS(Params, SHADOWMAP_PARAMS);
 
 class ShadowMapping final : public kit::TechniqueBase {
-    bool setup(std::string& error) override { return map_.create(host(), error) && cube_.create(host(), error); }
+    bool setup(std::string& error) override { return maps_.create(host(), error); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const kit::DepthMapConfig config = kit::depthMapConfig(Params::read(params));
-        if (frame.light.type == LightType::Point) return cube_.render(frame, config);
-        map_.render(frame, config);
+        maps_.render(frame, kit::depthMapConfig(Params::read(params)));
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
         const SamplerKind sampling = Params::read(params).hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
-        if (frame.light.type == LightType::Point) return cube_.bindMainPass(sampling);
-        map_.bindMainPass(sampling);
+        maps_.bindMainPass(frame, sampling, sampling);
     }
 
-    kit::DepthMap map_;
-    kit::CubeDepthMap cube_;
+    kit::DepthMaps maps_;   // the 2D map, or the cube under a point light
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,

@@ -107,6 +107,11 @@ constexpr ParamDesc lightBleedingParam() {
             nullptr};
 }
 
+// The Chebyshev bound's two (seed 000 eq. 3.14 and sec. 3.2.5), as vsm and evsm list them.
+#define SHADOWLAB_CHEBYSHEV_PARAMS(X)                              \
+    X(float, min_variance, ::shadowlab::kit::minVarianceParam()) \
+    X(float, light_bleeding, ::shadowlab::kit::lightBleedingParam())
+
 #define SHADOWLAB_MOMENT_MAP_PARAMS(X, defaultResolution)                                  \
     X(int, resolution, ::shadowlab::kit::momentResolutionParam(defaultResolution))         \
     X(int, kernel, ::shadowlab::kit::momentKernelParam())                                  \
