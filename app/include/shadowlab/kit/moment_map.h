@@ -89,7 +89,8 @@ constexpr ParamDesc momentBlurParam() {
             "fragment|compute"};
 }
 
-// Two that vsm, evsm and msm share, with one meaning (esm has neither): listed by each of them.
+// Two that vsm, evsm and msm share, with one meaning (esm has neither): vsm and evsm list both
+// (SHADOWLAB_CHEBYSHEV_PARAMS below), msm the second alone.
 constexpr ParamDesc minVarianceParam() {
     return {"min_variance", "minimum variance", ParamType::Float, 0, 0.001, 0.00002, "depth^2",
             "Lower clamp of the variance sigma^2, in squared depth normalised to [0, 1] over the casters (seed 000 "
