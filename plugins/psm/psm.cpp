@@ -39,10 +39,7 @@ class PerspectiveShadowMaps final : public kit::TechniqueBase {
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
-        kit::DepthMapConfig config{.resolution = p.resolution,
-                                   .constantBias = p.constant_bias,
-                                   .slopeBias = p.slope_bias,
-                                   .cull = kit::Cull(p.cull)};
+        kit::DepthMapConfig config = kit::depthMapConfig(p);   // no fit parameter: the focus body below
         GpuPass pass(host(), "shadow map");
         // The view from the nearest visible receiver on (psm_space.h), and its B (eq. 4.2): what the
         // map must hold, and what decides the move-back and the near plane.
