@@ -6,26 +6,35 @@
 // the two distances likewise, s_b / (s_o + s_b), in screen space). Elsewhere the plain test.
 #include "light_space.glsl"
 #include "shadowlab/kit/depth_map_shared.h"
+#include "light_depth.glsl"
 #include "cube_shadow.glsl"
+#include "receiver_plane.glsl"
 #include "edtsm_shared.h"
 
 layout(binding = kDepthMapUnit) uniform sampler2D uEdtDepthMap;
 layout(binding = kEdtSitesUnit) uniform sampler2D uEdtNearest;
 
-float edtLit(vec2 texel, float z) {
-    return z <= texelFetch(uEdtDepthMap, ivec2(texel), 0).r ? 1.0 : 0.0;
+// The receiver's depth on its plane at a texel's centre (receiver_plane.glsl): the sites lie up
+// to `reach` texels away, where a tilted receiver's own depth differs.
+float edtReceiverAt(vec2 centre, vec3 mapPos, vec2 gradient) {
+    return mapPos.z + dot(gradient, centre - mapPos.xy);
 }
 
-float edtShadow(vec3 coord) {
-    vec2 P = coord.xy * uLightDepth.w;
+float edtShadow(vec3 mapPos, vec2 gradient) {
+    vec2 P = mapPos.xy;
     vec2 c = floor(P);
-    float hard = edtLit(c, coord.z);
+    float hard = mapPos.z <= texelFetch(uEdtDepthMap, ivec2(c), 0).r ? 1.0 : 0.0;
     vec4 sites = texelFetch(uEdtNearest, ivec2(c), 0);
     vec2 o = sites.xy + 0.5, b = sites.zw + 0.5;   // texel centres
     float toCaster = distance(P, o), toBackground = distance(P, b);
     if (max(toCaster, toBackground) > uEdtReach) return hard;
-    // The two sites must straddle this receiver's own test (the test depends on the receiver).
-    if (edtLit(o, coord.z) != 0.0 || edtLit(b, coord.z) != 1.0) return hard;
+    // The two sites must straddle this receiver's own test (the test depends on the receiver): the
+    // caster site at least an edge's step in front of it, the background site not in front. A
+    // receiver on the caster itself (a sphere near its terminator) keeps the plain test.
+    float casterDepth = lightLinearDepth(texelFetch(uEdtDepthMap, ivec2(o), 0).r, uLightDepth);
+    float receiverAtCaster = lightLinearDepth(edtReceiverAt(o, mapPos, gradient), uLightDepth);
+    if (receiverAtCaster - casterDepth < uEdtMainEdgeDepth) return hard;
+    if (edtReceiverAt(b, mapPos, gradient) > texelFetch(uEdtDepthMap, ivec2(b), 0).r) return hard;
     float signedDistance = 0.5 * (toCaster - toBackground);   // > 0: nearer the lit side
     return clamp(0.5 + signedDistance / uEdtWidth, 0.0, 1.0);
 }
@@ -33,6 +42,8 @@ float edtShadow(vec3 coord) {
 vec3 shadowTerm(ShadowInput s) {
     if (lightType() == LIGHT_POINT) return vec3(cubeShadow(s.worldPos, s.worldNormal, 1, 1.0, 0.0));
     vec3 coord = shadowMapCoord(uShadowMatrix, s.worldPos);
+    vec3 mapPos = vec3(coord.xy * uLightDepth.w, coord.z);
+    vec2 gradient = receiverPlaneGradient(mapPos);   // in uniform control flow
     if (!insideShadowMap(coord)) return vec3(1.0);
-    return vec3(edtShadow(coord));
+    return vec3(edtShadow(mapPos, gradient));
 }

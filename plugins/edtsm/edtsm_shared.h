@@ -17,8 +17,8 @@ SHADOWLAB_UNIFORM_BLOCK(EdtPassUniforms, 3) {
 SHADOWLAB_UNIFORM_BLOCK(EdtMainUniforms, 2) {
     float uEdtWidth;       // texels: width of the transition across the rebuilt edge
     float uEdtReach;       // texels: sites farther than this are ignored (the flood's reach)
-    float uEdtMainPad0;
-    float uEdtMainPad1;
+    float uEdtMainEdgeDepth;   // world units: how far behind the caster-edge site a receiver must lie
+    float uEdtMainPad;
 };
 SHADOWLAB_SHARED_END
 #ifndef __cplusplus
