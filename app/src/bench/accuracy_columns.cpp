@@ -55,6 +55,12 @@ void addPassColumns(const AccuracyPass& pass, const Evaluation& evaluation, nloh
         row[prefix + "contact_false_light"] = a.contactFalseLightRate;
         row[prefix + "contact_band_pixels"] = a.contactBandPixels;
     }
+    if (pass.mode == ReferenceOptions::Mode::Hard) {
+        // Issue 28: the error near hard edges and away from them (groundtruth/edge_band.h).
+        row[prefix + "edge_band_mae"] = a.maeEdgeBand;
+        row[prefix + "off_edge_mae"] = a.maeOffEdgeBand;
+        row[prefix + "edge_band_pixels"] = a.edgeBandPixels;
+    }
     if (pass.mode == ReferenceOptions::Mode::Soft) {
         // The soft reference's own error: soft figures (and differences between them) below
         // about 4x the floor are not resolved.
