@@ -17,6 +17,7 @@
 
 #include "app.h"
 #include "bench/accuracy_columns.h"
+#include "bench/path_run.h"
 #include "util/progress.h"
 #include "util/log.h"
 #include "util/text_file.h"
@@ -489,12 +490,55 @@ private:
 
 } // namespace
 
+// A group with "path": `bench --path` per technique and combination of the parameters it declares,
+// the rows tagged with the group ("spec") and the combination ("param.<key>"). Seed 000 sec. 4.3.2
+// calls adaptive PCF's speed view dependent; one view per row cannot show that, a path can.
+static bool runBenchPathGroup(App& app, const BenchSpec& spec, const std::vector<const TechniqueInfo*>& measured,
+                              std::vector<nlohmann::json>& rows, std::string& error,
+                              const std::function<void(const nlohmann::json&)>& onRow) {
+    if (!app.setRenderSize(spec.sizes.front(), error)) return false;
+    for (const TechniqueInfo* info : measured) {
+        BenchSettingLists lists;
+        for (const auto& [key, values] : spec.sweeps)
+            if (!benchParamFor(*info, key).empty()) lists.emplace_back(key, values);
+        for (const auto& settings : benchCombinations(lists)) {
+            PathBenchOptions options;
+            options.techniques = {info->id};
+            options.scenes = spec.scenes;
+            options.path = spec.path;
+            options.frames = spec.pathFrames;
+            options.warmupFrames = spec.warmupFrames;
+            for (const auto& text : spec.base) {
+                const std::string param = benchParamFor(*info, text.substr(0, text.find('=')));
+                if (!param.empty()) options.sets.push_back(param + text.substr(text.find('=')));
+            }
+            for (const auto& [key, value] : settings) options.sets.push_back(benchParamFor(*info, key) + "=" + value);
+            std::vector<nlohmann::json> measuredRows;
+            auto tagged = [&](const nlohmann::json& row) {
+                nlohmann::json out = row;
+                if (!spec.tag.empty()) out["spec"] = spec.tag;
+                for (const auto& [key, value] : settings) out["param." + benchParamFor(*info, key)] = value;
+                rows.push_back(out);
+                if (onRow) onRow(out);
+            };
+            if (benchPath(app, options, measuredRows, tagged, error) != 0) return false;
+        }
+    }
+    // The next group starts from the scene's own view, not the path's last frame.
+    app.camera().reset(app.scene().camera);
+    return true;
+}
+
 bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows, std::string& error,
               const std::function<void(const nlohmann::json&)>& onRow, const BenchHooks& images) {
     // Every value checked before the first frame; below, conversions cannot fail.
     if (!checkBenchSpec(spec, app.techniques().techniques(), error)) {
         error = "benchmark: " + error;
         return false;
+    }
+    if (!spec.path.empty()) {
+        const auto techniques = benchTechniques(spec, app.techniques().techniques(), error);
+        return techniques && runBenchPathGroup(app, spec, *techniques, rows, error, onRow);
     }
     const auto measured = benchTechniques(spec, app.techniques().techniques(), error);
     if (!measured) return false;

@@ -53,6 +53,17 @@ int commandBench(const CommonOptions& common, std::vector<BenchSpec> specs, cons
             std::string error;
             if (!checkRenderTargets(size, app.renderer().msaaSamples(), 0, error)) return fail(error, kExitBadInput);
         }
+        // A path group's path resolved on each of its scenes before the first frame of any group.
+        for (const std::string& scene : spec.path.empty() ? std::vector<std::string>{} : spec.scenes) {
+            std::string error;
+            CameraPath path;
+            try {
+                if (resolvePath(spec.path, loadScene(scene), BuiltinPathOptions{}, path, error)) continue;
+            } catch (const SceneError& e) {
+                error = e.what();
+            }
+            return fail(spec.source + ": path '" + spec.path + "' on scene '" + scene + "': " + error, kExitBadInput);
+        }
     }
     std::vector<nlohmann::json> rows;
     std::string error;
