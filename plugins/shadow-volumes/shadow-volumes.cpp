@@ -78,13 +78,13 @@ enum Extract : int { kGeometry = 0, kCompute = 1 };
 
 class ShadowVolumes final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
-        if (!volumes_.build(host(), {.vertexFile = "volume.vert", .geometryFile = "volume.geom", .fragmentFile = "volume_count.frag"}, error) ||
-            !edges_.build(host(), {.vertexFile = "volume.vert", .geometryFile = "volume.geom", .fragmentFile = "volume_count.frag",
-                                   .defines = "SHADOW_VOLUME_EDGES 1"}, error) ||
-            !fill_.build(host(), {.vertexFile = "fullscreen.vert", .fragmentFile = "volume_count.frag"}, error) ||
-            !records_.create(host(), error))
-            return false;
-        return counters_.create(), true;
+        const bool built =
+            volumes_.build(host(), {.vertexFile = "volume.vert", .geometryFile = "volume.geom", .fragmentFile = "volume_count.frag"}, error) &&
+            edges_.build(host(), {.vertexFile = "volume.vert", .geometryFile = "volume.geom", .fragmentFile = "volume_count.frag",
+                                  .defines = "SHADOW_VOLUME_EDGES 1"}, error) &&
+            fill_.build(host(), {.vertexFile = "fullscreen.vert", .fragmentFile = "volume_count.frag"}, error) && records_.create(host(), error);
+        if (built) counters_.create();
+        return built;
     }
 
     void shutdown() override {
