@@ -679,7 +679,6 @@ INSTANTIATE_TEST_SUITE_P(BuiltIn, SoftAccuracy, ::testing::Values("cube", "conta
 class PcfGather : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(PcfGather, MatchesTheTapLoopWithinOne8BitLevel) {
-    using Mode = ReferenceOptions::Mode;
     auto app = test::makeHeadlessApp(GetParam(), {320, 240});
     ASSERT_TRUE(app);
     const double level = 1.0 / 255.0;
@@ -699,7 +698,7 @@ TEST_P(PcfGather, MatchesTheTapLoopWithinOne8BitLevel) {
                 auto shadow = [&](const char* sampling) {
                     std::vector<std::string> with = sets;
                     with.push_back(std::string("sampling=") + sampling);
-                    return test::evaluateTechnique(*app, "pcf", with, Mode::Hard, 1).technique;
+                    return test::shadowTerm(*app, "pcf", with);
                 };
                 const auto taps = shadow("taps");
                 for (const char* sampling : {"gather", "folded"}) {
@@ -786,7 +785,7 @@ void writePcfSandbox(const std::filesystem::path& root, const std::string& glsl)
 // pcf's shadow term with `sets` and classify = `classify`.
 std::vector<glm::vec3> pcfShadow(App& app, std::vector<std::string> sets, const char* classify) {
     sets.push_back(std::string("classify=") + classify);
-    return test::evaluateTechnique(app, "pcf", sets, ReferenceOptions::Mode::Hard, 1).technique;
+    return test::shadowTerm(app, "pcf", sets);
 }
 
 } // namespace
@@ -1028,7 +1027,6 @@ INSTANTIATE_TEST_SUITE_P(Users, DepthRangeMips, ::testing::Values("pcss", "adapt
 // depth-range against ring) give the same shadow term on every pixel, with nearest and bilinear
 // taps, per-pixel and per-quad decisions, and both must decide many pixels (or they save nothing).
 TEST(SoftTechniques, DepthRangeDecisionsChangeNoPixel) {
-    using Mode = ReferenceOptions::Mode;
     for (const char* scene : {"contact", "overlap", "dragon-like"}) {
         auto app = test::makeHeadlessApp(scene, {320, 240});
         ASSERT_TRUE(app);
@@ -1050,7 +1048,7 @@ TEST(SoftTechniques, DepthRangeDecisionsChangeNoPixel) {
             auto shadow = [&](const char* variant) {
                 std::vector<std::string> with = c.base;
                 with.push_back(variant);
-                return test::evaluateTechnique(*app, c.technique, with, Mode::Hard, 1).technique;
+                return test::shadowTerm(*app, c.technique, with);
             };
             const auto before = shadow(c.before);
             const auto after = shadow(c.after);
