@@ -71,6 +71,7 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
         error += " (" + describeRenderLimits() + ")";
         return false;
     }
+    renderer_->setBvhSource([this] { return sceneBvhFor(sceneGeneration_); });
     renderer_->setScene(*scene_);
     camera_.reset(scene_->camera);
     setCameraFloor();

@@ -370,11 +370,12 @@ private:
     ReferenceCache referenceCache_;
     uint64_t sceneGeneration_ = 0;         // bumped when the scene changes
     uint64_t groundTruthGeneration_ = ~0ull;
-    // The casters' BVH for the contact band (groundtruth/contact_band.h), built once per scene.
-    std::shared_ptr<const bvh::Bvh> contactBvhFor(uint64_t sceneGeneration);
-    std::mutex contactBvhMutex_;
-    std::shared_ptr<const bvh::Bvh> contactBvh_;
-    uint64_t contactBvhGeneration_ = ~0ull;
+    // The casters' BVH, built once per scene: the contact band's (groundtruth/contact_band.h) and
+    // the ray-tracing extension's (Renderer::setBvhSource).
+    std::shared_ptr<const bvh::Bvh> sceneBvhFor(uint64_t sceneGeneration);
+    std::mutex sceneBvhMutex_;
+    std::shared_ptr<const bvh::Bvh> sceneBvh_;
+    uint64_t sceneBvhGeneration_ = ~0ull;
 };
 
 } // namespace shadowlab

@@ -138,7 +138,7 @@ bool App::evaluateCapture(const EvaluationInput& input, const ReferenceOptions& 
     if (parts.footprint) out.footprint = measureTexelFootprint(gbuffer, out.mask, input.frame.camera, input.frame.light, input.shadowMaps);
     if (parts.positions) out.positions = input.opaque.positions;
     if (parts.contactBand && options.mode == ReferenceOptions::Mode::Hard) {
-        if (const auto bvh = contactBvhFor(input.sceneGeneration)) {
+        if (const auto bvh = sceneBvhFor(input.sceneGeneration)) {
             out.contactBand = contactBand(*bvh, gbuffer, out.mask, input.light);
             const ContactBandMetrics contact = contactBandMetrics(out.contactBand, out.technique, out.reference);
             out.metrics.contactFalseLightRate = contact.falseLightRate;
@@ -191,17 +191,17 @@ bool App::evaluateLayers(const EvaluationInput& input, const ReferenceOptions& o
     return true;
 }
 
-std::shared_ptr<const bvh::Bvh> App::contactBvhFor(uint64_t sceneGeneration) {
-    std::lock_guard lock(contactBvhMutex_);
-    if (contactBvhGeneration_ != sceneGeneration) {
+std::shared_ptr<const bvh::Bvh> App::sceneBvhFor(uint64_t sceneGeneration) {
+    std::lock_guard lock(sceneBvhMutex_);
+    if (sceneBvhGeneration_ != sceneGeneration) {
         // loadScene swaps the scene under the exclusive lock: read it under the shared one. An
         // evaluation of an older scene (the window's worker) gets no band rather than a wrong one.
         std::shared_lock sceneLock(groundTruthMutex_);
         if (sceneGeneration != sceneGeneration_ || !scene_) return nullptr;
-        contactBvh_ = std::make_shared<const bvh::Bvh>(bvh::build(*scene_));
-        contactBvhGeneration_ = sceneGeneration;
+        sceneBvh_ = std::make_shared<const bvh::Bvh>(bvh::build(*scene_));
+        sceneBvhGeneration_ = sceneGeneration;
     }
-    return contactBvh_;
+    return sceneBvh_;
 }
 
 size_t App::plannedTraces(const EvaluationInput& input) {

@@ -890,7 +890,9 @@ void Renderer::allocatePrepassTargets(bool full) {
 
 const RayTracingScene& Renderer::rayTracing() {
     if (rayTracingBuilt_ || !scene_) return rayTracing_;
-    const bvh::Bvh tree = bvh::build(*scene_);
+    std::shared_ptr<const bvh::Bvh> shared = bvhSource_ ? bvhSource_() : nullptr;
+    if (!shared) shared = std::make_shared<const bvh::Bvh>(bvh::build(*scene_));
+    const bvh::Bvh& tree = *shared;
     auto upload = [&](GlBuffer& buffer, const void* data, size_t bytes, const char* label) {
         GLuint name = 0;
         glCreateBuffers(1, &name);

@@ -6,11 +6,13 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "gl/gl.h"
+#include "render/bvh.h"
 #include "render/overdraw_counter.h"
 #include "render/shader_library.h"
 #include "scene/scene.h"
@@ -82,6 +84,10 @@ public:
     // SHADOWLAB_EXT_RAY_TRACING: the shadow casters' BVH (render/bvh.h) in storage buffers, built
     // on the first call after setScene() and kept (with its buffers) until the next setScene().
     const RayTracingScene& rayTracing();
+    // Where rayTracing() takes the current scene's BVH from: the app's one copy per scene, which
+    // its contact band also reads (building it twice was most of a ray-traced evaluation's setup).
+    // Without a source (or when it gives none) the renderer builds its own.
+    void setBvhSource(std::function<std::shared_ptr<const bvh::Bvh>()> source) { bvhSource_ = std::move(source); }
 
     // The main pass with a technique's main program: default state and the program bound,
     // bindTechnique() sets its uniforms and textures, then the host's main-pass state and draws.
@@ -293,6 +299,7 @@ private:
     GlBuffer rayTracingBuffers_[5];              // nodes, triangles, uvs, materials, texels
     RayTracingScene rayTracing_{};
     bool rayTracingBuilt_ = false;
+    std::function<std::shared_ptr<const bvh::Bvh>()> bvhSource_;
 
     // The eye-space blur (eyeBlur*): [0] the term and the blurred result, [1] the blur along x.
     GlTexture eyeBlurTerm_[2], eyeBlurDepth_;
