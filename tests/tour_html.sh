@@ -38,9 +38,13 @@ for tour in shadow-mapping soft-shadows large-scenes coloured-shadows; do
   # and the right edge of its widest table, image or list against the body's.
   sed 's#</body>#<script>window.addEventListener("load", () => { for (const i of document.images) i.dataset.naturalWidth = i.naturalWidth; const b = document.body; b.dataset.scrollWidth = document.documentElement.scrollWidth; b.dataset.widest = Math.max(...[...document.querySelectorAll("table,img,figure,dl,p")].map(e => e.getBoundingClientRect().right)); b.dataset.bodyRight = b.getBoundingClientRect().right; b.dataset.checked = "yes"; });</script></body>#' \
     "$page" >"$tmp/$tour/check.html"
-  sed '0,/src="step-01.png"/s//src="missing.png"/' "$tmp/$tour/check.html" >"$tmp/$tour/broken.html"
   dump "$tmp/$tour/check.html" "$tmp/$tour/check.dom"
-  dump "$tmp/$tour/broken.html" "$tmp/$tour/broken.dom"
+  # That the check can tell a missing image: shown once (the pages share their markup), which
+  # saves three browser starts of the suite's longest test.
+  if [ "$tour" = shadow-mapping ]; then
+    sed '0,/src="step-01.png"/s//src="missing.png"/' "$tmp/$tour/check.html" >"$tmp/$tour/broken.html"
+    dump "$tmp/$tour/broken.html" "$tmp/$tour/broken.dom"
+  fi
   /usr/bin/python3 - "$source_dir/assets/tours/$tour.json" "$tmp/$tour" <<'PY'
 import html.parser, json, os, re, sys
 tour = json.load(open(sys.argv[1]))
@@ -78,8 +82,9 @@ for src, width in good.images:
     assert os.path.exists(os.path.join(folder, src)), f'{src} is not in the folder'
     assert width is not None and int(width) > 0, f'{src} did not load in the browser (naturalWidth {width})'
 assert good.captions == captions, f'captions differ from the tour file:\n{good.captions}\n{captions}'
-bad = read('broken.dom')
-assert bad.checked and int(bad.images[0][1]) == 0, 'a missing image was not detected: the check cannot tell'
+if os.path.exists(os.path.join(folder, 'broken.dom')):
+    bad = read('broken.dom')
+    assert bad.checked and int(bad.images[0][1]) == 0, 'a missing image was not detected: the check cannot tell'
 markdown = open(os.path.join(folder, 'README.md')).read()
 for i, caption in enumerate(captions):
     assert f'(step-{i + 1:02d}.png)' in markdown, f'README.md lacks step-{i + 1:02d}.png'
