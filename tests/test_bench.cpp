@@ -85,6 +85,38 @@ TEST(Bench, StableTimingStopsBetweenMinFramesAndFrames) {
     EXPECT_NE(error.find("stableWithin"), std::string::npos) << error;
 }
 
+// "sweptOnly": a group extending another's sweep measures only the techniques the sweep reaches,
+// and `none` (the main-pass floor); planar declares no resolution and is left out.
+TEST(Bench, SweptOnlyLeavesOutTheTechniquesTheSweepMisses) {
+    auto app = test::makeHeadlessApp("cube", {64, 48});
+    ASSERT_TRUE(app);
+    BenchSpec spec;
+    spec.techniques = {"none", "shadowmap", "planar"};
+    spec.scenes = {"cube"};
+    spec.sizes = {{64, 48}};
+    std::string error;
+    ASSERT_TRUE(addSweep(spec, "resolution=256,512", error)) << error;
+    spec.frames = 1;
+    spec.warmupFrames = 0;
+    std::map<std::string, int> counted;
+    for (const bool sweptOnly : {false, true}) {
+        spec.sweptOnly = sweptOnly;
+        std::vector<nlohmann::json> rows;
+        ASSERT_TRUE(runBench(*app, spec, rows, error)) << error;
+        counted.clear();
+        for (const auto& row : rows) ++counted[row["technique"].get<std::string>()];
+        EXPECT_EQ(counted["none"], 1);
+        EXPECT_EQ(counted["shadowmap"], 2);
+        EXPECT_EQ(counted["planar"], sweptOnly ? 0 : 1) << "sweptOnly " << sweptOnly;
+    }
+    // The spec key reads as the field.
+    BenchSpec parsed;
+    ASSERT_TRUE(parseBenchSpec(nlohmann::json::parse(R"({"sweptOnly": true})"), parsed, error)) << error;
+    EXPECT_TRUE(parsed.sweptOnly);
+    EXPECT_FALSE(parseBenchSpec(nlohmann::json::parse(R"({"sweptOnly": 1})"), parsed, error));
+    EXPECT_NE(error.find("sweptOnly"), std::string::npos) << error;
+}
+
 TEST(Bench, TinySweepWritesOneWellFormedRowPerCombination) {
     auto app = test::makeHeadlessApp("cube", {64, 48});
     ASSERT_TRUE(app);

@@ -185,9 +185,13 @@ static std::vector<BenchJob> planBenchJobs(const BenchSpec& spec, const std::vec
                 }
                 for (const TechniqueInfo* info : ordered) {
                     BenchSettingLists lists;
+                    bool swept = false;
                     for (const auto& [key, values] : spec.sweeps)
-                        if (isLightKey(key) || isHostKey(key) || (!isSceneKey(key) && !benchParamFor(*info, key).empty()))
+                        if (isLightKey(key) || isHostKey(key) || (!isSceneKey(key) && !benchParamFor(*info, key).empty())) {
                             lists.push_back({key, values});
+                            swept = swept || (!isLightKey(key) && !isHostKey(key));
+                        }
+                    if (spec.sweptOnly && !swept && info != none) continue;
                     for (const auto& settings : benchCombinations(lists)) {
                         BenchJob job = group;
                         job.technique = info;

@@ -140,6 +140,7 @@ bool addSweep(BenchSpec& spec, const std::string& text, std::string& error) {
 bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
     static const std::set<std::string> known{"techniques", "scenes", "sizes", "sweep", "base", "frames", "warmup", "minFrames", "stableWithin",
                                              "accuracy", "reference", "referenceSamples", "referenceAdaptive", "depthFloor", "contactBand",
+                                             "sweptOnly",
                                              "description", "tag", "path", "pathFrames"};
     if (!spec.is_object()) {
         error = "a benchmark spec is a JSON object, got " + describe(spec);
@@ -230,6 +231,8 @@ bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
         return false;
     if (const auto it = spec.find("accuracy"); it != spec.end() && !readBool(*it, "accuracy", result.accuracy, error)) return false;
     if (const auto it = spec.find("depthFloor"); it != spec.end() && !readBool(*it, "depthFloor", result.depthFloor, error))
+        return false;
+    if (const auto it = spec.find("sweptOnly"); it != spec.end() && !readBool(*it, "sweptOnly", result.sweptOnly, error))
         return false;
     if (const auto it = spec.find("pathFrames"); it != spec.end() &&
                                                  !readWholeNumber(*it, "pathFrames", 1, kMaxBenchFrames, result.pathFrames, error))

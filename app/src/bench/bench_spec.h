@@ -48,6 +48,10 @@ struct BenchSpec {
     bool referenceAdaptive = true;
     bool depthFloor = false;                 // add "depth-floor" rows (bare depth pass per resolution)
     bool contactBand = false;                // hard_contact_* columns (one more shadow ray a pixel)
+    // "sweptOnly": leave out the techniques that declare none of the swept technique parameters
+    // (`none`, the main-pass floor, stays): a group that extends another group's sweep (more
+    // resolutions) without measuring its other techniques again.
+    bool sweptOnly = false;
     // A row's evaluation beside the next row's timed frames (bench.cpp, PendingEvaluation); not
     // a spec key: --overlap-accuracy off of bench and report, to compare timings without it.
     bool overlapAccuracy = true;
