@@ -662,6 +662,7 @@ bool App::measure(const std::string& technique, int warmupFrames, int frames, Me
     cpu.reserve(size_t(frames));
     int prepassFrames = 0;
     int timed = 0;
+    std::optional<double> stoppedHalfWidth;
     static const std::vector<double> kNoFrames;
     while (timed < frames) {
         if (!renderFrame(technique, error)) return false;
@@ -671,10 +672,15 @@ bool App::measure(const std::string& technique, int warmupFrames, int frames, Me
         // The frame times resolved so far (the timer reads queries some frames late, without
         // waiting): the frames still in flight are drained below and count too.
         const auto frameTimes = timer_->history().find("frame");
-        if (stop.reached(frameTimes == timer_->history().end() ? kNoFrames : frameTimes->second)) break;
+        const std::vector<double>& resolved = frameTimes == timer_->history().end() ? kNoFrames : frameTimes->second;
+        if (stop.reached(resolved)) {
+            stoppedHalfWidth = medianRelativeHalfWidth95(resolved);
+            break;
+        }
     }
     timer_->drain();
     out = {};
+    out.stoppedHalfWidth = stoppedHalfWidth;
     for (const auto& [pass, samples] : timer_->history()) {
         out.gpuMs[pass] = summarize(samples);
         if (pass == "frame") out.frameMedianHalfWidth = medianRelativeHalfWidth95(samples);

@@ -94,6 +94,10 @@ struct Measurement {
     int frames = 0;
     // The GPU frame median's relative 95% half-width (util/stats.h; infinity under 6 frames).
     double frameMedianHalfWidth = 0.0;
+    // The half-width the stop rule (TimingStop) decided on, over the frames resolved when it
+    // stopped; empty when it did not stop early. The frames still in flight then count in the
+    // row's figures, so frameMedianHalfWidth may differ from it a little either way.
+    std::optional<double> stoppedHalfWidth;
     int depthPrepassFrames = 0;                   // timed frames that ran the host depth pre-pass
     std::optional<double> depthComplexity;        // the newest count at the end (DepthPrepassRule)
 };

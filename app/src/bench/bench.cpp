@@ -78,6 +78,7 @@ void addTiming(nlohmann::json& row, const Measurement& m) {
     row["cpu_wait_frames"] = m.framesWaited;
     row["frames"] = m.frames;
     if (std::isfinite(m.frameMedianHalfWidth)) row["frame_ms_ci95"] = m.frameMedianHalfWidth;
+    if (m.stoppedHalfWidth) row["stopped_ci95"] = *m.stoppedHalfWidth;
     row["gbuffer_every_frame"] = false;
 }
 
