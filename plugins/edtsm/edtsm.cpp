@@ -5,7 +5,8 @@
 // A plain shadow map (kit/depth_map.h), then compute passes (edtsm.comp): the seed pass marks the
 // map's depth edges, texels beside a neighbour more than `edge depth` farther from (caster side)
 // or nearer to (background side) the light, and jump flooding spreads each kind of site over
-// `reach` texels, giving every texel its nearest site of each kind. The main pass (edtsm.glsl)
+// `reach` texels, giving every texel its nearest site of each kind (over the tiles near edges
+// only: the seed pass flags them, a pass lists them for an indirect dispatch). The main pass (edtsm.glsl)
 // turns the receiver's distances to the two into a signed distance to the rebuilt edge and a ramp
 // `width` texels wide across it, wherever the two sites straddle the receiver's own depth test.
 // Point lights: the kit's cube map with the plain test.
@@ -35,7 +36,7 @@ constexpr ParamDesc kWidth{"width", "transition width", ParamType::Float, 0.05, 
      nullptr};
 constexpr ParamDesc kReach{"reach", "reach", ParamType::Int, 1, 32, 4, "texels",
      "How far the distance transform floods from the edge texels: ceil(log2(reach)) + 2 compute passes over "
-     "the map. Receivers farther from any edge keep the plain test, which is what they get anyway.",
+     "the 16 x 16 tiles near edges. Receivers farther from any edge keep the plain test, which is what they get anyway.",
      nullptr};
 constexpr ParamDesc kEdgeDepth{"edge_depth", "edge depth", ParamType::Float, 0.001, 10, 0.5, "world units",
      "Depth step between neighbouring texels that marks a caster's silhouette in the map, and how far in "
