@@ -36,7 +36,8 @@ constexpr ParamDesc kWidth{"width", "transition width", ParamType::Float, 0.05, 
      nullptr};
 constexpr ParamDesc kReach{"reach", "reach", ParamType::Int, 1, 32, 4, "texels",
      "How far the distance transform floods from the edge texels: ceil(log2(reach)) + 2 compute passes over "
-     "the 16 x 16 tiles near edges. Receivers farther from any edge keep the plain test, which is what they get anyway.",
+     "the 16 x 16 tiles near edges. Receivers farther from any edge keep the plain test, which is what they "
+     "get anyway.",
      nullptr};
 constexpr ParamDesc kEdgeDepth{"edge_depth", "edge depth", ParamType::Float, 0.001, 10, 0.5, "world units",
      "Depth step between neighbouring texels that marks a caster's silhouette in the map, and how far in "
@@ -147,7 +148,8 @@ class DistanceTransformShadows final : public kit::TechniqueBase {
     void listTiles(int span, GLuint tiles) {
         using namespace shared::edtsm;
         const GLuint zero = 0;
-        glClearNamedBufferSubData(tileList_, GL_R32UI, 0, sizeof(GLuint), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        glClearNamedBufferSubData(tileList_, GL_R32UI, 0, sizeof(GLuint), GL_RED_INTEGER, GL_UNSIGNED_INT,
+                                  &zero);
         passUniforms_[1].set({{}, -1, (span + int(kEdtTile) - 1) / int(kEdtTile), 0.0f, 0.0f});
         glDispatchCompute((tiles + kEdtTile - 1) / kEdtTile, (tiles + kEdtTile - 1) / kEdtTile, 1);
         glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -166,7 +168,8 @@ class DistanceTransformShadows final : public kit::TechniqueBase {
             glTextureParameteri(sites, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         }
         const size_t tiles = size_t((size_ + int(shared::edtsm::kEdtTile) - 1) / int(shared::edtsm::kEdtTile));
-        tileMask_ = kit::Buffer(host(), host().createBuffer(tiles * tiles * sizeof(GLuint), nullptr, 0, "edtsm tile flags"));
+        tileMask_ =
+            kit::Buffer(host(), host().createBuffer(tiles * tiles * sizeof(GLuint), nullptr, 0, "edtsm tile flags"));
         std::vector<GLuint> list(4 + tiles * tiles, 0u);
         list[1] = list[2] = 1u;
         tileList_ = kit::Buffer(host(), host().createBuffer(list.size() * sizeof(GLuint), list.data(), 0,

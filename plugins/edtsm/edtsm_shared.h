@@ -14,7 +14,7 @@ SHADOWLAB_TEXTURE_UNIT(kEdtTileListBinding, 4)
 SHADOWLAB_TEXTURE_UNIT(kEdtTile, 16)   // texels per side of a tile and of a compute work group
 // One block per compute pass (the seeds, the tile list, then one per jump), written each frame.
 SHADOWLAB_UNIFORM_BLOCK(EdtPassUniforms, 3) {
-    int uEdtStep;          // 0: seed pass; -1: tile-list pass; k > 0: jump-flooding pass reading neighbours k texels away
+    int uEdtStep;          // 0: seeds; -1: tile list; k > 0: a jump, reading neighbours k texels away
     int uEdtArg;           // tile-list pass: dilation in tiles; jump pass: 1 over the listed tiles, 0 over the map
     float uEdtEdgeDepth;   // world units: a 4-neighbour this much farther from the light makes a depth edge
     float uEdtPad1;
