@@ -185,7 +185,7 @@ class DistanceTransformShadows final : public kit::TechniqueBase {
     int size_ = 0;
     int result_ = 0;
     kit::UniformBlock<shared::edtsm::EdtMainUniforms> mainUniforms_;
-    kit::UniformBlock<EdtPassUniforms> passUniforms_[10];   // the seed, the tile list, up to 8 jumps (reach 32: 32..1, 1)
+    kit::UniformBlock<EdtPassUniforms> passUniforms_[10];   // seeds, tile list, up to 8 jumps (reach 32: 32..1, 1)
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
