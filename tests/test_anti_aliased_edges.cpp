@@ -152,6 +152,8 @@ TEST(AntiAliasedEdges, EdtsmSparseFloodMatchesTheWholeMapFlood) {
                 fractional += dense[c][i].x > 0.01f && dense[c][i].x < 0.99f;
                 differing += sparse[c][i] != dense[c][i];
             }
+            std::printf("edtsm %s reach %d resolution %d: %zu fractional pixels, %zu differ\n", scene.c_str(),
+                        cases[c].first, cases[c].second, fractional, differing);
             EXPECT_GT(fractional, 100u) << scene << " reach " << cases[c].first << ": edtsm's ramp must show";
             EXPECT_EQ(differing, 0u) << scene << " reach " << cases[c].first << " resolution " << cases[c].second;
         }
