@@ -121,15 +121,15 @@ namespace {
 // whole map.
 std::vector<std::vector<glm::vec3>> edtsmTermsFor(const std::string& scene, bool dense,
                                                    const std::vector<std::pair<int, int>>& cases) {
-    if (dense) setenv("SHADOWLAB_EDTSM_DENSE", "1", 1);
+    if (dense) setenv("SHADOWLAB_EDTSM_DENSE", "1", 1);   // until the technique is set up (its first frame)
     auto app = test::makeHeadlessApp(scene, {320, 180});
-    unsetenv("SHADOWLAB_EDTSM_DENSE");
     std::vector<std::vector<glm::vec3>> terms;
-    if (!app) return terms;
     for (const auto& [reach, resolution] : cases)
-        terms.push_back(test::shadowTerm(
-            *app, "edtsm",
-            {"reach=" + std::to_string(reach), "resolution=" + std::to_string(resolution), "width=0.25"}));
+        if (app)
+            terms.push_back(test::shadowTerm(
+                *app, "edtsm",
+                {"reach=" + std::to_string(reach), "resolution=" + std::to_string(resolution), "width=4"}));
+    unsetenv("SHADOWLAB_EDTSM_DENSE");
     return terms;
 }
 
@@ -138,7 +138,8 @@ std::vector<std::vector<glm::vec3>> edtsmTermsFor(const std::string& scene, bool
 // Issue 31: the jumps run over the tiles within the flood's span of an edge only, and the shadow
 // term stays bit for bit the whole-map flood's, at the smallest, default and largest reach (one
 // step, 4 + 2 + 1 + 1, 32 + ... + 1 + 1: a dilation of 1 to 4 tiles) and at a map size that is
-// not a multiple of the 16-texel tile. The ramp must show (fractional terms), or nothing is compared.
+// not a multiple of the 16-texel tile. The widest ramp (4 texels) reads sites up to 3 texels from
+// the edge, beyond the edge texels' own tiles; it must show (fractional terms), or nothing is compared.
 TEST(AntiAliasedEdges, EdtsmSparseFloodMatchesTheWholeMapFlood) {
     const std::vector<std::pair<int, int>> cases = {{1, 512}, {4, 1000}, {32, 512}, {3, 256}};
     for (const std::string scene : {"cube", "spheres"}) {
@@ -154,7 +155,7 @@ TEST(AntiAliasedEdges, EdtsmSparseFloodMatchesTheWholeMapFlood) {
             }
             std::printf("edtsm %s reach %d resolution %d: %zu fractional pixels, %zu differ\n", scene.c_str(),
                         cases[c].first, cases[c].second, fractional, differing);
-            EXPECT_GT(fractional, 100u) << scene << " reach " << cases[c].first << ": edtsm's ramp must show";
+            EXPECT_GT(fractional, 50u) << scene << " reach " << cases[c].first << ": edtsm's ramp must show";
             EXPECT_EQ(differing, 0u) << scene << " reach " << cases[c].first << " resolution " << cases[c].second;
         }
     }
