@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "groundtruth/edge_band.h"
 #include "test_support.h"
@@ -111,4 +112,51 @@ TEST(AntiAliasedEdges, ParametersAreValidated) {
     EXPECT_TRUE(app->renderFrame("rbsm", error)) << error;
     EXPECT_TRUE(app->applyAssignments({"width=4", "reach=32", "edge_depth=10"}, "edtsm", error)) << error;
     EXPECT_TRUE(app->renderFrame("edtsm", error)) << error;
+}
+
+namespace {
+
+// edtsm's shadow terms on `scene` for each (reach, resolution), the jumps flooding only the tiles
+// near edges (default) or, with SHADOWLAB_EDTSM_DENSE=1 (read when the plugin is set up), the
+// whole map.
+std::vector<std::vector<glm::vec3>> edtsmTermsFor(const std::string& scene, bool dense,
+                                                   const std::vector<std::pair<int, int>>& cases) {
+    if (dense) setenv("SHADOWLAB_EDTSM_DENSE", "1", 1);   // until the technique is set up (its first frame)
+    auto app = test::makeHeadlessApp(scene, {320, 180});
+    std::vector<std::vector<glm::vec3>> terms;
+    for (const auto& [reach, resolution] : cases)
+        if (app)
+            terms.push_back(test::shadowTerm(
+                *app, "edtsm",
+                {"reach=" + std::to_string(reach), "resolution=" + std::to_string(resolution), "width=4"}));
+    unsetenv("SHADOWLAB_EDTSM_DENSE");
+    return terms;
+}
+
+} // namespace
+
+// Issue 31: the jumps run over the tiles within the flood's span of an edge only, and the shadow
+// term stays bit for bit the whole-map flood's, at the smallest, default and largest reach (one
+// step, 4 + 2 + 1 + 1, 32 + ... + 1 + 1: a dilation of 1 to 4 tiles) and at a map size that is
+// not a multiple of the 16-texel tile. The widest ramp (4 texels) reads sites up to 3 texels from
+// the edge, beyond the edge texels' own tiles; it must show (fractional terms), or nothing is compared.
+TEST(AntiAliasedEdges, EdtsmSparseFloodMatchesTheWholeMapFlood) {
+    const std::vector<std::pair<int, int>> cases = {{1, 512}, {4, 1000}, {32, 512}, {3, 256}};
+    for (const std::string scene : {"cube", "spheres"}) {
+        const auto sparse = edtsmTermsFor(scene, false, cases);
+        const auto dense = edtsmTermsFor(scene, true, cases);
+        ASSERT_EQ(sparse.size(), cases.size()) << scene;
+        ASSERT_EQ(dense.size(), cases.size()) << scene;
+        for (size_t c = 0; c < cases.size(); ++c) {
+            size_t fractional = 0, differing = 0;
+            for (size_t i = 0; i < dense[c].size(); ++i) {
+                fractional += dense[c][i].x > 0.01f && dense[c][i].x < 0.99f;
+                differing += sparse[c][i] != dense[c][i];
+            }
+            std::printf("edtsm %s reach %d resolution %d: %zu fractional pixels, %zu differ\n", scene.c_str(),
+                        cases[c].first, cases[c].second, fractional, differing);
+            EXPECT_GT(fractional, 50u) << scene << " reach " << cases[c].first << ": edtsm's ramp must show";
+            EXPECT_EQ(differing, 0u) << scene << " reach " << cases[c].first << " resolution " << cases[c].second;
+        }
+    }
 }

@@ -6,14 +6,27 @@
 // its own and its 8 neighbours' (uEdtStep texels away) nearest sites of each kind, the nearest to
 // its own centre; steps halving to 1 and one more at 1 leave each texel within the flood's reach
 // with (nearly always) its nearest site of each kind: a discrete Euclidean distance transform.
+// Sparse flooding (issue 31): the seed pass also flags each 16 x 16 tile holding an edge texel;
+// the tile-list pass (uEdtStep = -1) lists the tiles within uEdtArg tiles of a flagged one, and
+// the jumps run over those only (indirect dispatch). A site moves at most one step per pass, so a
+// texel farther than the steps' sum from every edge texel holds no site in the dense flood either:
+// the seed pass writes both site textures, and the unlisted texels' seeds (no site) are exact.
 #include "shadowlab/kit/depth_map_shared.h"
 #include "light_depth.glsl"
 #include "edtsm_shared.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = kEdtTile, local_size_y = kEdtTile) in;   // one work group per tile
 layout(binding = kDepthMapUnit) uniform sampler2D uEdtDepth;
 layout(binding = kEdtSitesUnit) uniform sampler2D uEdtSource;
 layout(binding = kEdtSitesImageUnit, rgba32f) uniform writeonly image2D uEdtSites;
+layout(binding = kEdtSeedCopyImageUnit, rgba32f) uniform writeonly image2D uEdtSeedCopy;
+layout(std430, binding = kEdtTileMaskBinding) buffer EdtTileMask { uint uEdtTileHasEdge[]; };
+layout(std430, binding = kEdtTileListBinding) buffer EdtTileList {
+    uint uEdtListGroups[3];   // glDispatchComputeIndirect's x, y, z: the count (atomic), 1, 1
+    uint uEdtListPad;
+    uint uEdtListTiles[];     // tile x | tile y << 16
+};
+shared uint edtGroupHasEdge;
 
 float edtDepthAt(ivec2 t, int last) {
     return lightLinearDepth(texelFetch(uEdtDepth, clamp(t, ivec2(0), ivec2(last)), 0).r, uLightDepth);
@@ -51,9 +64,51 @@ vec4 edtJump(ivec2 q, int last) {
     return best;
 }
 
+// The seeds into both site textures, and this group's tile flagged when it holds an edge texel.
+void edtSeedPass(ivec2 q, int last) {
+    if (gl_LocalInvocationIndex == 0u) edtGroupHasEdge = 0u;
+    barrier();
+    if (all(lessThanEqual(q, ivec2(last)))) {
+        vec4 seed = edtSeed(q, last);
+        imageStore(uEdtSites, q, seed);
+        imageStore(uEdtSeedCopy, q, seed);
+        if (seed.x != kEdtNoSite || seed.z != kEdtNoSite) atomicOr(edtGroupHasEdge, 1u);
+    }
+    memoryBarrierShared();
+    barrier();
+    if (gl_LocalInvocationIndex == 0u)
+        uEdtTileHasEdge[gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x] = edtGroupHasEdge;
+}
+
+// One invocation per tile: listed when a flagged tile lies within uEdtArg tiles.
+void edtListTile(int last) {
+    int tiles = (last + kEdtTile) / kEdtTile;
+    ivec2 tile = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(tile, ivec2(tiles)))) return;
+    ivec2 lo = max(tile - uEdtArg, ivec2(0)), hi = min(tile + uEdtArg, ivec2(tiles - 1));
+    for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x)
+            if (uEdtTileHasEdge[y * tiles + x] != 0u) {
+                uEdtListTiles[atomicAdd(uEdtListGroups[0], 1u)] = uint(tile.x) | (uint(tile.y) << 16);
+                return;
+            }
+}
+
 void main() {
     int last = int(uLightDepth.w) - 1;
+    if (uEdtStep < 0) {
+        edtListTile(last);
+        return;
+    }
     ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+    if (uEdtStep > 0 && uEdtArg != 0) {
+        uint tile = uEdtListTiles[gl_WorkGroupID.x];
+        q = ivec2(tile & 0xffffu, tile >> 16) * kEdtTile + ivec2(gl_LocalInvocationID.xy);
+    }
+    if (uEdtStep == 0) {
+        edtSeedPass(q, last);   // barriers: uEdtStep is uniform
+        return;
+    }
     if (any(greaterThan(q, ivec2(last)))) return;
-    imageStore(uEdtSites, q, uEdtStep == 0 ? edtSeed(q, last) : edtJump(q, last));
+    imageStore(uEdtSites, q, edtJump(q, last));
 }

@@ -6,10 +6,16 @@
 SHADOWLAB_SHARED_BEGIN(edtsm)
 SHADOWLAB_TEXTURE_UNIT(kEdtSitesUnit, 5)      // nearest sites: xy caster-edge texel, zw background-edge texel
 SHADOWLAB_IMAGE_UNIT(kEdtSitesImageUnit, 1)   // the compute passes' output (rgba32f)
-// One block per compute pass (the seeds, then one per jump), written when the map is reallocated.
+SHADOWLAB_IMAGE_UNIT(kEdtSeedCopyImageUnit, 2)   // the seed pass's second output (the other site texture)
+// Storage bindings (std430): the per-tile "holds an edge texel" flags, and the active-tile list
+// (its first three words are glDispatchComputeIndirect's arguments: the count, 1, 1).
+SHADOWLAB_TEXTURE_UNIT(kEdtTileMaskBinding, 3)
+SHADOWLAB_TEXTURE_UNIT(kEdtTileListBinding, 4)
+SHADOWLAB_TEXTURE_UNIT(kEdtTile, 16)   // texels per side of a tile and of a compute work group
+// One block per compute pass (the seeds, the tile list, then one per jump), written each frame.
 SHADOWLAB_UNIFORM_BLOCK(EdtPassUniforms, 3) {
-    int uEdtStep;          // 0: seed pass; k > 0: jump-flooding pass reading neighbours k texels away
-    int uEdtPad0;
+    int uEdtStep;          // 0: seeds; -1: tile list; k > 0: a jump, reading neighbours k texels away
+    int uEdtArg;           // tile-list pass: dilation in tiles; jump pass: 1 over the listed tiles, 0 over the map
     float uEdtEdgeDepth;   // world units: a 4-neighbour this much farther from the light makes a depth edge
     float uEdtPad1;
 };
