@@ -48,9 +48,10 @@ constexpr ParamDesc kLevels{"levels", "clipmap levels", ParamType::Int, 1, 16, 1
      "Levels of doubling texel size; the coarsest window holds the whole scene. More levels give finer texels "
      "near the camera (the finest is the coarsest's / 2^(levels - 1)).",
      nullptr};
-constexpr ParamDesc kLevelBias{"level_bias", "level bias", ParamType::Float, -2, 4, 0, "levels",
-     "Added to the level each pixel's footprint asks for: positive values read coarser pages (fewer pages, "
-     "blurrier edges), negative ones finer (more pages, sharper than the screen can show).",
+constexpr ParamDesc kLevelBias{"level_bias", "level bias", ParamType::Float, -3, 4, -1, "levels",
+     "Added to the level each pixel's footprint asks for (level 0: texels at most the pixel's size): -1, the "
+     "default, gives texels of a half to one pixel, as UE5's directional lights (LOD bias -1.5); positive "
+     "values read coarser pages (fewer pages, blurrier edges), negative ones finer (four times the pages a level).",
      nullptr};
 constexpr ParamDesc kFilter{"filter", "filter", ParamType::Enum, 0, 1, 0, "",
      "hardware: one 2x2 bilinear comparison by the texture unit; pcf: 3 x 3 of them, one texel apart (each tap "
