@@ -57,7 +57,7 @@ constexpr ParamDesc kFilter{"filter", "filter", ParamType::Enum, 0, 1, 0, "",
      "hardware: one 2x2 bilinear comparison by the texture unit; pcf: 3 x 3 of them, one texel apart (each tap "
      "through the page table), a ramp about three texels wide.",
      "hardware|pcf"};
-constexpr ParamDesc kNormalOffset{"normal_offset", "normal offset", ParamType::Float, 0, 4, 1, "texels",
+constexpr ParamDesc kNormalOffset{"normal_offset", "normal offset", ParamType::Float, 0, 4, 0.5, "texels",
      "The lookup point moves along the surface normal by this many texels of its level: removes acne on "
      "surfaces lit at grazing angles, which constant and slope bias cannot reach at every level.",
      nullptr};
