@@ -92,8 +92,9 @@ struct CacheKey {
     PageLayout layout;
     float constantBias = 0.0f, slopeBias = 0.0f;
     int cull = 0;
+    float pixelAngle = 0.0f;   // 2 tan(fovY / 2) / height: sets the coarsest level's texel
     bool operator==(const CacheKey& o) const {
-        return lightDirection == o.lightDirection && scene.min == o.scene.min && scene.max == o.scene.max &&
+        return pixelAngle == o.pixelAngle && lightDirection == o.lightDirection && scene.min == o.scene.min && scene.max == o.scene.max &&
                objects == o.objects && indices == o.indices && layout == o.layout && constantBias == o.constantBias &&
                slopeBias == o.slopeBias && cull == o.cull;
     }
@@ -118,12 +119,13 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
                                 .pagesPerSide = std::max(1, p.virtual_size / VSM_PAGE_TEXELS),
                                 .atlasPages = std::max(1, p.physical_size / VSM_PAGE_TEXELS)};
         const CacheKey key{frame.light.direction, host().bounds(DrawSet::All), host().objectCount(),
-                           casters ? casters->indices : 0u, layout, p.constant_bias, p.slope_bias, p.cull};
+                           casters ? casters->indices : 0u, layout, p.constant_bias, p.slope_bias, p.cull,
+                           2.0f / (frame.camera.projection[1][1] * float(std::max(1, frame.camera.viewport.y)))};
         if (!(key == key_)) {
             key_ = key;
             pages_.configure(layout);
             pages_.invalidate();
-            fitLightSpace(frame.light.direction, layout, casters);
+            fitLightSpace(frame.light.direction, layout, casters, key.pixelAngle);
         }
         writeUniforms(frame, p, layout);
         GpuPass pass(host(), "shadow map");
@@ -133,11 +135,9 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
         reportStatistics(layout);
     }
 
-    void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
-        const SamplerKind sampling = SamplerKind::CompareLinear;
-        if (frame.light.type == LightType::Point) return cube_.bindMainPass(sampling);
-        if (frame.light.type == LightType::Spot) return map_.bindMainPass(sampling);
-        (void)params;
+    void bindMainPass(const FrameContext& frame, const ParamValues&) override {
+        if (frame.light.type == LightType::Point) return cube_.bindMainPass(SamplerKind::CompareLinear);
+        if (frame.light.type == LightType::Spot) return map_.bindMainPass(SamplerKind::CompareLinear);
         uniforms_.bind();
         pages_.bindMainPass();
     }
@@ -145,7 +145,7 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
     // The light's orthographic space (a fixed basis: page contents never depend on the camera),
     // the levels' texel sizes (powers of two, so every page edge is exact in float) and the
     // casters' light-space rectangles for the cull pass.
-    void fitLightSpace(glm::vec3 direction, const PageLayout& layout, const AdjacencyScene* casters) {
+    void fitLightSpace(glm::vec3 direction, const PageLayout& layout, const AdjacencyScene* casters, float pixelAngle) {
         const glm::vec3 z = glm::normalize(direction);
         const glm::vec3 hint = std::abs(z.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
         const glm::vec3 x = glm::normalize(glm::cross(z, hint)), y = glm::cross(x, z);
@@ -164,9 +164,14 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
         const glm::vec4 scene = lightRect(host().bounds(DrawSet::All), zRange);
         const float slack = 1e-3f * std::max(1.0f, zRange.y - zRange.x);
         depthRange_ = {zRange.x - slack, zRange.y + slack};
-        // The coarsest window (its pages around the camera) spans twice the scene: it holds all of it.
+        // The coarsest window (its pages around the camera) spans at least twice the scene, so it holds
+        // all of it; and its texels are at least the footprint of a pixel as far away as the scene's
+        // diagonal, so no pixel asks for coarser texels than exist (clamped to the coarsest level,
+        // a far pixel would need many texels, and the whole view's pages: dense at small sizes).
         const float extent = std::max({scene.z - scene.x, scene.w - scene.y, 1e-3f});
-        const float coarsest = std::exp2(std::ceil(std::log2(2.0f * extent / float(layout.pagesPerSide * VSM_PAGE_TEXELS))));
+        const float farthest = pixelAngle * glm::length(host().bounds(DrawSet::All).max - host().bounds(DrawSet::All).min);
+        const float coarsest = std::exp2(std::ceil(std::log2(
+            std::max(2.0f * extent / float(layout.pagesPerSide * VSM_PAGE_TEXELS), farthest))));
         finestTexel_ = coarsest / std::exp2(float(layout.levels - 1));
         std::vector<VsmObject> objects;
         const ObjectInfo* info = host().objects();
