@@ -69,7 +69,8 @@ void VirtualPages::configure(const PageLayout& layout) {
 void VirtualPages::invalidate() {
     const uint32_t zero = 0;
     glClearNamedBufferData(pageTable_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    std::vector<uint32_t> all(size_t(layout_.physicalPages()));
+    std::vector<uint32_t>& all = freeList_;   // kept: invalidate() runs every frame the light moves
+    all.resize(size_t(layout_.physicalPages()));
     std::iota(all.begin(), all.end(), 0u);
     std::reverse(all.begin(), all.end());   // page 0 on top: the atlas fills from its corner
     glNamedBufferSubData(free_, 0, GLsizeiptr(all.size() * sizeof(uint32_t)), all.data());
@@ -78,10 +79,15 @@ void VirtualPages::invalidate() {
     glNamedBufferSubData(state_, 0, sizeof(state), state.data());
 }
 
+// Called whenever the light moves (every frame while it does): the buffers are reallocated only
+// when the casters outgrow them, so a moving light creates no GL object per frame.
 void VirtualPages::setObjects(const std::vector<VsmObject>& objects) {
     objectCount_ = uint32_t(objects.size());
-    objects_ = makeStorage(*host_, objects.size() * sizeof(VsmObject), "virtual-sm casters");
-    commands_ = makeStorage(*host_, objects.size() * 4 * sizeof(uint32_t), "virtual-sm draw commands");
+    if (!objects_ || objects.size() > objectCapacity_) {
+        objectCapacity_ = std::max<size_t>(objects.size(), 1);
+        objects_ = makeStorage(*host_, objectCapacity_ * sizeof(VsmObject), "virtual-sm casters");
+        commands_ = makeStorage(*host_, objectCapacity_ * 4 * sizeof(uint32_t), "virtual-sm draw commands");
+    }
     if (!objects.empty()) glNamedBufferSubData(objects_, 0, GLsizeiptr(objects.size() * sizeof(VsmObject)), objects.data());
 }
 

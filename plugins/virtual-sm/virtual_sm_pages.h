@@ -79,6 +79,8 @@ private:
     GLuint vao_ = 0;                          // the pair attribute of the page draws
     glm::ivec2 levelImageSize_{0};
     uint32_t objectCount_ = 0;
+    size_t objectCapacity_ = 0;               // casters objects_ and commands_ hold
+    std::vector<uint32_t> freeList_;          // invalidate()'s upload, kept between calls
     uint32_t pairCapacity_ = 0;
     kit::ReadbackRing stats_;
     bool statsRead_ = false;
