@@ -1,6 +1,7 @@
 // An n x n box of percentage-closer tests around a shadow-map position (seed 000 sec. 3.2.4): the
-// taps of `pcf`, and of the stochastic maps of seed 001 (stochastic-sm on a depth map, cssm2 on a
-// colour map of depths), whose noise only a wide kernel averages away (sec. 2.1.2). Tap (i, j)
+// taps of `pcf` (and, by boxPcfOffset, of `csm`'s cascades), and of the stochastic maps of seed 001
+// (stochastic-sm on a depth map, cssm2 on a colour map of depths), whose noise only a wide kernel
+// averages away (sec. 2.1.2). Tap (i, j)
 // sits at u + ((i, j) - (n - 1) / 2) s texels (u = coord.xy * resolution, s the spacing in texels,
 // 1 for the colour map) and compares against the
 // point's depth less the cone bias, slope * its distance from the centre (light_depth.glsl):

@@ -12,6 +12,7 @@
 #include "shadowlab/kit/cascades.h"
 #include "shadowlab/kit/cube_depth_map.h"
 #include "shadowlab/kit/depth_map.h"
+#include "shadowlab/kit/layered_depth_shared.h"
 #include "test_support.h"
 
 using namespace shadowlab;
@@ -394,7 +395,8 @@ TEST(CsmRender, MemoryCountsSixFacesAndEveryArrayLayer) {
         ASSERT_TRUE(app);
         test::renderVisibility(*app, "shadowmap", {"resolution=512"});
         EXPECT_EQ(techniqueBytes(*app, "shadowmap"),
-                  6 * res * res * texel + sizeof(DepthMapUniforms) + sizeof(CubeDepthMapUniforms));
+                  6 * res * res * texel + 2 * sizeof(DepthMapUniforms) +
+                      sizeof(shared::layered_depth::LayeredDepthUniforms) + sizeof(CubeDepthMapUniforms));
         test::renderVisibility(*app, "csm", {"resolution=512"});
         EXPECT_EQ(techniqueBytes(*app, "csm"), 6 * res * res * texel + sizeof(shared::csm::CsmUniforms) +
                                                    3 * 2 * sizeof(uint32_t) + sizeof(CubeDepthMapUniforms));

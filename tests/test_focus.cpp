@@ -10,6 +10,7 @@
 
 #include "shadowlab/kit/lispsm_warp.h"
 #include "camera.h"
+#include "test_cameras.h"
 #include "render/light_space.h"
 #include "shadowlab/kit/focus.h"
 
@@ -21,17 +22,7 @@ const Bounds kScene{{-50, 0, -50}, {50, 20, 50}};
 
 // A camera at `eye` looking along -z (up +y), square, 60 degrees.
 CameraInfo cameraLookingDownMinusZ(glm::vec3 eye, float nearPlane, float farPlane) {
-    CameraInfo c{};
-    c.position = eye;
-    c.view = glm::lookAt(eye, eye + glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));
-    c.projection = glm::perspective(glm::radians(60.0f), 1.0f, nearPlane, farPlane);
-    c.viewProjection = c.projection * c.view;
-    c.nearPlane = nearPlane;
-    c.farPlane = farPlane;
-    c.fovY = glm::radians(60.0f);
-    c.aspect = 1.0f;
-    completeCameraInfo(c);
-    return c;
+    return test::lookAtCamera(eye, eye + glm::vec3(0, 0, -1), nearPlane, farPlane);
 }
 
 LightInfo directional(glm::vec3 direction) {

@@ -128,3 +128,45 @@ TEST(ReferenceCache, KeepsTheNewestEntriesAndReturnsWhatWasStored) {
     cache.enabled = false;
     EXPECT_EQ(cache.find({ReferenceCache::kMaxEntries + 1, ~uint64_t(ReferenceCache::kMaxEntries + 1)}), nullptr);
 }
+
+// A row's evaluation beside the next row's timed frames (issue 32, bench.cpp PendingEvaluation):
+// the same rows in the same order with the same figures as evaluating each row before the next,
+// across a scene change (the pending trace is joined before the scene is swapped) and with
+// depth-floor rows between the evaluated ones.
+TEST(BenchOverlap, RowsAndFiguresAreThoseOfASerialSweep) {
+    BenchSpec spec;
+    spec.techniques = {"shadowmap", "pcf"};
+    spec.scenes = {"cube", "contact"};
+    spec.sizes = {{96, 64}};
+    spec.frames = 1;
+    spec.warmupFrames = 0;
+    spec.accuracy = true;
+    spec.depthFloor = true;
+    spec.reference = "both";
+    spec.referenceSamples = 64;
+    std::vector<nlohmann::json> overlapped, serial;
+    for (const bool overlap : {true, false}) {
+        auto app = test::makeHeadlessApp("cube", {96, 64});
+        ASSERT_TRUE(app);
+        app->referenceCache().enabled = false;   // every row traces: the worker has work to overlap
+        spec.overlapAccuracy = overlap;
+        std::string error;
+        std::vector<std::string> seen;
+        ASSERT_TRUE(runBench(*app, spec, overlap ? overlapped : serial, error,
+                             [&](const nlohmann::json& row) { seen.push_back(row.value("technique", "")); }))
+            << error;
+        EXPECT_EQ(seen.size(), (overlap ? overlapped : serial).size());   // onRow once a row, in order
+    }
+    ASSERT_EQ(overlapped.size(), serial.size());
+    size_t compared = 0;
+    for (size_t r = 0; r < serial.size(); ++r) {
+        EXPECT_EQ(overlapped[r].value("scene", ""), serial[r].value("scene", ""));
+        for (const auto& [key, value] : serial[r].items()) {
+            if (isTiming(key) || key == "frames" || key == "gpu_bytes") continue;
+            ASSERT_TRUE(overlapped[r].contains(key)) << "row " << r << " " << key;
+            EXPECT_EQ(overlapped[r][key], value) << "row " << r << " " << key;   // bit for bit
+            compared += key.find("mae") != std::string::npos;
+        }
+    }
+    EXPECT_GT(compared, 20u);
+}

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "shadowlab/kit/depth_map_shared.h"
+#include "shadowlab/kit/layered_depth_shared.h"
 #include "test_support.h"
 #include "util/paths.h"
 
@@ -94,8 +95,9 @@ TEST_F(CubeScene, ShadowMapMemoryIsAccounted) {
     std::string error;
     ASSERT_TRUE(app_->applyAssignments({"resolution=1024", "depth_format=32F"}, "shadowmap", error)) << error;
     ASSERT_TRUE(app_->renderFrame("shadowmap", error)) << error;
-    // The map and the depth map's uniform block.
-    const size_t block = sizeof(shared::depth_map::DepthMapUniforms);
+    // The map and the blocks of kit::LayeredDepthMap: the first and second layers' depth-map blocks
+    // and its own (the second layer's texture only when a two-layer bias_method asks for it).
+    const size_t block = 2 * sizeof(shared::depth_map::DepthMapUniforms) + sizeof(shared::layered_depth::LayeredDepthUniforms);
     EXPECT_EQ(app_->techniques().get("shadowmap", error)->host().gpuBytes(), size_t(1024) * 1024 * 4 + block);
     ASSERT_TRUE(app_->applyAssignments({"resolution=512", "depth_format=16"}, "shadowmap", error)) << error;
     ASSERT_TRUE(app_->renderFrame("shadowmap", error)) << error;

@@ -28,7 +28,7 @@ xdotool windowfocus --sync "$window" 2>/dev/null || true
 xdotool mousemove 900 300   # over the view, not the panel
 # Each key waits for the app to show its effect (a new "tour step" line, or the saved session)
 # before the next one: under ASan on a loaded machine a step's scene load takes seconds.
-steps_logged() { grep -c "tour step [0-9]* of 8" app.log || true; }
+steps_logged() { grep -c "tour step [0-9]* of 9" app.log || true; }
 for _ in $(seq 300); do [ "$(steps_logged)" -ge 1 ] && break; sleep 0.2; done
 for key in Right Right Left Right Home Page_Down; do
   before=$(steps_logged)
@@ -42,7 +42,7 @@ for _ in $(seq 300); do kill -0 $app 2>/dev/null || break; sleep 0.2; done
 if kill -0 $app 2>/dev/null; then echo "FAIL: Escape did not quit"; kill $app; exit 1; fi
 wait $app || { cat app.log; echo "FAIL: exit status $?"; exit 1; }
 
-steps=$(sed -n 's/.*tour step \([0-9]*\) of 8.*/\1/p' app.log | tr '\n' ' ')
+steps=$(sed -n 's/.*tour step \([0-9]*\) of 9.*/\1/p' app.log | tr '\n' ' ')
 [ "$steps" = "1 2 3 2 3 3 4 " ] || { cat app.log; echo "FAIL: steps shown '$steps', expected '1 2 3 2 3 3 4 '"; exit 1; }
 session=$(ls sessions/*.json 2>/dev/null | head -1 || true)
 [ -n "$session" ] || { cat app.log; echo "FAIL: F5 saved no session"; exit 1; }

@@ -15,6 +15,10 @@ view --fov:
   shadowmap (uniform, eq. 8.2)  dp/ds = F d / (R z)
   psm (eq. 8.3)                 dp/ds = F z (1/z_n - 1/z_f) / R    (s linear in 1/z over [z_n, z_f])
   lispsm (eq. 8.9)              dp/ds = F (z - z_n + n)^2 d / (R n (n + d) z),  n = z_n + sqrt(z_n z_v)
+  tsm                           measured only: seed 002 gives no curve for trapezoidal shadow maps
+  --logarithmic (eq. 8.4)       dp/ds = F ln(z_f / z_n) / R, the ideal parameterisation s = ln(z / z_n) /
+                                ln(z_f / z_n) (constant: every depth gets the same error), drawn
+                                dashed for the first input's R and H
 
 with F = (H / 2) / tan(fov / 2), d = z_f - z_n, z_v lispsm's virtual far plane (sec. 9.2.5) or z_f.
 --eye-height h multiplies each by sqrt(1 + h^2 / z^2), the ground plane's own factor (a ground step
@@ -39,7 +43,8 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-KINDS = {"shadowmap": "uniform", "psm": "PSM", "lispsm": "LiSPSM"}
+KINDS = {"shadowmap": "uniform", "psm": "PSM", "lispsm": "LiSPSM", "tsm": "TSM"}
+EQUATIONS = {"shadowmap": "8.2", "psm": "8.3", "lispsm": "8.9"}
 
 
 def parameters(text):
@@ -62,6 +67,8 @@ def analytic(technique, z, zn, zf, virtual_far, resolution, focal, eye_height):
         zv = virtual_far if 0.0 < virtual_far < zf else zf
         n = zn + math.sqrt(zn * zv)
         value = (z - zn + n) ** 2 * d / (n * (n + d) * z)
+    elif technique == "logarithmic":
+        value = math.log(zf / zn)
     else:
         raise ValueError(f"no analytic curve for technique '{technique}' (expected one of: {', '.join(KINDS)})")
     return focal * value / resolution * math.sqrt(1.0 + (eye_height / z) ** 2)
@@ -112,10 +119,16 @@ def figure(inputs, args):
         label = label_of(data)
         ax.plot([p[0] for p in points], [p[1] for p in points], "o", ms=3.5, color=colour, label=f"{label}, measured")
         zs = [args.near + (args.far - args.near) * i / 400.0 for i in range(401)]
-        curve = [analytic(technique, z, args.near, args.far, float(params.get("virtual_far", "0") or 0), resolution,
-                          focal_of(float(data["height"])), args.eye_height) for z in zs]
-        ax.plot(zs, curve, "-", lw=1.2, color=colour, alpha=0.8, label=f"{label}, eq. "
-                + {"shadowmap": "8.2", "psm": "8.3", "lispsm": "8.9"}.get(technique, "?"))
+        if technique in EQUATIONS:
+            curve = [analytic(technique, z, args.near, args.far, float(params.get("virtual_far", "0") or 0), resolution,
+                              focal_of(float(data["height"])), args.eye_height) for z in zs]
+            ax.plot(zs, curve, "-", lw=1.2, color=colour, alpha=0.8, label=f"{label}, eq. {EQUATIONS[technique]}")
+        elif technique not in KINDS:
+            raise ValueError(f"no analytic curve for technique '{technique}' (expected one of: {', '.join(KINDS)})")
+        if args.logarithmic and index == 0:
+            curve = [analytic("logarithmic", z, args.near, args.far, 0.0, resolution, focal_of(float(data["height"])),
+                              args.eye_height) for z in zs]
+            ax.plot(zs, curve, "--", lw=1.2, color="#555555", label="logarithmic (ideal), eq. 8.4")
     ax.set_yscale("log")
     ax.set_xlim(0, args.far)
     ax.set_xlabel("view depth z")
@@ -139,6 +152,8 @@ def parse_args(argv):
     parser.add_argument("--fov", type=float, default=60.0, help="vertical field of view in degrees (default 60)")
     parser.add_argument("--eye-height", type=float, default=0.0,
                         help="the camera's height over the ground, for the ground's 1/cos e factor (default 0: the seed's idealisation)")
+    parser.add_argument("--logarithmic", action="store_true",
+                        help="also draw eq. 8.4's ideal logarithmic parameterisation (for the first input's map and screen)")
     parser.add_argument("--min-pixels", type=int, default=64, help="bins with fewer pixels are not drawn (default 64)")
     parser.add_argument("--title", default="perspective aliasing against view depth", help="the figure's title")
     parser.add_argument("--dpi", type=int, default=120)

@@ -78,6 +78,8 @@ STYLE = OrderedDict([
     ("composited-translucent", ("#9edae5", "p")),
     ("raytraced", ("#e6550d", "*")),
     ("shadow-volumes", ("#31a354", "X")),
+    ("rbsm", ("#756bb1", "D")),
+    ("edtsm", ("#636363", "v")),
 ])
 FALLBACK_COLOURS = ("#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
                     "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac")

@@ -14,6 +14,7 @@
 #include "backend/backend.h"
 #include "camera.h"
 #include "groundtruth/contact_band.h"
+#include "groundtruth/edge_band.h"
 #include "groundtruth/groundtruth.h"
 #include "groundtruth/metrics.h"
 #include "groundtruth/reference_cache.h"

@@ -145,6 +145,14 @@ bool App::evaluateCapture(const EvaluationInput& input, const ReferenceOptions& 
             out.metrics.contactBandPixels = contact.bandPixels;
         }
     }
+    if (options.mode == ReferenceOptions::Mode::Hard) {
+        // Issue 28: the error near the hard reference's edges and away from them (groundtruth/edge_band.h).
+        const EdgeBandMetrics edges =
+            edgeBandMetrics(edgeBand(out.reference, out.mask, size.x, size.y), out.technique, out.reference, out.mask);
+        out.metrics.maeEdgeBand = edges.mae;
+        out.metrics.maeOffEdgeBand = edges.maeOff;
+        out.metrics.edgeBandPixels = edges.bandPixels;
+    }
     out.referenceFloor = out.referenceStats.sampleError.empty()
                              ? 0.0
                              : penumbraMean(out.referenceStats.sampleError, out.reference, out.mask, size.x, size.y);

@@ -19,6 +19,7 @@
 #include <cstdint>
 
 #include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/fullscreen_pass.h>
 #include <shadowlab/kit/jittered_disk.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
@@ -37,11 +38,10 @@ constexpr ParamDesc kResolution{"resolution", "resolution", ParamType::Int, 256,
      "Width and height of each sample's shadow map. Low values add each map's blocky edges to the penumbra; "
      "high values multiply the cost of every one of the N passes.", nullptr};
 
-#define AREA_REFERENCE_PARAMS(X)                      \
-    X(int, samples, kSamples)                         \
-    X(int, resolution, kResolution)                   \
-    X(float, constant_bias, kit::constantBiasParam()) \
-    X(float, slope_bias, kit::slopeBiasParam())
+#define AREA_REFERENCE_PARAMS(X)    \
+    X(int, samples, kSamples)       \
+    X(int, resolution, kResolution) \
+    SHADOWLAB_OFFSET_BIAS_PARAMS(X, 64)
 SHADOWLAB_PARAMS(Params, AREA_REFERENCE_PARAMS);
 
 // Van der Corput radical inverse in base 2: the second Hammersley coordinate.
@@ -92,10 +92,8 @@ LightInfo sampleLight(const LightInfo& light, const Bounds& bounds, int i, int n
 
 class AreaReference final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
-        accumulationFbo_ = kit::makeFramebuffer(host(), "visibility accumulation");
         return sampleMap_.create(host(), error) &&
-               accumulateProgram_.build(host(), {.vertexFile = "fullscreen.vert", .fragmentFile = "area_accumulate.frag"},
-                                        error);
+               accumulatePass_.create(host(), "area_accumulate.frag", "visibility accumulation", error);
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
@@ -119,9 +117,8 @@ class AreaReference final : public kit::TechniqueBase {
                                                   .label = "average visibility"});
         glTextureParameteri(accumulation_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(accumulation_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glNamedFramebufferTexture(accumulationFbo_, GL_COLOR_ATTACHMENT0, accumulation_, 0);
-        glNamedFramebufferDrawBuffer(accumulationFbo_, GL_COLOR_ATTACHMENT0);
-        host().checkFramebuffer(accumulationFbo_, "visibility accumulation");
+        accumulatePass_.attach(accumulation_);
+        host().checkFramebuffer(accumulatePass_.framebuffer(), "visibility accumulation");
         host().registerDebugImage("average visibility", accumulation_, DebugImageKind::Mask);
     }
 
@@ -135,35 +132,31 @@ class AreaReference final : public kit::TechniqueBase {
                                          .constantBias = p.constant_bias,
                                          .slopeBias = p.slope_bias};
         const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        glClearNamedFramebufferfv(accumulationFbo_, GL_COLOR, 0, zero);
+        glClearNamedFramebufferfv(accumulatePass_.framebuffer(), GL_COLOR, 0, zero);
         for (int i = 0; i < samples; ++i) {
             glDisable(GL_BLEND);
             glEnable(GL_DEPTH_TEST);
             sampleMap_.drawDepth(host().fitLightSpace(sampleLight(frame.light, bounds, i, samples), bounds), config);
             glDisable(GL_POLYGON_OFFSET_FILL);
 
-            glBindFramebuffer(GL_FRAMEBUFFER, accumulationFbo_);
-            glViewport(0, 0, viewport_.x, viewport_.y);
-            glDisable(GL_DEPTH_TEST);
+            accumulatePass_.begin();
             glEnable(GL_BLEND);
             glBlendColor(1.0f / float(samples), 0.0f, 0.0f, 0.0f);
             glBlendFunc(GL_CONSTANT_COLOR, GL_ONE);
-            accumulateProgram_.use();
             glBindTextureUnit(shared::area_reference::kPositionsUnit, prepass.position);
             glBindTextureUnit(shared::area_reference::kSampleMapUnit, sampleMap_.texture());
             glBindSampler(shared::area_reference::kSampleMapUnit, host().sampler(SamplerKind::CompareNearest));
-            host().drawFullscreenTriangle();
+            accumulatePass_.draw(viewport_);
         }
     }
 
     kit::DepthMap sampleMap_;   // re-rendered for every light sample
-    kit::Program accumulateProgram_;
-    kit::Framebuffer accumulationFbo_;
+    kit::FullscreenPass accumulatePass_;   // area_accumulate.frag, adding each sample's visibility
     kit::Texture accumulation_;
     glm::ivec2 viewport_{0};
 };
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueMapsUnviewed,
     {.id = "area-reference",
      .displayName = "Area light reference (N shadow maps)",
      .category = "reference",
@@ -173,9 +166,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                    "overlapping casters combine correctly. Slow by design (N shadow passes per frame): it is the target "
                    "that single-map techniques such as PCSS approximate. Few samples show banding.",
      .shadowGlsl = "area-reference.glsl",
-     .flags = kTechniqueNeedsCameraPrepass,
-     .translucencyModel = TranslucencyModel::Ignore,   // its maps hold opaque casters only
-     .debugViews = kit::views::kNone},
+     .flags = kTechniqueNeedsCameraPrepass},
     Params::table);
 
 } // namespace

@@ -110,7 +110,7 @@ class CompositedTranslucent final : public kit::TechniqueBase {
     uint32_t current_ = kTranslucentDrawsDone;
 };
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kTranslucentMap,
     {.id = "composited-translucent",
      .displayName = "Composited translucent shadows",
      .category = "coloured",
@@ -121,9 +121,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "001's composited translucent shadows, sec. 4.2.3). Right where translucent shadows tint "
                     "every layer alike, noise-free unlike CSSM2, but two passes per mesh, each over the meshes "
                     "in front: the cost grows with the square of the mesh count (real time only for a handful).",
-     .shadowGlsl = "composited-translucent.glsl",
-     .translucencyModel = TranslucencyModel::ModifiedTranslucent,
-     .debugViews = kit::views::kMap},
+     .shadowGlsl = "composited-translucent.glsl"},
     kit::kTranslucentMapParams);
 
 } // namespace

@@ -111,7 +111,7 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
                     error))
                 return false;
         }
-        if (!reduceProgram_.build(host(), {.computeFile = "csm_depth_bounds.comp"}, error)) return false;
+        if (!reduceProgram_.build(host(), {.computeFile = "view_depth_bounds.comp"}, error)) return false;
         framebuffer_ = kit::makeFramebuffer(host(), "cascades");
         uniforms_.create(host(), "csm uniforms");
         depthBounds_.create(host());
@@ -138,11 +138,7 @@ class CascadedShadowMaps final : public kit::TechniqueBase {
         if (fit != CsmFit::Frustum) range = kit::visibleDepthRange(frame.camera, scene);
         if (fit == CsmFit::Sdsm) {
             depthBounds_.reduce(reduceProgram_);
-            if (const auto bounds = depthBounds_.latest()) {
-                // A few frames old: 2% of slack either way, and never beyond what the view can reach.
-                range.nearDistance = std::clamp(bounds->nearDistance / 1.02f, range.nearDistance, range.farDistance);
-                range.farDistance = std::clamp(bounds->farDistance * 1.02f, range.nearDistance * 1.001f, range.farDistance);
-            }
+            range = kit::narrowToMeasured(range, depthBounds_.latest());
         }
         const kit::CascadeRanges ranges = kit::cascadeRanges(range.nearDistance, range.farDistance, count,
                                                              p.lambda, band);

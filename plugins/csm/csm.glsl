@@ -1,10 +1,12 @@
 // Cascaded shadow maps, main-pass side: the cascade is chosen by the point's view depth (the
 // first whose split range reaches it; if the point lies outside that cascade's map, the next one
-// holding it), looked up as n x n comparisons in its layer of the 2D array, and blended into the
-// next cascade over the blend band at the far end of its range (the next cascade's map is fitted
-// to reach back over that band, kit/cascades.h: cascadeRanges). Point lights: the kit's cube map.
+// holding it), looked up as n x n comparisons (box_pcf.glsl's taps) in its layer of the 2D array,
+// and blended into the next cascade over the blend band at the far end of its range (the next
+// cascade's map is fitted to reach back over that band, kit/cascades.h: cascadeRanges). Point
+// lights: the kit's cube map.
 #include "light_space.glsl"
 #include "cube_shadow.glsl"
+#include "box_pcf.glsl"
 #include "shadowlab/kit/csm_shared.h"
 
 layout(binding = kCascadeMapsUnit) uniform sampler2DArrayShadow uCascadeMaps;
@@ -23,11 +25,10 @@ vec3 cascadeCoord(int i, vec3 worldPos) {
 float cascadeLit(int i, vec3 coord) {
     int n = uCsmOptions.x;
     float texel = 1.0 / uCsmParams.w;
-    float centre = 0.5 * float(n - 1);
     float lit = 0.0;
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x)
-            lit += texture(uCascadeMaps, vec4(coord.xy + (vec2(x, y) - centre) * texel, float(i), coord.z));
+            lit += texture(uCascadeMaps, vec4(coord.xy + boxPcfOffset(x, y, n) * texel, float(i), coord.z));
     return lit / float(n * n);
 }
 

@@ -107,7 +107,7 @@ class ColouredStochasticShadowMaps final : public kit::TechniqueBase {
     kit::UniformBlock<shared::cssm2::Cssm2Uniforms> uniforms_;
 };
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kStochasticColourMap,
     {.id = "cssm2",
      .displayName = "Coloured stochastic shadow maps (CSSM2)",
      .category = "coloured",
@@ -120,9 +120,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "noisy (worst in bright, unsaturated light), the kernel blurs edges and, without hardware "
                     "comparison on a colour map, costs n^2 fetches. Try kernel 1, and noise = per-texel under "
                     "overlapping glass.",
-     .shadowGlsl = "cssm2.glsl",
-     .translucencyModel = TranslucencyModel::Physical,
-     .debugViews = kit::views::kMap},
+     .shadowGlsl = "cssm2.glsl"},
     Params::table);
 
 } // namespace

@@ -32,8 +32,7 @@ constexpr ParamDesc kNegativeExponent{"negative_exponent", "negative exponent c-
     SHADOWLAB_MOMENT_MAP_PARAMS(X, 1024)            \
     X(float, positive_exponent, kPositiveExponent)  \
     X(float, negative_exponent, kNegativeExponent)  \
-    X(float, min_variance, kit::minVarianceParam()) \
-    X(float, light_bleeding, kit::lightBleedingParam())
+    SHADOWLAB_CHEBYSHEV_PARAMS(X)
 SHADOWLAB_PARAMS(Params, EVSM_PARAMS);
 
 class ExponentialVarianceShadowMaps final : public kit::MomentTechnique<Params, shared::evsm::EvsmUniforms, "evsm_moments.glsl"> {

@@ -34,6 +34,7 @@
 
 #include <shadowlab/kit/disc_offset_texture.h>
 #include <shadowlab/kit/filtered_depth_maps.h>
+#include <shadowlab/kit/fullscreen_pass.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
@@ -78,10 +79,8 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         uniforms_.create(host(), "pcss uniforms");
         cubeMinDepthUniforms_.create(host(), "pcss cube min-depth uniforms");
-        minDepthFbo_ = kit::makeFramebuffer(host(), "cube min-depth mips");
         return maps_.create(host(), error) &&
-               cubeMinDepthProgram_.build(host(), {.vertexFile = "fullscreen.vert", .fragmentFile = "pcss_cube_min_depth.frag"},
-                                          error);
+               cubeMinDepthPass_.create(host(), "pcss_cube_min_depth.frag", "cube min-depth mips", error);
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
@@ -160,9 +159,7 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     // source level and face are the pass's block (PcssCubeMinDepthUniforms), written before each draw.
     void buildCubeMinDepthMips() {
         GpuPass pass(host(), "min-depth mips");
-        glBindFramebuffer(GL_FRAMEBUFFER, minDepthFbo_);
-        glDisable(GL_DEPTH_TEST);
-        cubeMinDepthProgram_.use();
+        cubeMinDepthPass_.begin();
         cubeMinDepthUniforms_.bind();
         glBindTextureUnit(shared::pcss::kCubeMinDepthSourceUnit, maps_.cube().texture());
         glBindSampler(shared::pcss::kCubeMinDepthSourceUnit, host().sampler(SamplerKind::Nearest));
@@ -173,12 +170,10 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
             // buildMinDepthMips), disjoint from the level being written.
             if (level > 0) glTextureBarrier();
             const int size = std::max(cubeMinDepthSize_ >> level, 1);
-            glViewport(0, 0, size, size);
             for (int face = 0; face < 6; ++face) {
-                glNamedFramebufferTextureLayer(minDepthFbo_, GL_COLOR_ATTACHMENT0, cubeMinDepth_, level, face);
-                glNamedFramebufferDrawBuffer(minDepthFbo_, GL_COLOR_ATTACHMENT0);
+                cubeMinDepthPass_.attach(cubeMinDepth_, level, face);
                 cubeMinDepthUniforms_.update({{}, level - 1, face, maps_.cube().resolution(), 0});
-                host().drawFullscreenTriangle();
+                cubeMinDepthPass_.draw({size, size});
             }
         }
         glBindTextureUnit(shared::pcss::kCubeMinDepthSourceUnit, 0);
@@ -187,11 +182,10 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
     }
 
     kit::FilteredDepthMaps maps_;
-    kit::Program cubeMinDepthProgram_;
+    kit::FullscreenPass cubeMinDepthPass_;   // pcss_cube_min_depth.frag into one face's layer of a level
     kit::Texture cubeMinDepth_;
     int cubeMinDepthSize_ = 0;
     int cubeMinDepthLevels_ = 0;
-    kit::Framebuffer minDepthFbo_;
     jittered_disk::DiscOffsetTexture searchOffsets_;
     jittered_disk::DiscOffsetTexture filterOffsets_;
     kit::UniformBlock<shared::pcss::PcssUniforms> uniforms_;

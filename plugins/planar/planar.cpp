@@ -120,7 +120,7 @@ class PlanarShadows final : public kit::TechniqueBase {
     kit::UniformBlock<PlanarUniforms> uniforms_;
 };
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kCasterGeometry,
     {.id = "planar",
      .displayName = "Planar projected shadows",
      .category = "hard",
@@ -130,8 +130,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "need care: stencil keeps shadows on the receiver, clipping removes anti-shadows, a depth offset "
                     "avoids z-fighting.",
      .shadowGlsl = "planar.glsl",
-     .flags = kTechniqueNeedsCameraPrepass,
-     .debugViews = kit::views::kNone},
+     .flags = kTechniqueNeedsCameraPrepass},
     Params::table);
 
 } // namespace

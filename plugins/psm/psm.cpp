@@ -4,9 +4,10 @@
 // move-back and the change of light type). Included as the method LiSPSM was built to fix: its
 // quality hangs on the near plane and jumps with the move-back, and a light in front of the
 // viewer shining back (duelling frusta) needs more than one map; there this falls back to the
-// plain focused map, and says so in the statistic "fallback".
-#include <shadowlab/kit/depth_map.h>
+// plain focused map, and says so in the statistic "fallback". Biasing: also the two-layer methods
+// of seed 002 ch. 5 (bias_method; kit/layered_depth.h).
 #include <shadowlab/kit/focus.h>
+#include <shadowlab/kit/layered_depth.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
@@ -29,19 +30,16 @@ constexpr ParamDesc kMoveBack{"move_back", "virtual move-back", ParamType::Bool,
     X(int, resolution, kit::resolutionParam())           \
     SHADOWLAB_BIAS_PARAMS(X, 64, 2)                      \
     X(bool, hardware_filter, kit::hardwareFilterParam()) \
-    X(bool, move_back, kMoveBack)
+    X(bool, move_back, kMoveBack)                        \
+    SHADOWLAB_TWO_LAYER_PARAMS(X)
 SHADOWLAB_PARAMS(Params, PSM_PARAMS);
 
 class PerspectiveShadowMaps final : public kit::TechniqueBase {
-    bool setup(std::string& error) override { return map_.create(host(), error); }
+    bool setup(std::string& error) override { return maps_.create(host(), error); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
-        kit::DepthMapConfig config{.resolution = p.resolution,
-                                   .constantBias = p.constant_bias,
-                                   .slopeBias = p.slope_bias,
-                                   .cull = kit::Cull(p.cull)};
-        map_.ensureTexture(config.resolution, config.format);
+        kit::DepthMapConfig config = kit::depthMapConfig(p);   // no fit parameter: the focus body below
         GpuPass pass(host(), "shadow map");
         // The view from the nearest visible receiver on (psm_space.h), and its B (eq. 4.2): what the
         // map must hold, and what decides the move-back and the near plane.
@@ -73,18 +71,18 @@ class PerspectiveShadowMaps final : public kit::TechniqueBase {
                                space ? double(int(space->lightType)) : -1.0);
         // Depth clamp: parts of kept casters beyond the light frustum's depth range still occlude.
         glEnable(GL_DEPTH_CLAMP);
-        map_.drawDepth(lightSpace, config, focused.cullPlanes);
+        maps_.draw(lightSpace, config, kit::layeredDepthConfig(p), focused.cullPlanes);
         glDisable(GL_DEPTH_CLAMP);
-        map_.setFocusBody(body);
-        map_.reportToHost();
+        maps_.map().setFocusBody(body);
+        maps_.map().reportToHost();
     }
 
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
         const Params p = Params::read(params);
-        map_.bindMainPass(p.hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+        maps_.bindMainPass(p.hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
     }
 
-    kit::DepthMap map_;
+    kit::LayeredDepthMap maps_;
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,

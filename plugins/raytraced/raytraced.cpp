@@ -225,7 +225,7 @@ class RayTraced final : public kit::TechniqueBase {
     uint64_t serial_ = 0;
 };
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kTracedRays,   // no map for the host's views; its own image is 'ray cost'
     {.id = "raytraced",
      .displayName = "Ray-traced shadows (GPU)",
      .category = "soft",
@@ -235,9 +235,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "falls as N grows; translucent casters colour the light they pass. Cost scales with pixels and rays, "
                     "not with a map's resolution. Debug view: 'ray cost' (counters on) shows BVH work per pixel.",
      .shadowGlsl = "raytraced.glsl",
-     .flags = kTechniqueNeedsCameraPrepass,
-     .translucencyModel = TranslucencyModel::Physical,
-     .debugViews = kit::views::kNone},   // no map for the host's views; its own image is 'ray cost'
+     .flags = kTechniqueNeedsCameraPrepass},
     Params::table, kFlagConditions);
 
 } // namespace

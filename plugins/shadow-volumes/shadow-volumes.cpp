@@ -4,20 +4,18 @@
 // resolution, bias or aliasing, paid for in fill rate (volumes cover the screen many times over)
 // and in geometry work on the silhouettes.
 //
-// Per frame: the host's camera pre-pass gives the visible depth; it is copied into this
-// technique's depth-stencil target, the volumes of every caster are drawn into the stencil (no
-// depth or colour writes, GL_DEPTH_CLAMP), and shadowTerm() reads the stencil at its pixel
-// (stencil texturing: the full-screen pass that turned it into a mask cost 0.25 ms at 1080p on
-// an H200, about a fifth of the technique on cube; it now runs only for the debug image). The volumes come from the host's triangles
-// with adjacency (the rules for closed and open meshes are explained in volume.geom), found two
-// ways (parameter `extract`):
+// Per frame: the volumes of every caster are counted in the stencil of the host's camera
+// pre-pass (CameraPrepass: its depth in place, no copy; no depth or colour writes,
+// GL_DEPTH_CLAMP), and shadowTerm() reads that stencil at its pixel through the host's view of it
+// (no mask pass: that cost 0.25 ms at 1080p on an H200; it runs only for the debug image). The
+// volumes come from the host's triangles with adjacency (the rules for closed and open meshes are
+// explained in volume.geom), found two ways (parameter `extract`):
 //   geometry: volume.geom, a geometry stage over the triangles as they are drawn, emits each
 //     triangle's sides and caps as strips.
 //   compute: a compute pass writes the same sides and caps to buffers, drawn indirectly
 //     (volume_records.h: the buffers, the extraction and the draws).
-// The host's camera pre-pass is asked for depth only (kTechniqueNeedsCameraDepth): the volumes
-// need nothing else, and the full pass (position, normal, id) cost 2.17 of the 3.69 ms a frame
-// on cube at 1080p on an H200.
+// The host's camera pre-pass is asked for depth only (kTechniqueNeedsCameraDepth): the full pass
+// (position, normal, id) cost 2.17 of the 3.69 ms a frame on cube at 1080p on an H200.
 //
 // Counting (parameter `counting`):
 //   depth-pass (Heidmann): +1 for volume faces facing the eye in front of the scene, -1 for faces
@@ -63,12 +61,12 @@ constexpr ParamDesc kDebugImagesParam = {
     "off when timing).",
     nullptr};
 constexpr ParamDesc kExtractParam = {
-    "extract", "extract", ParamType::Enum, 0, 1, 0, "",
+    "extract", "extract", ParamType::Enum, 0, 1, 1, "",
     "Where the silhouettes are found. geometry: a geometry stage over the triangles with adjacency emits each "
     "triangle's sides and caps as it is drawn. compute: a compute pass writes them to a buffer, counted with atomics "
     "into indirect draw commands, drawn with glDrawArraysIndirect. The same volumes and image; compute holds a "
     "buffer for the worst case (72 bytes a caster triangle of a closed mesh, 108 of an open one) and falls back to "
-    "geometry, with a warning, where that does not fit.",
+    "geometry, with a warning, where that does not fit. Default compute: on an H200 it was faster on dragon-like.",
     "geometry|compute"};
 #define SHADOW_VOLUMES_PARAMS(X)         \
     X(int, counting, kCountingParam)     \
@@ -80,14 +78,13 @@ enum Extract : int { kGeometry = 0, kCompute = 1 };
 
 class ShadowVolumes final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
-        if (!volumes_.build(host(), {.vertexFile = "volume.vert", .geometryFile = "volume.geom", .fragmentFile = "volume_count.frag"}, error) ||
-            !edges_.build(host(), {.vertexFile = "volume.vert", .geometryFile = "volume.geom", .fragmentFile = "volume_count.frag",
-                                   .defines = "SHADOW_VOLUME_EDGES 1"}, error) ||
-            !fill_.build(host(), {.vertexFile = "fullscreen.vert", .fragmentFile = "volume_count.frag"}, error) ||
-            !records_.create(host(), error))
-            return false;
-        counters_.create();
-        return true;
+        const bool built =
+            volumes_.build(host(), {.vertexFile = "volume.vert", .geometryFile = "volume.geom", .fragmentFile = "volume_count.frag"}, error) &&
+            edges_.build(host(), {.vertexFile = "volume.vert", .geometryFile = "volume.geom", .fragmentFile = "volume_count.frag",
+                                  .defines = "SHADOW_VOLUME_EDGES 1"}, error) &&
+            fill_.build(host(), {.vertexFile = "fullscreen.vert", .fragmentFile = "volume_count.frag"}, error) && records_.create(host(), error);
+        if (built) counters_.create();
+        return built;
     }
 
     void shutdown() override {
@@ -97,12 +94,14 @@ class ShadowVolumes final : public kit::TechniqueBase {
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const auto* prepass = static_cast<const CameraPrepass*>(host().extension(SHADOWLAB_EXT_CAMERA_PREPASS));
-        if (!prepass || !prepass->depth || !allocate(prepass->size)) return;
+        stencil_ = 0;
+        if (!prepass || !prepass->depth || prepass->structSize < sizeof(CameraPrepass) || !allocate(prepass->size) ||
+            !targets_.attachPrepass(host(), *prepass))
+            return;
         counters_.read(host(), frameCount_, targets_.size);
         const Params values = Params::read(params);
-        const int counting = values.counting;
-        const bool depthFail =
-            counting == kDepthFail || (counting == kAuto && kit::nearPlaneMayBeInShadow(frame, host().objects(), host().objectCount()));
+        const bool depthFail = values.counting == kDepthFail ||
+                               (values.counting == kAuto && kit::nearPlaneMayBeInShadow(frame, host().objects(), host().objectCount()));
         host().reportStatistic("depth-fail", depthFail ? 1.0 : 0.0);
         // The volumes start 1e-4 of the scene's size beyond each caster, as the reference's rays do.
         const Bounds scene = host().bounds(DrawSet::All);
@@ -115,26 +114,26 @@ class ShadowVolumes final : public kit::TechniqueBase {
         {
             GpuPass pass(host(), "shadow volumes");
             if (casters) records_.extract(*casters, push);
-            copyDepth(*prepass);
+            clearStencil();
             countVolumes(depthFail, casters ? nullptr : &volumes_, push);
             if (values.debug_images) writeMask();
         }
         ++frameCount_;
+        stencil_ = prepass->stencil;
         if (values.debug_images) drawDebugImages(push, casters != nullptr);
     }
 
     void bindMainPass(const FrameContext&, const ParamValues&) override {
-        glBindTextureUnit(kVolumeMaskUnit, targets_.depthStencil);   // sampled as its stencil (volume_targets.cpp)
+        glBindTextureUnit(kVolumeMaskUnit, stencil_);   // the pre-pass's stencil (CameraPrepass::stencil)
         glBindSampler(kVolumeMaskUnit, host().sampler(SamplerKind::Nearest));
     }
 
-    // The camera's visible depth into the volumes' depth-stencil target, the stencil cleared.
-    void copyDepth(const CameraPrepass& prepass) {
-        host().beginGpuPass("volume depth copy");
-        glCopyImageSubData(prepass.depth, GL_TEXTURE_2D, 0, 0, 0, 0, targets_.depthStencil, GL_TEXTURE_2D, 0, 0, 0, 0,
-                           targets_.size.x, targets_.size.y, 1);
+    // The host clears the stencil with the depth, but views side by side share the pre-pass.
+    void clearStencil() {
+        host().beginGpuPass("volume stencil clear");
         glBindFramebuffer(GL_FRAMEBUFFER, targets_.framebuffer);
         glViewport(0, 0, targets_.size.x, targets_.size.y);
+        glStencilMask(0xFF);
         glClearStencil(0);
         glClear(GL_STENCIL_BUFFER_BIT);
         host().endGpuPass();
@@ -225,6 +224,7 @@ class ShadowVolumes final : public kit::TechniqueBase {
     shadow_volumes::VolumeTargets targets_;
     shadow_volumes::VolumeCounters counters_;
     uint64_t frameCount_ = 0;
+    uint32_t stencil_ = 0;   // this frame's count (the pre-pass's stencil view), 0: none counted
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(

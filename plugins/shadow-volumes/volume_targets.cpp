@@ -7,11 +7,7 @@ using namespace shadowlab;
 
 bool VolumeTargets::allocate(IHost& host, glm::ivec2 newSize) {
     size = newSize;
-    depthStencil = kit::Texture(host, host.createTexture({.internalFormat = GL_DEPTH24_STENCIL8, .width = size.x,
-                                                          .height = size.y, .label = "volume depth and stencil"}));
-    // Sampled by shadowTerm() as the stencil count (usampler2D), never as depth; the parameter
-    // changes sampling only, not its use as the framebuffer's attachment.
-    glTextureParameteri(depthStencil, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
+    attached = 0;
     mask = kit::Texture(host, host.createTexture({.internalFormat = GL_R8, .width = size.x, .height = size.y,
                                                   .label = "volume mask"}));
     overdraw = kit::Texture(host, host.createTexture({.internalFormat = GL_R8, .width = size.x, .height = size.y,
@@ -19,7 +15,6 @@ bool VolumeTargets::allocate(IHost& host, glm::ivec2 newSize) {
     edgeImage = kit::Texture(host, host.createTexture({.internalFormat = GL_R8, .width = size.x, .height = size.y,
                                                        .label = "silhouette edges"}));
     framebuffer = kit::Framebuffer(host, host.createFramebuffer("shadow volumes"));
-    glNamedFramebufferTexture(framebuffer, GL_DEPTH_STENCIL_ATTACHMENT, depthStencil, 0);
     glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, mask, 0);
     debugFramebuffer = kit::Framebuffer(host, host.createFramebuffer("shadow volume debug images"));
     glNamedFramebufferTexture(debugFramebuffer, GL_COLOR_ATTACHMENT0, overdraw, 0);
@@ -28,6 +23,13 @@ bool VolumeTargets::allocate(IHost& host, glm::ivec2 newSize) {
     host.registerDebugImage("silhouette edges", edgeImage, DebugImageKind::Mask);
     return host.checkFramebuffer(framebuffer, "shadow volumes") &&
            host.checkFramebuffer(debugFramebuffer, "shadow volume debug images");
+}
+
+bool VolumeTargets::attachPrepass(IHost& host, const CameraPrepass& prepass) {
+    glNamedFramebufferTexture(framebuffer, GL_DEPTH_STENCIL_ATTACHMENT, prepass.depth, 0);
+    if (prepass.depth == attached) return true;
+    attached = prepass.depth;
+    return host.checkFramebuffer(framebuffer, "shadow volumes");
 }
 
 void VolumeCounters::create() {

@@ -11,16 +11,19 @@
 
 namespace shadow_volumes {
 
-// The visible depth with the stencil the volumes count into, the mask shadowTerm() reads, and the
-// two debug images (registered with the host as "volume mask", "volume overdraw" and
-// "silhouette edges").
+// The framebuffer the volumes are counted in (the host pre-pass's depth and stencil, attached
+// each frame: attachPrepass), the mask image of the debug view, and the two other debug images
+// (registered with the host as "volume mask", "volume overdraw" and "silhouette edges").
 struct VolumeTargets {
     // Every target at `size`; false when a framebuffer is incomplete (the host has said why).
     bool allocate(shadowlab::IHost& host, glm::ivec2 size);
+    // The pre-pass's depth-stencil on `framebuffer` (checked once for each texture it is given).
+    bool attachPrepass(shadowlab::IHost& host, const shadowlab::CameraPrepass& prepass);
 
-    shadowlab::kit::Texture depthStencil, mask, overdraw, edgeImage;
-    shadowlab::kit::Framebuffer framebuffer, debugFramebuffer;   // depth-stencil + mask; a debug image
+    shadowlab::kit::Texture mask, overdraw, edgeImage;
+    shadowlab::kit::Framebuffer framebuffer, debugFramebuffer;   // pre-pass depth-stencil + mask; a debug image
     glm::ivec2 size{0};
+    uint32_t attached = 0;   // the pre-pass texture last checked on `framebuffer`
 };
 
 // Volume samples passing the depth test and volume triangles, from queries in a ring, read two or

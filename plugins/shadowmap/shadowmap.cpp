@@ -8,10 +8,13 @@
 // Options: constant and slope-scaled bias through glPolygonOffset, culling of front faces in
 // the shadow pass (only back faces are stored; seed 002 "biasing with back faces"), and the
 // hardware's 2x2 comparison filter (sampler2DShadow with linear filtering).
+// Biasing: also the two-layer methods of seed 002 ch. 5 (bias_method: midpoint, eq. 5.1, and second
+// depth; kit/layered_depth.h).
 // Point lights: a cube of six faces storing the linear distance (kit/cube_depth_map.h), with the
-// same resolution (per face), bias, culling and filter; `fit` and `snap` do not apply to it.
+// same resolution (per face), bias, culling and filter; `fit`, `snap` and the two-layer methods do
+// not apply to it.
 #include <shadowlab/kit/cube_depth_map.h>
-#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/layered_depth.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
@@ -22,16 +25,18 @@ using namespace shadowlab;
 #define SHADOWMAP_PARAMS(X)                              \
     SHADOWLAB_DEPTH_MAP_PARAMS(X, 2048, 200000, 1)       \
     X(bool, hardware_filter, kit::hardwareFilterParam()) \
-    SHADOWLAB_FIT_PARAMS(X)
+    SHADOWLAB_FIT_PARAMS(X)                              \
+    SHADOWLAB_TWO_LAYER_PARAMS(X)
 SHADOWLAB_PARAMS(Params, SHADOWMAP_PARAMS);
 
 class ShadowMapping final : public kit::TechniqueBase {
     bool setup(std::string& error) override { return map_.create(host(), error) && cube_.create(host(), error); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const kit::DepthMapConfig config = kit::depthMapConfig(Params::read(params));
+        const Params p = Params::read(params);
+        const kit::DepthMapConfig config = kit::depthMapConfig(p);
         if (frame.light.type == LightType::Point) return cube_.render(frame, config);
-        map_.render(frame, config);
+        map_.render(frame, config, kit::layeredDepthConfig(p));
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
@@ -40,7 +45,7 @@ class ShadowMapping final : public kit::TechniqueBase {
         map_.bindMainPass(sampling);
     }
 
-    kit::DepthMap map_;
+    kit::LayeredDepthMap map_;
     kit::CubeDepthMap cube_;
 };
 

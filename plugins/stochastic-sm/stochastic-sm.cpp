@@ -59,8 +59,7 @@ constexpr ParamDesc kMsaa{"msaa", "MSAA samples", ParamType::Enum, 0, 3, 0, "",
     X(int, noise, kit::noiseParam())                  \
     X(int, msaa, kMsaa)                               \
     X(bool, cone_bias, kit::coneBiasParam())          \
-    X(float, constant_bias, kit::constantBiasParam()) \
-    X(float, slope_bias, kit::slopeBiasParam())       \
+    SHADOWLAB_OFFSET_BIAS_PARAMS(X, 64)               \
     SHADOWLAB_FIT_PARAMS(X)
 SHADOWLAB_PARAMS(Params, STOCHASTIC_SM_PARAMS);
 
@@ -143,7 +142,7 @@ class StochasticShadowMaps final : public kit::TechniqueBase {
     kit::UniformBlock<shared::stochastic_sm::StochasticSmUniforms> uniforms_;
 };
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kStochasticMap,
     {.id = "stochastic-sm",
      .displayName = "Stochastic shadow maps",
      .category = "coloured",
@@ -157,9 +156,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "several flips per texel: less noise at the same blur, for more memory and fetches. Try "
                     "kernel 1 to see the coin flips, then msaa 4 at the same kernel, and noise = per-texel under "
                     "overlapping glass to see what shared random numbers do.",
-     .shadowGlsl = "stochastic-sm.glsl",
-     .translucencyModel = TranslucencyModel::Coverage,
-     .debugViews = kit::views::kMap},
+     .shadowGlsl = "stochastic-sm.glsl"},
     Params::table);
 
 } // namespace

@@ -35,7 +35,7 @@ class TranslucentShadows final : public kit::TechniqueBase {
     kit::TranslucentMaps maps_;
 };
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kTranslucentMap,
     {.id = "translucent-shadows",
      .displayName = "Translucent shadows (StarCraft II)",
      .category = "coloured",
@@ -48,9 +48,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "(1 - alpha) t and is judged by that model; the original writes the surface colour, which "
                     "has no reference model of its own (it is judged by the modified one). Compare the two on "
                     "teapot-glass's green pot.",
-     .shadowGlsl = "translucent-shadows.glsl",
-     .translucencyModel = TranslucencyModel::ModifiedTranslucent,
-     .debugViews = kit::views::kMap},
+     .shadowGlsl = "translucent-shadows.glsl"},
     kit::kTranslucentMapParams);
 
 } // namespace

@@ -26,8 +26,7 @@ constexpr ParamDesc kDerivativeMoment{"derivative_moment", "derivative-based M2"
 
 #define VSM_PARAMS(X)                                   \
     SHADOWLAB_MOMENT_MAP_PARAMS(X, 1024)                \
-    X(float, min_variance, kit::minVarianceParam())     \
-    X(float, light_bleeding, kit::lightBleedingParam()) \
+    SHADOWLAB_CHEBYSHEV_PARAMS(X)                       \
     X(bool, derivative_moment, kDerivativeMoment)
 SHADOWLAB_PARAMS(Params, VSM_PARAMS);
 

@@ -16,9 +16,11 @@ build=${2:-build-fuzz}
 cmake -S tests/fuzz -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=clang++ > /dev/null
 cmake --build "$build" -j"${JOBS:-$(nproc)}"
 
-status=0
-summary=""
-for target in scene obj bench_spec tour session path texture; do
+# One target: fuzz it, replay any slow unit, and leave its summary line in $build/$target.result
+# and its status in $build/$target.status. Targets run $JOBS at a time (each is single-threaded),
+# so the stage takes seconds x targets / cores.
+fuzz_one() {
+    local target=$1 seeds dict max_len
     case $target in
     scene) seeds=(assets/scenes tests/fuzz/corpus/scene tests/fuzz/regressions/scene); dict=scene.dict; max_len=16384 ;;
     obj) seeds=(tests/fuzz/corpus/obj tests/fuzz/regressions/obj); dict=obj.dict; max_len=16384 ;;
@@ -28,10 +30,9 @@ for target in scene obj bench_spec tour session path texture; do
     path) seeds=(assets/stress tests/fuzz/corpus/path tests/fuzz/regressions/path); dict=path.dict; max_len=16384 ;;
     texture) seeds=(tests/fuzz/corpus/texture tests/fuzz/regressions/texture); dict=png.dict; max_len=65536 ;;
     esac
-    corpus="$build/corpus/$target"
-    artifacts="$build/artifacts/$target"
+    local corpus="$build/corpus/$target" artifacts="$build/artifacts/$target" log="$build/$target.log"
+    local code runs unit slowest ms replay found status=0
     mkdir -p "$corpus" "$artifacts"
-    log="$build/$target.log"
     echo "fuzz_$target: ${seconds}s"
     set +e
     UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
@@ -59,13 +60,29 @@ for target in scene obj bench_spec tour session path texture; do
         fi
     done
     found=$(ls "$artifacts" | wc -l)
-    summary+="fuzz_$target: $runs executions in ${seconds}s, exit $code, $found finding(s)"$'\n'
+    echo "fuzz_$target: $runs executions in ${seconds}s, exit $code, $found finding(s)" > "$build/$target.result"
     if [ "$code" != 0 ] || [ "$found" != 0 ]; then
         status=1
-        echo "fuzz_$target FAILED (exit $code); the end of $log:"
-        tail -40 "$log"
-        ls -l "$artifacts"
+        { echo "fuzz_$target FAILED (exit $code); the end of $log:"; tail -40 "$log"; ls -l "$artifacts"; } \
+            > "$build/$target.failure"
     fi
+    echo "$status" > "$build/$target.status"
+}
+
+targets=(scene obj bench_spec tour session path texture)
+jobs=${JOBS:-$(nproc)}
+rm -f "$build"/*.result "$build"/*.status "$build"/*.failure
+for target in "${targets[@]}"; do
+    while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
+    fuzz_one "$target" &
+done
+wait
+status=0
+summary=""
+for target in "${targets[@]}"; do
+    if [ -e "$build/$target.failure" ]; then cat "$build/$target.failure"; fi
+    summary+="$(cat "$build/$target.result" 2>/dev/null || echo "fuzz_$target: no result (the runner died)")"$'\n'
+    [ "$(cat "$build/$target.status" 2>/dev/null || echo 1)" = 0 ] || status=1
 done
 printf '%s' "$summary"
 exit $status

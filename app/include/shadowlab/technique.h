@@ -340,6 +340,13 @@ using ProgramId = uint32_t;                  // host handle; stays valid across 
 // Textures are host-owned and read-only for techniques: sample them, or attach `depth` to a
 // framebuffer with depth writes off. Same size as the main target, single-sample, opaque objects
 // only, the same vertex transform as the main pass (so depths match it exactly).
+// The stencil of `depth` is the exception: it is the technique's from renderShadows to the end of
+// its main pass. The host clears it to 0 with the depth and never reads or writes it otherwise,
+// so a technique may count into it (attach `depth`, depth writes off, stencil writes on) and read
+// the count in shadowTerm() through `stencil`, without a depth copy of its own (shadow volumes).
+// Techniques drawn side by side share one pre-pass: clear the stencil before counting.
+// Attach `depth` again each frame: the host reallocates its targets (resize, a fuller kind), and
+// a recycled GL name cannot be told from the old one.
 #define SHADOWLAB_EXT_CAMERA_PREPASS "shadowlab.camera-prepass/1"
 struct CameraPrepass {
     uint32_t structSize = sizeof(CameraPrepass);
@@ -348,6 +355,10 @@ struct CameraPrepass {
     uint32_t normal;                         // GL_RGBA16F: xyz unit world normal facing the viewer (0: depth only)
     uint32_t objectId;                       // GL_R32UI: object index + 1, 0 = background (0: depth only)
     glm::ivec2 size;
+    // Added in ABI 3 after size, read only when structSize covers it: a texture view of `depth`
+    // that samples its stencil (GL_DEPTH_STENCIL_TEXTURE_MODE = GL_STENCIL_INDEX; a usampler2D
+    // with a nearest sampler), so that `depth` itself keeps sampling as depth for everyone else.
+    uint32_t stencil = 0;
 };
 
 // Extension "shadowlab.shadow-maps/1": the shadow maps shadowTerm() reads this frame, told to the

@@ -55,6 +55,12 @@ void addPassColumns(const AccuracyPass& pass, const Evaluation& evaluation, nloh
         row[prefix + "contact_false_light"] = a.contactFalseLightRate;
         row[prefix + "contact_band_pixels"] = a.contactBandPixels;
     }
+    if (pass.mode == ReferenceOptions::Mode::Hard) {
+        // Issue 28: the error near hard edges and away from them (groundtruth/edge_band.h).
+        row[prefix + "edge_band_mae"] = a.maeEdgeBand;
+        row[prefix + "off_edge_mae"] = a.maeOffEdgeBand;
+        row[prefix + "edge_band_pixels"] = a.edgeBandPixels;
+    }
     if (pass.mode == ReferenceOptions::Mode::Soft) {
         // The soft reference's own error: soft figures (and differences between them) below
         // about 4x the floor are not resolved.
@@ -84,31 +90,37 @@ bool referenceModesFor(const std::string& reference, const TechniqueInfo& info, 
     return true;
 }
 
-bool addAccuracyColumns(App& app, const TechniqueInfo& info, const AccuracyRequest& request, nlohmann::json& columns,
-                        std::string& error, const std::function<void(const AccuracyPass&, const Evaluation&)>& each) {
+bool captureAccuracy(App& app, const TechniqueInfo& info, AccuracyCapture& capture, nlohmann::json& columns,
+                     std::string& error) {
     // Physical in the plain columns (hard_mae, ...), the technique's own model where it differs
     // in hard_own_* / soft_own_* (docs/benchmarks.md, "Translucency models").
     columns["translucency_model"] = translucencyModelName(info.translucencyModel);
-    const std::vector<TranslucencyModel> models = judgedModels(info.translucencyModel, app.scene());
+    capture.models = judgedModels(info.translucencyModel, app.scene());
     // One re-render and readback serves every pass: the passes differ in the reference only.
-    EvaluationInput input;
     ImmediateReader reader;
     const auto captureStart = std::chrono::steady_clock::now();
-    if (!app.captureEvaluation(input, reader, error)) return false;
+    if (!app.captureEvaluation(capture.input, reader, error)) return false;
     columns["seconds_accuracy_render"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - captureStart).count();
+    return true;
+}
+
+bool evaluateAccuracy(App& app, const AccuracyRequest& request, const AccuracyCapture& capture, nlohmann::json& columns,
+                      std::string& error, const std::function<void(const AccuracyPass&, const Evaluation&)>& each) {
     bool footprintDone = false;
     for (const ReferenceOptions::Mode mode : request.modes) {
-        for (const TranslucencyModel model : models) {
+        for (const TranslucencyModel model : capture.models) {
             ReferenceOptions options;
             options.mode = mode;
             options.samplesPerPixel = request.samples;
             options.adaptive = request.adaptive;
             options.model = model;
+            options.threads = request.threads;
             Evaluation evaluation;
             // The footprint depends on the capture only; addPassColumns reads it from the
             // first physical pass.
             const bool withFootprint = !footprintDone && model == TranslucencyModel::Physical;
-            if (!app.evaluateCapture(input, options, evaluation, error, {withFootprint, false, request.contactBand})) return false;
+            if (!app.evaluateCapture(capture.input, options, evaluation, error, {withFootprint, false, request.contactBand}))
+                return false;
             footprintDone = footprintDone || withFootprint;
             // Where the evaluation's wall time went (docs/benchmarks.md, seconds_row).
             columns["seconds_reference"] = columns.value("seconds_reference", 0.0) + evaluation.traceSeconds;
@@ -123,6 +135,12 @@ bool addAccuracyColumns(App& app, const TechniqueInfo& info, const AccuracyReque
         }
     }
     return true;
+}
+
+bool addAccuracyColumns(App& app, const TechniqueInfo& info, const AccuracyRequest& request, nlohmann::json& columns,
+                        std::string& error, const std::function<void(const AccuracyPass&, const Evaluation&)>& each) {
+    AccuracyCapture capture;
+    return captureAccuracy(app, info, capture, columns, error) && evaluateAccuracy(app, request, capture, columns, error, each);
 }
 
 } // namespace shadowlab

@@ -29,6 +29,7 @@ struct AccuracyRequest {
     // The contact band's false light (hard passes, groundtruth/contact_band.h): a shadow ray a
     // pixel more, so bench rows have it only where their spec asks ("contactBand").
     bool contactBand = true;
+    int threads = 0;         // the reference's threads (0: every core; ReferenceOptions::threads)
 };
 
 // An evaluation as it is measured: its column prefix ("hard_", "soft_own_"), mode and model.
@@ -49,5 +50,18 @@ struct AccuracyPass {
 bool addAccuracyColumns(App& app, const TechniqueInfo& info, const AccuracyRequest& request, nlohmann::json& columns,
                         std::string& error,
                         const std::function<void(const AccuracyPass&, const Evaluation&)>& each = {});
+
+// addAccuracyColumns in its two halves, so that a bench row's evaluation can run beside the next
+// row's timed frames (bench.cpp): the GL half reads the frame back (GL thread; the frame and the
+// app's state are the row's), the CPU half traces and measures it (any thread with the CPU
+// reference device, never across App::loadScene; App::evaluateCapture).
+struct AccuracyCapture {
+    EvaluationInput input;
+    std::vector<TranslucencyModel> models;   // judgedModels() when captured
+};
+bool captureAccuracy(App& app, const TechniqueInfo& info, AccuracyCapture& capture, nlohmann::json& columns,
+                     std::string& error);
+bool evaluateAccuracy(App& app, const AccuracyRequest& request, const AccuracyCapture& capture, nlohmann::json& columns,
+                      std::string& error, const std::function<void(const AccuracyPass&, const Evaluation&)>& each = {});
 
 } // namespace shadowlab

@@ -7,10 +7,17 @@
 #include <ctime>
 #include <functional>
 #include <set>
+#include <memory>
 #include <sstream>
+#include <thread>
+
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include "app.h"
 #include "bench/accuracy_columns.h"
+#include "bench/path_run.h"
 #include "util/progress.h"
 #include "util/log.h"
 #include "util/text_file.h"
@@ -228,14 +235,13 @@ static bool addDepthFloorRow(App& app, const BenchSpec& spec, int resolution, nl
     return true;
 }
 
-// The ground-truth columns of a row (spec.accuracy): the last timed frame re-rendered untimed with
-// the accuracy targets (App::evaluate; the measure() before had the lit colour only) and measured
-// against each reference mode and translucency model asked for, by the function eval --json
-// uses too (bench/accuracy_columns.h).
-static bool addRowAccuracy(App& app, const BenchSpec& spec, const TechniqueInfo* info, const LightInfo& rowLight,
-                           nlohmann::json& row, std::string& error, const BenchEvaluationHook& onEvaluation) {
+// The ground-truth columns of a row (spec.accuracy), GL half: the last timed frame re-rendered
+// untimed with the accuracy targets (App::captureEvaluation; the measure() before had the lit
+// colour only). The CPU half (evaluateAccuracy) measures it against each reference mode and
+// translucency model asked for, by the functions eval --json uses too (bench/accuracy_columns.h).
+static bool captureRowAccuracy(App& app, const BenchSpec& spec, const TechniqueInfo* info, const LightInfo& rowLight,
+                               AccuracyRequest& request, AccuracyCapture& capture, nlohmann::json& row, std::string& error) {
     app.light() = rowLight;
-    AccuracyRequest request;
     if (!referenceModesFor(spec.reference, *info, request.modes)) {
         error = "reference '" + spec.reference + "': expected hard, soft, both or auto";
         return false;
@@ -243,10 +249,57 @@ static bool addRowAccuracy(App& app, const BenchSpec& spec, const TechniqueInfo*
     request.samples = spec.referenceSamples;
     request.adaptive = spec.referenceAdaptive;
     request.contactBand = spec.contactBand;
-    if (!onEvaluation) return addAccuracyColumns(app, *info, request, row, error);
-    return addAccuracyColumns(app, *info, request, row, error,
-                              [&](const AccuracyPass& pass, const Evaluation& e) { onEvaluation(*info, pass, e); });
+    return captureAccuracy(app, *info, capture, row, error);
 }
+
+// A row whose evaluation (the reference traced, the metrics) runs on a worker thread while the GL
+// thread times the next row (issue 32: on the H200 the main job's evaluations were a third of its
+// sweep). The worker runs at a lower priority (nice 10) with the reference's threads one fewer
+// than the cores, so the GL thread that submits timed frames is never starved; the figures are
+// those of a serial run (the trace and the metrics are deterministic on any thread count; test
+// BenchOverlap). It is joined before the next row completes, before a scene is loaded and when
+// the sweep ends or fails, so rows come out in order and nothing outlives what it reads.
+class PendingEvaluation {
+public:
+    PendingEvaluation(App& app, const TechniqueInfo& info, nlohmann::json row, AccuracyRequest request,
+                      AccuracyCapture capture, bool keepEvaluations)
+        : info_(info), row_(std::move(row)), request_(std::move(request)), capture_(std::move(capture)) {
+        worker_ = std::thread([this, &app, keepEvaluations] {
+            setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
+            ok_ = evaluateAccuracy(app, request_, capture_, row_, error_, [&](const AccuracyPass& pass, const Evaluation& e) {
+                if (keepEvaluations) evaluations_.emplace_back(pass, e);
+            });
+        });
+    }
+    ~PendingEvaluation() { join(); }
+    PendingEvaluation(const PendingEvaluation&) = delete;
+    PendingEvaluation& operator=(const PendingEvaluation&) = delete;
+    void join() {
+        if (worker_.joinable()) worker_.join();
+    }
+    // After join(): the row with its accuracy columns, each evaluation shown to `hook`.
+    bool finish(nlohmann::json& row, std::string& error, const BenchEvaluationHook& hook) {
+        join();
+        if (!ok_) {
+            error = error_;
+            return false;
+        }
+        for (const auto& [pass, evaluation] : evaluations_)
+            if (hook) hook(info_, pass, evaluation);
+        row = std::move(row_);
+        return true;
+    }
+
+private:
+    const TechniqueInfo& info_;
+    nlohmann::json row_;
+    AccuracyRequest request_;
+    AccuracyCapture capture_;
+    std::vector<std::pair<AccuracyPass, Evaluation>> evaluations_;
+    std::string error_;
+    bool ok_ = false;
+    std::thread worker_;
+};
 
 // A row's settings on top of the technique's defaults: the spec's base, then the row's sweep values
 // (light size, host passes, the technique's parameters).
@@ -274,113 +327,226 @@ static bool applyRowSettings(App& app, const BenchSpec& spec, const BenchJob& jo
     return app.applyAssignments(assignments, info->id, error);
 }
 
+namespace {
+
+// One sweep's state: the floors measured so far in the group, the row whose evaluation is still
+// running, the progress line.
+class BenchRun {
+public:
+    BenchRun(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows, const BenchHooks& hooks, size_t jobs)
+        : app_(app), spec_(spec), rows_(rows), hooks_(hooks), jobs_(jobs), none_(app.techniques().find("none")),
+          environment_(benchEnvironment(app)), savedHost_(app.hostValues()), rowsBefore_(rows.size()) {}
+    ~BenchRun() { app_.params().values(hostParams()) = savedHost_; }   // host.* sweeps change them per row
+
+    bool run(const std::vector<BenchJob>& jobs, std::string& error) {
+        for (size_t index = 0; index < jobs.size(); ++index) {
+            const BenchJob& job = jobs[index];
+            if (index == 0 || !sameGroup(job, jobs[index - 1])) {
+                if (!finishPending(error)) return false;   // its trace reads the scene about to change
+                if (!startBenchGroup(app_, spec_, job, environment_, common_, sceneLight_, error)) return false;
+                mainFloor_.clear();
+                depthFloor_.clear();
+            }
+            if (!measureRow(job, error)) {
+                std::string pendingError;
+                finishPending(pendingError);   // the rows finished before a failure or Ctrl-C are kept
+                return false;
+            }
+        }
+        return finishPending(error);
+    }
+
+private:
+    bool measureRow(const BenchJob& job, std::string& error) {
+        nlohmann::json row = common_;
+        rowStart_ = std::chrono::steady_clock::now();
+        if (!job.technique) {
+            app_.light() = sceneLight_;
+            return addDepthFloorRow(app_, spec_, job.depthFloorResolution, row, depthFloor_, error) &&
+                   finishPending(error) && completeRow(row);
+        }
+        const TechniqueInfo* info = job.technique;
+        if (!applyRowSettings(app_, spec_, job, sceneLight_, savedHost_, error)) return false;
+        const LightInfo rowLight = app_.light();
+        if (!timeTechnique(*info, rowLight, row, error)) return false;
+        if (!spec_.accuracy) return finishPending(error) && completeRow(row);
+
+        AccuracyRequest request;
+        AccuracyCapture capture;
+        if (!captureRowAccuracy(app_, spec_, info, rowLight, request, capture, row, error)) return false;
+        const bool keep = hooks_.onCapture && hooks_.onCapture(*info);   // the report's images: the row's frame
+        // With the GPU tracer the evaluation must stay on the GL thread.
+        const bool overlap = spec_.overlapAccuracy && app_.referenceDevice() == ReferenceDevice::Cpu;
+        request.threads = overlap ? int(std::max(1u, std::thread::hardware_concurrency() - 1)) : 0;
+        row["seconds_row"] = secondsSince(rowStart_);
+        if (!finishPending(error)) return false;
+        pending_ = std::make_unique<PendingEvaluation>(app_, *info, std::move(row), std::move(request), std::move(capture), keep);
+        return overlap || finishPending(error, true);
+    }
+
+    // The timed frames of a row and the columns they give: floors, passes, memory, statistics.
+    bool timeTechnique(const TechniqueInfo& info, const LightInfo& rowLight, nlohmann::json& row, std::string& error) {
+        // The main-pass floor: `none` in the same view, light and pre-pass setting, this run.
+        const std::pair<int, int> floorKey{int(std::lround(rowLight.size * 1e6f)), int(app_.depthPrepassMode())};
+        const auto floorsStart = std::chrono::steady_clock::now();
+        if (!mainFloor_.count(floorKey) && none_ && &info != none_) {
+            Measurement floor;
+            app_.params().resetToDefaults(*none_);
+            if (!app_.measure(none_->id, spec_.warmupFrames, spec_.frames, floor, error, timingStopOf(spec_))) return false;
+            mainFloor_[floorKey] = floor.gpuMs["main"].median;
+        }
+        Measurement m;
+        const auto measureStart = std::chrono::steady_clock::now();
+        if (!app_.measure(info.id, spec_.warmupFrames, spec_.frames, m, error, timingStopOf(spec_))) return false;
+        row["seconds_timed_frames"] = secondsSince(measureStart);
+        if (&info == none_ && !mainFloor_.count(floorKey)) mainFloor_[floorKey] = m.gpuMs["main"].median;
+        row["technique"] = info.id;
+        row["category"] = info.category;
+        const auto& values = app_.params().values(info);
+        for (size_t i = 0; i < info.params.size(); ++i)
+            row["param." + info.params[i].id] = formatParamValue(info.params[i], values[i]);
+        row["light_size"] = rowLight.type == LightType::Directional ? glm::degrees(rowLight.size) : rowLight.size;
+        addDepthPrepassColumns(row, m, app_.depthPrepassMode());
+        for (size_t i = 0; i < hostParams().params.size(); ++i)   // depth_prepass: depth_prepass_mode
+            if (i != kHostDepthPrepass)
+                row["host." + hostParams().params[i].id] = formatParamValue(hostParams().params[i], app_.hostValues()[i]);
+        addTiming(row, m);
+        if (mainFloor_.count(floorKey)) {
+            row["floor_main_ms"] = mainFloor_[floorKey];
+            row["shadow_term_ms"] = row["main_ms"].get<double>() - mainFloor_[floorKey];
+        }
+        if (const int p = info.paramIndex("resolution"); p >= 0) {
+            double floorMs = 0.0;
+            if (!measureDepthFloor(static_cast<int>(values[size_t(p)]), floorMs, error)) return false;
+            row["floor_depth_ms"] = floorMs;
+        }
+        row["seconds_floors"] = secondsSince(floorsStart) - row["seconds_timed_frames"].get<double>();
+        row["gpu_bytes"] = m.gpuBytes;
+        if (LoadedTechnique* loaded = app_.techniques().get(info.id, error))
+            for (const auto& [name, value] : loaded->host().statistics()) row["stat." + columnName(name)] = value;
+        return true;
+    }
+
+    // Floors are measured once per group, when first needed, with the row's warm-up and frames.
+    bool measureDepthFloor(int resolution, double& ms, std::string& error) {
+        if (auto it = depthFloor_.find(resolution); it != depthFloor_.end()) {
+            ms = it->second;
+            return true;
+        }
+        Measurement m;
+        const LightInfo rowLight = app_.light();
+        app_.light() = sceneLight_;
+        const bool ok = app_.measureDepthFloor(resolution, spec_.warmupFrames, spec_.frames, m, error);
+        app_.light() = rowLight;
+        if (!ok) return false;
+        ms = depthFloor_[resolution] = m.gpuMs["depth floor"].median;
+        return true;
+    }
+
+    // `timeRow`: the row evaluated on the GL thread, whose wall time includes its evaluation.
+    bool finishPending(std::string& error, bool timeRow = false) {
+        if (!pending_) return true;
+        nlohmann::json row;
+        const bool ok = pending_->finish(row, error, hooks_.onEvaluation);
+        pending_.reset();
+        return ok && completeRow(row, timeRow);
+    }
+
+    bool completeRow(nlohmann::json& row, bool timeRow = true) {
+        if (timeRow) row["seconds_row"] = secondsSince(rowStart_);
+        rows_.push_back(row);
+        const size_t done = rows_.size() - rowsBefore_;   // rows_ may hold earlier specs' rows
+        const double elapsed = secondsSince(started_);
+        const double left = elapsed / double(done) * double(jobs_ - std::min(jobs_, done));
+        std::fprintf(stderr, "bench: row %zu of %zu, %s elapsed, about %s left\n", done, jobs_,
+                     durationText(elapsed).c_str(), durationText(left).c_str());
+        if (hooks_.onRow) hooks_.onRow(row);
+        return true;
+    }
+
+    static double secondsSince(std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    }
+
+    App& app_;
+    const BenchSpec& spec_;
+    std::vector<nlohmann::json>& rows_;
+    const BenchHooks& hooks_;
+    const size_t jobs_;
+    const TechniqueInfo* none_;
+    const nlohmann::json environment_;
+    const std::vector<double> savedHost_;
+    const size_t rowsBefore_;
+    const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+    std::chrono::steady_clock::time_point rowStart_;
+    LightInfo sceneLight_;
+    nlohmann::json common_;
+    // none's main pass by (light size x 1e6, pre-pass mode: auto decides alike for every technique
+    // of a group, whose scene, view and size are the same)
+    std::map<std::pair<int, int>, double> mainFloor_;
+    std::map<int, double> depthFloor_;   // bare depth pass ms by resolution
+    std::unique_ptr<PendingEvaluation> pending_;
+};
+
+} // namespace
+
+// A group with "path": `bench --path` per technique and combination of the parameters it declares,
+// the rows tagged with the group ("spec") and the combination ("param.<key>"). Seed 000 sec. 4.3.2
+// calls adaptive PCF's speed view dependent; one view per row cannot show that, a path can.
+static bool runBenchPathGroup(App& app, const BenchSpec& spec, const std::vector<const TechniqueInfo*>& measured,
+                              std::vector<nlohmann::json>& rows, std::string& error,
+                              const std::function<void(const nlohmann::json&)>& onRow) {
+    if (!app.setRenderSize(spec.sizes.front(), error)) return false;
+    for (const TechniqueInfo* info : measured) {
+        BenchSettingLists lists;
+        for (const auto& [key, values] : spec.sweeps)
+            if (!benchParamFor(*info, key).empty()) lists.emplace_back(key, values);
+        for (const auto& settings : benchCombinations(lists)) {
+            PathBenchOptions options;
+            options.techniques = {info->id};
+            options.scenes = spec.scenes;
+            options.path = spec.path;
+            options.frames = spec.pathFrames;
+            options.warmupFrames = spec.warmupFrames;
+            for (const auto& text : spec.base) {
+                const std::string param = benchParamFor(*info, text.substr(0, text.find('=')));
+                if (!param.empty()) options.sets.push_back(param + text.substr(text.find('=')));
+            }
+            for (const auto& [key, value] : settings) options.sets.push_back(benchParamFor(*info, key) + "=" + value);
+            std::vector<nlohmann::json> measuredRows;
+            auto tagged = [&](const nlohmann::json& row) {
+                nlohmann::json out = row;
+                if (!spec.tag.empty()) out["spec"] = spec.tag;
+                for (const auto& [key, value] : settings) out["param." + benchParamFor(*info, key)] = value;
+                rows.push_back(out);
+                if (onRow) onRow(out);
+            };
+            if (benchPath(app, options, measuredRows, tagged, error) != 0) return false;
+        }
+    }
+    // The next group starts from the scene's own view, not the path's last frame.
+    app.camera().reset(app.scene().camera);
+    return true;
+}
+
 bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows, std::string& error,
-              const std::function<void(const nlohmann::json&)>& onRow, const BenchEvaluationHook& onEvaluation) {
+              const std::function<void(const nlohmann::json&)>& onRow, const BenchHooks& images) {
     // Every value checked before the first frame; below, conversions cannot fail.
     if (!checkBenchSpec(spec, app.techniques().techniques(), error)) {
         error = "benchmark: " + error;
         return false;
     }
+    if (!spec.path.empty()) {
+        const auto techniques = benchTechniques(spec, app.techniques().techniques(), error);
+        return techniques && runBenchPathGroup(app, spec, *techniques, rows, error, onRow);
+    }
     const auto measured = benchTechniques(spec, app.techniques().techniques(), error);
     if (!measured) return false;
-    const TechniqueInfo* none = app.techniques().find("none");
-
-    const std::vector<BenchJob> jobs = planBenchJobs(spec, *measured, none);
-
-    const nlohmann::json environment = benchEnvironment(app);
-    const auto started = std::chrono::steady_clock::now();
-    LightInfo sceneLight;
-    nlohmann::json common;
-    // none's main pass by (light size x 1e6, pre-pass mode: auto decides alike for every technique
-    // of a group, whose scene, view and size are the same)
-    std::map<std::pair<int, int>, double> mainFloor;
-    std::map<int, double> depthFloor;                   // bare depth pass ms by resolution
-    const std::vector<double> savedHost = app.hostValues();   // host.* sweeps change them per row
-
-    // Floors are measured once per group, when first needed, with the row's warm-up and frames.
-    auto measureDepthFloor = [&](int resolution, double& ms) {
-        if (auto it = depthFloor.find(resolution); it != depthFloor.end()) {
-            ms = it->second;
-            return true;
-        }
-        Measurement m;
-        app.light() = sceneLight;
-        if (!app.measureDepthFloor(resolution, spec.warmupFrames, spec.frames, m, error)) return false;
-        ms = depthFloor[resolution] = m.gpuMs["depth floor"].median;
-        return true;
-    };
-
-    auto secondsSince = [](std::chrono::steady_clock::time_point t) {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    };
-    for (size_t index = 0; index < jobs.size(); ++index) {
-        const BenchJob& job = jobs[index];
-        if (index == 0 || !sameGroup(job, jobs[index - 1])) {
-            if (!startBenchGroup(app, spec, job, environment, common, sceneLight, error)) return false;
-            mainFloor.clear();
-            depthFloor.clear();
-        }
-        nlohmann::json row = common;
-        const auto rowStart = std::chrono::steady_clock::now();
-        if (!job.technique) {
-            app.light() = sceneLight;
-            if (!addDepthFloorRow(app, spec, job.depthFloorResolution, row, depthFloor, error)) return false;
-        } else {
-            const TechniqueInfo* info = job.technique;
-            if (!applyRowSettings(app, spec, job, sceneLight, savedHost, error)) return false;
-            const LightInfo rowLight = app.light();
-
-            // The main-pass floor: `none` in the same view, light and pre-pass setting, this run.
-            const std::pair<int, int> floorKey{int(std::lround(rowLight.size * 1e6f)), int(app.depthPrepassMode())};
-            const auto floorsStart = std::chrono::steady_clock::now();
-            if (!mainFloor.count(floorKey) && none && info != none) {
-                Measurement floor;
-                app.params().resetToDefaults(*none);
-                if (!app.measure(none->id, spec.warmupFrames, spec.frames, floor, error, timingStopOf(spec))) return false;
-                mainFloor[floorKey] = floor.gpuMs["main"].median;
-            }
-            Measurement m;
-            const auto measureStart = std::chrono::steady_clock::now();
-            if (!app.measure(info->id, spec.warmupFrames, spec.frames, m, error, timingStopOf(spec))) return false;
-            row["seconds_timed_frames"] = secondsSince(measureStart);
-            if (info == none && !mainFloor.count(floorKey)) mainFloor[floorKey] = m.gpuMs["main"].median;
-            row["technique"] = info->id;
-            row["category"] = info->category;
-            const auto& values = app.params().values(*info);
-            for (size_t i = 0; i < info->params.size(); ++i)
-                row["param." + info->params[i].id] = formatParamValue(info->params[i], values[i]);
-            row["light_size"] = rowLight.type == LightType::Directional ? glm::degrees(rowLight.size) : rowLight.size;
-            addDepthPrepassColumns(row, m, app.depthPrepassMode());
-            for (size_t i = 0; i < hostParams().params.size(); ++i)   // depth_prepass: depth_prepass_mode
-                if (i != kHostDepthPrepass)
-                    row["host." + hostParams().params[i].id] = formatParamValue(hostParams().params[i], app.hostValues()[i]);
-            addTiming(row, m);
-            if (mainFloor.count(floorKey)) {
-                row["floor_main_ms"] = mainFloor[floorKey];
-                row["shadow_term_ms"] = row["main_ms"].get<double>() - mainFloor[floorKey];
-            }
-            if (const int p = info->paramIndex("resolution"); p >= 0) {
-                double floorMs = 0.0;
-                if (!measureDepthFloor(static_cast<int>(values[size_t(p)]), floorMs)) return false;
-                row["floor_depth_ms"] = floorMs;
-            }
-            row["seconds_floors"] = secondsSince(floorsStart) - row["seconds_timed_frames"].get<double>();
-            row["gpu_bytes"] = m.gpuBytes;
-            LoadedTechnique* loaded = app.techniques().get(info->id, error);
-            if (loaded)
-                for (const auto& [name, value] : loaded->host().statistics()) row["stat." + columnName(name)] = value;
-            if (spec.accuracy && !addRowAccuracy(app, spec, info, rowLight, row, error, onEvaluation)) return false;
-        }
-        row["seconds_row"] = secondsSince(rowStart);
-        rows.push_back(row);
-        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-        const double left = elapsed / double(index + 1) * double(jobs.size() - index - 1);
-        std::fprintf(stderr, "bench: row %zu of %zu, %s elapsed, about %s left\n", index + 1, jobs.size(),
-                     durationText(elapsed).c_str(), durationText(left).c_str());
-        if (onRow) onRow(row);
-    }
-    app.params().values(hostParams()) = savedHost;
-    return true;
+    const std::vector<BenchJob> jobs = planBenchJobs(spec, *measured, app.techniques().find("none"));
+    BenchHooks hooks = images;
+    hooks.onRow = onRow;
+    BenchRun run(app, spec, rows, hooks, jobs.size());
+    return run.run(jobs, error);
 }
 
 bool writeBenchResults(const std::filesystem::path& file, const std::vector<nlohmann::json>& rows, std::string& error) {

@@ -24,11 +24,19 @@ class App;
 // Runs the sweep on `app`; every row is a flat JSON object (see docs/benchmarks.md). Rows are
 // also passed to `onRow` as they complete (progress output). The whole spec is checked first
 // (checkBenchSpec), so a bad value fails before the first frame.
-// Each evaluation of a row's accuracy columns, on the GL thread right after it (the frame is still
-// the row's): the report keeps the images of the rows at the defaults instead of drawing them again.
+// A row's evaluation may run beside the next row's timed frames (BenchSpec::overlapAccuracy), so
+// the report, which keeps the images of the rows at the defaults instead of drawing them again,
+// sees a row twice: onCapture on the GL thread right after its accuracy capture (the frame and the
+// app's state are still the row's; true: keep its evaluations), then onEvaluation for each of them
+// on the GL thread when the row completes.
 using BenchEvaluationHook = std::function<void(const TechniqueInfo&, const AccuracyPass&, const Evaluation&)>;
+struct BenchHooks {
+    std::function<void(const nlohmann::json&)> onRow;
+    std::function<bool(const TechniqueInfo&)> onCapture;
+    BenchEvaluationHook onEvaluation;
+};
 bool runBench(App& app, const BenchSpec& spec, std::vector<nlohmann::json>& rows, std::string& error,
-              const std::function<void(const nlohmann::json&)>& onRow = {}, const BenchEvaluationHook& onEvaluation = {});
+              const std::function<void(const nlohmann::json&)>& onRow = {}, const BenchHooks& images = {});
 
 // Writes rows as CSV (.csv) or JSON (anything else); CSV columns are the union of row keys.
 bool writeBenchResults(const std::filesystem::path& file, const std::vector<nlohmann::json>& rows, std::string& error);

@@ -140,7 +140,7 @@ bool addSweep(BenchSpec& spec, const std::string& text, std::string& error) {
 bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
     static const std::set<std::string> known{"techniques", "scenes", "sizes", "sweep", "base", "frames", "warmup", "minFrames", "stableWithin",
                                              "accuracy", "reference", "referenceSamples", "referenceAdaptive", "depthFloor", "contactBand",
-                                             "description", "tag"};
+                                             "description", "tag", "path", "pathFrames"};
     if (!spec.is_object()) {
         error = "a benchmark spec is a JSON object, got " + describe(spec);
         return false;
@@ -231,7 +231,10 @@ bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
     if (const auto it = spec.find("accuracy"); it != spec.end() && !readBool(*it, "accuracy", result.accuracy, error)) return false;
     if (const auto it = spec.find("depthFloor"); it != spec.end() && !readBool(*it, "depthFloor", result.depthFloor, error))
         return false;
-    for (const char* key : {"reference", "tag", "description"}) {
+    if (const auto it = spec.find("pathFrames"); it != spec.end() &&
+                                                 !readWholeNumber(*it, "pathFrames", 1, kMaxBenchFrames, result.pathFrames, error))
+        return false;
+    for (const char* key : {"reference", "tag", "description", "path"}) {
         const auto it = spec.find(key);
         if (it == spec.end()) continue;
         if (!it->is_string()) {
@@ -240,6 +243,13 @@ bool parseBenchSpec(const json& spec, BenchSpec& out, std::string& error) {
         }
         if (std::string(key) == "reference") result.reference = it->get<std::string>();
         if (std::string(key) == "tag") result.tag = it->get<std::string>();
+        if (std::string(key) == "path") {
+            result.path = it->get<std::string>();
+            if (result.path.empty() || result.path.size() > 4096) {
+                error = "path: expected the name of a path (built-in or the scene's) or a path file, 1 to 4096 characters";
+                return false;
+            }
+        }
     }
     out = std::move(result);
     return true;
@@ -517,6 +527,20 @@ static bool checkBenchSpecContent(const BenchSpec& spec, const std::vector<Techn
         }
     }
 
+    if (!spec.path.empty()) {
+        // bench --path's rows: one size, timings only, the technique's parameters per combination.
+        if (spec.sizes.size() != 1 || spec.accuracy || spec.depthFloor || spec.stableWithin > 0.0) {
+            error = nameOf(spec, "--path", "path") + " '" + spec.path +
+                    "': a path group times every frame at one size (one entry in sizes; no accuracy, depthFloor or stableWithin)";
+            return false;
+        }
+        for (const auto& entry : spec.sweeps) {
+            if (isSceneKey(entry.first) || isLightKey(entry.first) || entry.first.rfind("host.", 0) == 0) {
+                error = sweepName(spec, entry.first) + ": a path group sweeps technique parameters only (the path moves the camera and light)";
+                return false;
+            }
+        }
+    }
     return checkBenchScenes(spec, lightSize, error);
 }
 

@@ -48,6 +48,14 @@ struct BenchSpec {
     bool referenceAdaptive = true;
     bool depthFloor = false;                 // add "depth-floor" rows (bare depth pass per resolution)
     bool contactBand = false;                // hard_contact_* columns (one more shadow ray a pixel)
+    // A row's evaluation beside the next row's timed frames (bench.cpp, PendingEvaluation); not
+    // a spec key: --overlap-accuracy off of bench and report, to compare timings without it.
+    bool overlapAccuracy = true;
+    // "path": every frame of a camera and light path timed per technique, scene and combination of
+    // the technique parameters swept (the rows of `bench --path`, tagged); "pathFrames": 0 is the
+    // path's own count. One size, no accuracy, no scene, light or host sweeps.
+    std::string path;
+    int pathFrames = 0;
     bool fromCommandLine = false;            // errors name options (--sweep) rather than fields (sweep)
     // The file it was read from ("spec.json", or "spec.json: spec 2" in an array): checkBenchSpec's
     // errors start with it, so a bad technique in a file does not read like a command-line error.

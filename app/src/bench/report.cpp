@@ -45,20 +45,26 @@ public:
     ImageCollector(App& app, const BenchSpec& spec, std::filesystem::path dir)
         : app_(app), spec_(spec), dir_(std::move(dir)), host_(app.hostValues()) {}
 
-    // BenchEvaluationHook: a row at the defaults, judged against its own reference's physical model.
-    void onEvaluation(const TechniqueInfo& info, const AccuracyPass& pass, const Evaluation& e) {
-        if (pass.model != TranslucencyModel::Physical || pass.mode != ownReferenceMode(info) || !atDefaults(info)) return;
+    // BenchHooks::onCapture, GL thread: a row at the defaults not yet shown, its lit frame kept.
+    bool onCapture(const TechniqueInfo& info) {
         const std::string scene = app_.scene().name;
-        if (!done_.insert({scene, info.id}).second) return;
+        if (done_.count({scene, info.id}) || !atDefaults(info)) return false;
         std::string error;
-        if (!app_.presentView(info.id, {}, ~0u, {}, error)) {   // the row's frame, lit
-            done_.erase({scene, info.id});
-            return;
-        }
+        if (!app_.presentView(info.id, {}, ~0u, {}, error)) return false;   // the row's frame, lit
+        captured_[{scene, info.id}] = app_.readDisplay();
+        return true;
+    }
+    // BenchHooks::onEvaluation: its heatmap against its own reference's physical model.
+    void onEvaluation(const TechniqueInfo& info, const AccuracyPass& pass, const Evaluation& e) {
+        if (pass.model != TranslucencyModel::Physical || pass.mode != ownReferenceMode(info)) return;
+        const std::string scene = app_.scene().name;
+        auto frame = captured_.find({scene, info.id});
+        if (frame == captured_.end() || !done_.insert({scene, info.id}).second) return;
         ReportImage entry{scene, info.id, info.displayName, scene + "-" + info.id + ".png", scene + "-" + info.id + "-error.png",
                           pass.mode == ReferenceOptions::Mode::Hard ? "hard" : "soft", e.metrics};
-        pending.emplace_back(dir_ / entry.image, app_.readDisplay());
+        pending.emplace_back(dir_ / entry.image, std::move(frame->second));
         pending.emplace_back(dir_ / entry.heatmap, e.heatmap());
+        captured_.erase(frame);
         images.push_back(entry);
     }
     bool has(const std::string& scene, const std::string& technique) const { return done_.count({scene, technique}) > 0; }
@@ -81,6 +87,7 @@ private:
     std::filesystem::path dir_;
     std::vector<double> host_;
     std::set<std::pair<std::string, std::string>> done_;
+    std::map<std::pair<std::string, std::string>, Image> captured_;   // lit frames awaiting their evaluation
 };
 
 // The images the sweep did not give (techniques measured without accuracy or away from their
@@ -159,11 +166,13 @@ int runReport(App& app, const std::vector<BenchSpec>& specs, const std::filesyst
     std::optional<ImageCollector> collector;
     if (!specs.empty()) collector.emplace(app, specs.front(), outDir / "images");
     for (const BenchSpec& spec : specs) {
-        BenchEvaluationHook keepImages;
-        if (&spec == &specs.front())
-            keepImages = [&](const TechniqueInfo& info, const AccuracyPass& pass, const Evaluation& e) {
+        BenchHooks keepImages;
+        if (&spec == &specs.front()) {
+            keepImages.onCapture = [&](const TechniqueInfo& info) { return collector->onCapture(info); };
+            keepImages.onEvaluation = [&](const TechniqueInfo& info, const AccuracyPass& pass, const Evaluation& e) {
                 collector->onEvaluation(info, pass, e);
             };
+        }
         if (runBench(app, spec, rows, error, printBenchRow, keepImages)) continue;
         if (!interrupted()) return 2;
         // Ctrl-C: the rows measured so far are written (no images, charts or page for a partial sweep).

@@ -101,6 +101,7 @@ TourStepFigures expectFigures(const StepPage& page) {
         m["mae_penumbra"] = a.maePenumbra;
         m["penumbra"] = a.techniquePenumbraFraction;
         m["noise"] = a.noiseEnergy;
+        if (a.edgeBandPixels > 0) m["edge_band_mae"] = a.maeEdgeBand;   // hard reference only (groundtruth/edge_band.h)
         const char* thirds[] = {"mae_near", "mae_mid", "mae_far"};
         for (int t = 0; t < 3; ++t)
             if (a.pixelsByViewDepth[size_t(t)] > 0) m[thirds[t]] = a.maeByViewDepth[size_t(t)];

@@ -53,6 +53,17 @@ int commandBench(const CommonOptions& common, std::vector<BenchSpec> specs, cons
             std::string error;
             if (!checkRenderTargets(size, app.renderer().msaaSamples(), 0, error)) return fail(error, kExitBadInput);
         }
+        // A path group's path resolved on each of its scenes before the first frame of any group.
+        for (const std::string& scene : spec.path.empty() ? std::vector<std::string>{} : spec.scenes) {
+            std::string error;
+            CameraPath path;
+            try {
+                if (resolvePath(spec.path, loadScene(scene), BuiltinPathOptions{}, path, error)) continue;
+            } catch (const SceneError& e) {
+                error = e.what();
+            }
+            return fail(spec.source + ": path '" + spec.path + "' on scene '" + scene + "': " + error, kExitBadInput);
+        }
     }
     std::vector<nlohmann::json> rows;
     std::string error;
@@ -148,6 +159,9 @@ public:
         bench->add_flag("--depth-floor", spec_.depthFloor, "add a bare depth-only pass per shadow-map resolution");
         bench->add_flag("--contact-band", spec_.contactBand,
                         "with --accuracy: the contact band's false light (hard_contact_*; one more shadow ray a pixel)");
+        bench->add_option("--overlap-accuracy", overlap_,
+                          "with --accuracy: evaluate a row beside the next row's timed frames: on | off (default on; "
+                          "off to compare timings without it)");
         bench->add_option("--spec", specFile_, "JSON spec (one object or an array), which says everything the lists below would");
         bench->add_option("--out,-o", out_, "results file: .csv or .json")->required();
         bench->add_option("--path", path_,
@@ -223,8 +237,10 @@ private:
         std::vector<BenchSpec> specs;
         std::string error;
         if (!parseOnOff(adaptive_, spec_.referenceAdaptive, error, "--reference-adaptive")) return fail(error, kExitBadInput);
+        if (!parseOnOff(overlap_, spec_.overlapAccuracy, error, "--overlap-accuracy")) return fail(error, kExitBadInput);
         if (!specFile_.empty()) {
             if (!loadBenchSpecs(specFile_, specs, error)) return fail(error, kExitBadInput);
+            for (BenchSpec& spec : specs) spec.overlapAccuracy = spec_.overlapAccuracy;
             return commandBench(common, specs, out_);
         }
         spec_.fromCommandLine = true;
@@ -246,7 +262,7 @@ private:
     }
 
     BenchSpec spec_;
-    std::string techniques_, scenes_, specFile_, out_, reference_ = "auto", adaptive_ = "on", path_;
+    std::string techniques_, scenes_, specFile_, out_, reference_ = "auto", adaptive_ = "on", overlap_ = "on", path_;
     std::vector<std::string> sweeps_, sizes_;
     int samples_ = BenchSpec{}.referenceSamples, pathFrames_ = 0;
     CLI::App* command_ = nullptr;

@@ -106,9 +106,10 @@ bool referenceModes(const std::string& text, const TechniqueInfo& info, std::vec
                     std::string& error);
 // The report: a sweep measured, charted and written up into `outDir` (the default spec for the
 // renderer when `specFile` is empty). Without a display this is the main job.
-// `outOption` names the folder's option in messages (the main job's is --out-dir).
+// `outOption` names the folder's option in messages (the main job's is --out-dir);
+// `overlapAccuracy`: BenchSpec::overlapAccuracy for every spec.
 int runReport(const CommonOptions& common, const std::string& specFile, const std::string& outDir,
-              const std::string& outOption = "--out");
+              const std::string& outOption = "--out", bool overlapAccuracy = true);
 
 // One subcommand: declare() adds it and its options to the parser, run() runs it once parsed.
 class Command {

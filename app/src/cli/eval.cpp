@@ -71,6 +71,10 @@ void printAccuracy(const std::string& name, const nlohmann::json& metrics) {
         std::printf("    contact band (shadow ray meets a caster within %.2f units; %zu px): false light %.3f%%\n",
                     double(kContactBandDistance), metrics["contact_band_pixels"].get<size_t>(),
                     100.0 * metrics["contact_false_light"].get<double>());
+    if (metrics.contains("edge_band_mae"))
+        std::printf("    edge band (within %d px of a hard edge; %zu px): MAE %.4f;  off the band: MAE %.4f\n", kEdgeBandRadius,
+                    metrics["edge_band_pixels"].get<size_t>(), metrics["edge_band_mae"].get<double>(),
+                    metrics["off_edge_mae"].get<double>());
     if (metrics.contains("reference_floor"))
         std::printf("    soft reference: %d rays per pixel%s (%.1f%% of pixels refined), traced in %.2f s; its own "
                     "penumbra error (floor) %.4f\n",
@@ -95,6 +99,11 @@ nlohmann::json evaluationJson(const AccuracyPass& pass, const Evaluation& evalua
     if (!evaluation.contactBand.empty()) {
         out["contact_false_light"] = evaluation.metrics.contactFalseLightRate;
         out["contact_band_pixels"] = evaluation.metrics.contactBandPixels;
+    }
+    if (pass.mode == ReferenceOptions::Mode::Hard) {
+        out["edge_band_mae"] = evaluation.metrics.maeEdgeBand;
+        out["off_edge_mae"] = evaluation.metrics.maeOffEdgeBand;
+        out["edge_band_pixels"] = evaluation.metrics.edgeBandPixels;
     }
     if (pass.mode == ReferenceOptions::Mode::Soft) {
         // The reference's own penumbra error: soft figures below about 4x it are not resolved.

@@ -51,6 +51,12 @@ struct AccuracyMetrics {
     // over the contact band's compared pixels, and how many there are. Zero until added.
     double contactFalseLightRate = 0.0;
     size_t contactBandPixels = 0;
+    // Issue 28, against the hard reference only (groundtruth/edge_band.h): mean error within
+    // kEdgeBandRadius pixels of the reference's shadow boundaries and over the other compared
+    // pixels, and how many are in the band. Zero until added.
+    double maeEdgeBand = 0.0;
+    double maeOffEdgeBand = 0.0;
+    size_t edgeBandPixels = 0;
 };
 
 // Penumbra (reference side only): compared pixels with 0.02 < reference < 0.98, plus compared

@@ -859,7 +859,15 @@ void Renderer::allocatePrepassTargets(bool full) {
     glNamedFramebufferReadBuffer(name, GL_NONE);
     GLenum status = glCheckNamedFramebufferStatus(name, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) logError("camera pre-pass framebuffer (depth only) is " + framebufferStatusName(status));
-    prepassDepthOnly_ = {sizeof(CameraPrepass), prepassDepth_.get(), 0, 0, 0, size_};
+    // The stencil's view (CameraPrepass::stencil): its own sampling mode, the depth's storage.
+    glGenTextures(1, &name);
+    glTextureView(name, GL_TEXTURE_2D, prepassDepth_.get(), GL_DEPTH24_STENCIL8, 0, 1, 0, 1);
+    prepassStencil_.reset(name);
+    glObjectLabel(GL_TEXTURE, name, -1, "camera pre-pass stencil (view)");
+    glTextureParameteri(name, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
+    glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    prepassDepthOnly_ = {sizeof(CameraPrepass), prepassDepth_.get(), 0, 0, 0, size_, prepassStencil_.get()};
     prepassFull_ = full;
     if (!full) return;   // the colour targets (20 bytes a pixel) only when a technique needs them
     prepassPosition_ = makeTexture(GL_RGBA32F, size_, 0, "camera pre-pass world position");
@@ -877,7 +885,7 @@ void Renderer::allocatePrepassTargets(bool full) {
     status = glCheckNamedFramebufferStatus(name, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) logError("camera pre-pass framebuffer is " + framebufferStatusName(status));
     prepass_ = {sizeof(CameraPrepass), prepassDepth_.get(), prepassPosition_.get(), prepassNormal_.get(),
-                prepassObjectId_.get(), size_};
+                prepassObjectId_.get(), size_, prepassStencil_.get()};
 }
 
 const RayTracingScene& Renderer::rayTracing() {

@@ -286,6 +286,7 @@ private:
     ProgramId prepassProgram_ = 0;
     ProgramId depthOnlyProgram_ = 0;
     GlTexture prepassDepth_, prepassPosition_, prepassNormal_, prepassObjectId_;
+    GlTexture prepassStencil_;   // a view of prepassDepth_ sampling its stencil (CameraPrepass::stencil)
     GlFramebuffer prepassFbo_, prepassDepthFbo_;  // all four targets; the depth alone
     bool prepassFull_ = false;                   // the colour targets exist
     CameraPrepass prepass_{}, prepassDepthOnly_{};

@@ -44,6 +44,7 @@ constexpr int kMaxInstances = 1'000'000;   // a typo like count=5000000 should f
 constexpr int kMaxSegments = 4096;
 constexpr size_t kMaxNameLength = 100;    // object and scene names (shown in lists and copied per instance)
 constexpr size_t kMaxTextLength = 4096;   // descriptions and other strings
+constexpr size_t kMaxFallbackObjects = 1000;   // objects in one fallback group (each may repeat)
 constexpr const char* kShapes = "plane, terrain, box, sphere, cylinder, torus, tree, bumpy, teapot, obj";
 // Per object, the renderer's transform buffer holds a model and a normal matrix.
 constexpr uint64_t kGpuBytesPerObject = 2 * sizeof(glm::mat4);
@@ -392,7 +393,8 @@ MeshRecipe readShape(FieldReader& fields, const std::string& shape, const std::f
         const std::string path = fields.pathOf("file");
         const ParseContext& context = fields.context();
         // A stand-in shape for when the file is not there (a built-in scene using a shared model).
-        if (const json* fallback = fields.find("fallback")) {
+        // An array of objects is a stand-in group, read by readFallbackGroup instead.
+        if (const json* fallback = fields.find("fallback"); fallback && !fallback->is_array()) {
             FieldReader fallbackFields(*fallback, fields.pathOf("fallback"), context);
             const json& shape = fallbackFields.required("shape", std::string("one of: ") + kShapes);
             if (!shape.is_string() || shape.get<std::string>() == "obj")
@@ -756,7 +758,64 @@ void readMaterials(const json& node, SceneBuilder& builder) {
     }
 }
 
+void readObject(const json& node, const std::string& path, size_t ordinal, SceneBuilder& builder);
+
+// Checks `node` as an object of a scene without adding it: a builder of its own in check-only mode.
+void checkObjectAlone(const json& node, const std::string& path, size_t ordinal, const SceneBuilder& builder) {
+    SceneBuilder scratch;
+    scratch.context = builder.context;
+    scratch.baseDir = builder.baseDir;
+    scratch.budget = builder.budget;
+    scratch.checkOnly = true;
+    scratch.materialIndex = builder.materialIndex;
+    scratch.terrain = builder.terrain;
+    readObject(node, path, ordinal, scratch);
+}
+
+// An obj object whose "fallback" is an array of objects (docs/scene-format.md, "Fallback groups"):
+// when its file is missing the group's objects replace it, each read as a scene object of its own;
+// when the file is there the group is still checked, so a broken stand-in never waits for the
+// machine without the model. Returns false when `node` is not such an object.
+bool readFallbackGroup(const json& node, const std::string& path, size_t ordinal, SceneBuilder& builder) {
+    if (!node.is_object()) return false;
+    const auto shape = node.find("shape"), group = node.find("fallback"), file = node.find("file");
+    if (shape == node.end() || *shape != "obj" || group == node.end() || !group->is_array()) return false;
+    if (file == node.end() || !file->is_string()) return false;   // readObject names the problem
+    const std::string groupPath = path + ".fallback";
+    if (group->empty() || group->size() > kMaxFallbackObjects) {
+        builder.context.fail(groupPath, "expected 1 to " + std::to_string(kMaxFallbackObjects) +
+                                            " objects (or one shape object), got an array of " +
+                                            std::to_string(group->size()));
+    }
+    std::error_code error;
+    const bool missing = !std::filesystem::exists(sceneFilePath(builder.baseDir, file->get<std::string>()), error);
+    for (size_t i = 0; i < group->size(); ++i) {
+        const json& member = (*group)[i];
+        const std::string memberPath = elementPath(groupPath, i);
+        const auto memberShape = member.is_object() ? member.find("shape") : member.end();
+        // No nesting: a group member is procedural, so a stand-in never needs another file.
+        if (member.is_object() && memberShape != member.end() && *memberShape == "obj")
+            builder.context.fail(memberPath + ".shape", "expected a procedural shape in a fallback group, got 'obj'");
+        if (missing) readObject(member, memberPath, i, builder);
+        else checkObjectAlone(member, memberPath, i, builder);
+    }
+    if (missing) {
+        // The model's own fields (name, material, transform, repeat) checked as those of a box.
+        json standIn = node;
+        standIn.erase("file");
+        standIn.erase("fallback");
+        standIn["shape"] = "box";
+        checkObjectAlone(standIn, path, ordinal, builder);
+        return true;
+    }
+    json model = node;
+    model.erase("fallback");
+    readObject(model, path, ordinal, builder);
+    return true;
+}
+
 void readObject(const json& node, const std::string& path, size_t ordinal, SceneBuilder& builder) {
+    if (readFallbackGroup(node, path, ordinal, builder)) return;
     FieldReader fields(node, path, builder.context);
     const json& shapeValue = fields.required("shape", std::string("one of: ") + kShapes);
     if (!shapeValue.is_string()) fields.fail("shape", "expected a string, got " + describe(shapeValue));

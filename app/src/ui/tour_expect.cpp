@@ -157,6 +157,7 @@ const std::vector<TourExpectMetric>& tourExpectMetrics() {
         {"false_light", "rate of compared pixels the reference shadows and the technique lights", false, true},
         {"mae_penumbra", "mean error over the reference's penumbra pixels (0.02 < reference < 0.98)", false, false},
         {"penumbra", "rate of compared pixels where the technique itself draws penumbra (0.02 to 0.98)", false, true},
+        {"edge_band_mae", "mean error within 3 px of the hard reference's shadow edges (hard reference only)", false, false},
         {"mae_near", "mean error in the nearest third of the camera's view depth", false, false},
         {"mae_mid", "mean error in the middle third of the view depth", false, false},
         {"mae_far", "mean error in the farthest third of the view depth", false, false},

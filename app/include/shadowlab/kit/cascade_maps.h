@@ -80,8 +80,17 @@ inline void reportCascades(IHost& host, const std::vector<Cascade>& cascades, in
     reportShadowMaps(host, maps.data(), uint32_t(count));
 }
 
+// `range` narrowed to a measured one (ViewDepthBounds::latest(), a few frames old: 2% of slack
+// either way, and never beyond what the view can reach); `range` itself when there is none yet.
+inline DepthRange narrowToMeasured(DepthRange range, const std::optional<DepthRange>& measured) {
+    if (!measured) return range;
+    range.nearDistance = std::clamp(measured->nearDistance / 1.02f, range.nearDistance, range.farDistance);
+    range.farDistance = std::clamp(measured->farDistance * 1.02f, range.nearDistance * 1.001f, range.farDistance);
+    return range;
+}
+
 // The view depths the camera pre-pass holds, reduced on the GPU by a compute program (the
-// technique's csm_depth_bounds.comp: min and max as ordered bits in an SSBO at
+// kit's shaders/view_depth_bounds.comp: min and max as ordered bits in an SSBO at
 // CSM_DEPTH_BOUNDS_BINDING). The results come back through a ring of buffers, each with a
 // timestamp query issued after its dispatch: a slot is read only once its query is available (the
 // GPU is past it), so glGetNamedBufferSubData never waits. With three slots a result is one to
@@ -93,7 +102,7 @@ public:
     void create(IHost& host) {
         host_ = &host;
         for (auto& slot : ring_)
-            slot.buffer = Buffer(host, host.createBuffer(2 * sizeof(uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT, "csm depth bounds"));
+            slot.buffer = Buffer(host, host.createBuffer(2 * sizeof(uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT, "view depth bounds"));
         glCreateQueries(GL_TIMESTAMP, kRingSize, queries_.data());
     }
     void destroy() { glDeleteQueries(kRingSize, queries_.data()); }

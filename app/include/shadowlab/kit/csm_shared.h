@@ -1,5 +1,5 @@
 // csm's blocks, shared by csm.cpp, csm.glsl (main pass), csm_cascades.geom (the layered shadow
-// pass) and csm_depth_bounds.comp (sample distribution: the depth reduction); see shadowlab/kit/shared.h.
+// pass) and shaders/view_depth_bounds.comp (the depth reduction: sdsm, range = receivers); see shadowlab/kit/shared.h.
 #ifndef CSM_SHARED_H
 #define CSM_SHARED_H
 #include "shadowlab/kit/shared.h"

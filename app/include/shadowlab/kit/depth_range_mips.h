@@ -14,6 +14,7 @@
 #include <shadowlab/technique.h>
 
 #include "shadowlab/kit/depth_range_mips_shared.h"
+#include "shadowlab/kit/fullscreen_pass.h"
 #include "shadowlab/kit/handles.h"
 
 namespace shadowlab::kit {
@@ -23,8 +24,7 @@ public:
     bool create(IHost& host, std::string& error) {
         host_ = &host;
         for (auto& level : levelUniforms_) level.create(host, "depth-range level");
-        fbo_ = makeFramebuffer(host, "depth-range mips");
-        return program_.build(host, {.vertexFile = "fullscreen.vert", .fragmentFile = "depth_range_mips.frag"}, error);
+        return pass_.create(host, "depth_range_mips.frag", "depth-range mips", error);
     }
 
     // Builds the mips of `depthMap` (resolution x resolution, level 0), allocating them first when
@@ -32,15 +32,11 @@ public:
     void build(GLuint depthMap, int resolution, const char* label) {
         ensure(resolution, label);
         GpuPass pass(*host_, label);
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-        glDisable(GL_DEPTH_TEST);
-        program_.use();
+        pass_.begin();
         glBindSampler(shared::depth_range::kDepthRangeSourceUnit, 0);   // raw depths, whatever a main pass left bound
         for (int level = 0; level < levels_ && level < kMaxLevels; ++level) {
-            glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, mips_, level);
-            glNamedFramebufferDrawBuffer(fbo_, GL_COLOR_ATTACHMENT0);
+            pass_.attach(mips_, level);
             const int size = std::max(size_ >> level, 1);
-            glViewport(0, 0, size, size);
             // Level 0 reads the depth map (its level 0); level k reads level k - 1 of the same
             // texture by explicit lod: written by the previous draw (made visible by the barrier),
             // disjoint from the level being written.
@@ -51,7 +47,7 @@ public:
                 glBindTextureUnit(shared::depth_range::kDepthRangeSourceUnit, mips_);
             }
             levelUniforms_[size_t(level)].bind();
-            host_->drawFullscreenTriangle();
+            pass_.draw({size, size});
         }
         glBindTextureUnit(shared::depth_range::kDepthRangeSourceUnit, 0);
     }
@@ -82,8 +78,7 @@ private:
 
     static constexpr int kMaxLevels = 16;   // maps up to 2^17 texels wide
     IHost* host_ = nullptr;
-    Program program_;
-    Framebuffer fbo_;
+    FullscreenPass pass_;
     Texture mips_;
     int size_ = 0;
     int levels_ = 0;

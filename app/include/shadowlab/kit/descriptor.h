@@ -37,6 +37,20 @@ struct Family {
 inline constexpr Family kOpaqueMap{TranslucencyModel::Ignore, views::kMap};
 inline constexpr Family kOpaqueFittedMap{TranslucencyModel::Ignore, views::kFittedMap};
 inline constexpr Family kOpaqueFilteredMap{TranslucencyModel::Ignore, views::kFilteredMap};
+// Maps translucent casters write into too, each judged by the model its casters implement.
+// kit/translucent_maps.h's D_o, D_t and C: the modified model (M3) whichever variant writes C.
+inline constexpr Family kTranslucentMap{TranslucencyModel::ModifiedTranslucent, views::kMap};
+// kit/stochastic_light_pass.h, a depth map keeping each translucent fragment with probability
+// alpha: coverage (M1); a colour map of per-channel depths where photons stop: physical (M2).
+inline constexpr Family kStochasticMap{TranslucencyModel::Coverage, views::kMap};
+inline constexpr Family kStochasticColourMap{TranslucencyModel::Physical, views::kMap};
+// No map the host's views can read (their own debug images are listed as they report them):
+// maps of the opaque casters kept to themselves (area-reference's N maps a frame); the casters'
+// geometry itself, translucent casters blocking like opaque ones (planar projection, shadow
+// volumes); rays through the scene's triangles, transmission coloured (raytraced).
+inline constexpr Family kOpaqueMapsUnviewed{TranslucencyModel::Ignore, views::kNone};
+inline constexpr Family kCasterGeometry{TranslucencyModel::Opaque, views::kNone};
+inline constexpr Family kTracedRays{TranslucencyModel::Physical, views::kNone};
 
 // The descriptor with its parameter table filled in.
 template <size_t N>

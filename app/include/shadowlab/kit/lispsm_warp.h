@@ -8,7 +8,8 @@
 //   up     u = v projected off l, normalised  map y, the warp's axis (v: the view direction, or
 //                                             the body vector of sec. 9.2.6)
 //   depth  l (the light's travel direction)   map depth
-// rooted at the eye (directional lights). A point's frame coordinates are (a, b, c) = (s, u, l) .
+// rooted at the eye (directional lights; a spot light's warp is the same in its post-perspective
+// space, spotWarp() below). A point's frame coordinates are (a, b, c) = (s, u, l) .
 // (p - eye). P's projection centre C lies on the eye's (a, c) line, n behind B's near side b_min
 // along u (sec. 9.2.4: C_start on the near plane through e_ls, moved n back); with t = b - b_min + n
 // (the distance from C along u, in [n, n + d] over B):
@@ -102,19 +103,30 @@ inline glm::vec3 bodyVector(const std::vector<glm::vec3>& points, glm::vec3 eye)
     return length > 0.0 ? glm::vec3(sum / length) : glm::vec3(0.0f);
 }
 
-// The warp focused on `body` (B's vertices) for a directional light travelling along
-// `lightDirection`, seen from `camera`, with `nearestDepth` the eye depth z_n' of the nearest
-// visible point. No warp (nullopt) when it would be uniform anyway or ill-defined: the axis'
-// source direction (the view direction or the body vector) and the light (anti)parallel within
-// `minSinGamma`, an empty body, or n beyond 100 d (n_opt grows without bound as sin g -> 0:
-// duelling frusta, Fig. 8.11).
-inline std::optional<Warp> directionalWarp(const std::vector<glm::vec3>& body, glm::vec3 lightDirection,
-                                           const CameraInfo& camera, float nearestDepth, const WarpOptions& options) {
+// Where the warp is built (sec. 8.1, 9.2.3): world space for a directional light; for a spot light
+// its post-perspective space, where it is a directional light along +z (the general case of sec.
+// 8.2.4: "a spot light is transformed into a directional light and can be handled the same way").
+struct WarpSpace {
+    glm::mat4 toSpace{1.0f};    // world -> the space (homogeneous: divide by w)
+    glm::vec3 light{0.0f};      // the light's travel direction there
+    glm::vec3 eye{0.0f};        // the frame's origin (the warp's centre line runs through it)
+    glm::vec3 view{0.0f};       // the view direction there, at the nearest visible point
+    glm::vec3 nearest{0.0f};    // the nearest visible point on the view axis (eye depth z_n'), there
+};
+
+inline glm::vec3 toWarpSpace(const WarpSpace& space, glm::vec3 p) {
+    const glm::vec4 q = space.toSpace * glm::vec4(p, 1.0f);
+    return glm::vec3(q) / q.w;
+}
+
+// The warp in `space` (body, bodyForN and axisSource given there). Eq. 8.13 in its general form:
+// z0 = -z_n' (the nearest visible point p0 on the view axis), z1 the eye-space z of p0 moved d along
+// the warp axis in the space, taken back to world and into the eye's view (Wimmer's general n_opt);
+// for a directional light z1 = z0 - d (v . u), the formula at the top of this file.
+inline std::optional<Warp> warpInSpace(const WarpSpace& space, const std::vector<glm::vec3>& body, const CameraInfo& camera,
+                                       float nearestDepth, const WarpOptions& options) {
     if (body.empty()) return std::nullopt;
-    const glm::vec3 l = glm::normalize(lightDirection);
-    // The camera looks down its view space's -z: that axis in world space.
-    const glm::vec3 view = -glm::normalize(glm::vec3(camera.view[0][2], camera.view[1][2], camera.view[2][2]));
-    const glm::vec3 eye = camera.position;
+    const glm::vec3 l = glm::normalize(space.light), view = glm::normalize(space.view), eye = space.eye;
     const glm::vec3 source = glm::length(options.axisSource) > 0.0f ? glm::normalize(options.axisSource) : view;
     const glm::vec3 across = source - glm::dot(source, l) * l;
     const double sinGamma = glm::length(across);   // |source x l| for unit source and l
@@ -124,10 +136,8 @@ inline std::optional<Warp> directionalWarp(const std::vector<glm::vec3>& body, g
     Warp w;
     w.sinGamma = sinGamma;
     w.up = u;
-    // Sec. 9.2.5's z1 lies d along u from z0's point, so its eye depth grows by d (v . u): sin g for
-    // u from the view direction, less where the body vector turns u away from it.
     w.viewAlongUp = glm::dot(view, u);
-    // Rows s, u, l (glm: m[column][row]), then the eye moved to the origin.
+    // Rows s, u, l (glm: m[column][row]), then the origin moved to the eye.
     glm::mat4 frame(1.0f);
     for (int col = 0; col < 3; ++col) {
         frame[col][0] = s[col];
@@ -157,10 +167,12 @@ inline std::optional<Warp> directionalWarp(const std::vector<glm::vec3>& body, g
         extentAlongU(options.bodyForN, lo, hi);
         w.dForN = std::clamp(hi - lo, 1e-6, w.d);   // B_v lies in B: never more than d
     }
-    // Eq. 8.13 with z0 = -z_n', z1 = z0 - d (v . u) (see the top of this file).
+    // Eq. 8.13: z0 at p0, z1 at p0 + d u taken back to the eye's view.
     const double zNear = std::max(double(nearestDepth), 1e-4);
-    const double z0 = -zNear, z1 = z0 - w.dForN * w.viewAlongUp;
-    const double nearestAlongU = zNear * w.viewAlongUp;   // b of the nearest visible point on the view axis
+    const glm::vec4 p1 = glm::inverse(space.toSpace) * glm::vec4(space.nearest + float(w.dForN) * u, 1.0f);
+    if (!(std::abs(p1.w) > 1e-12f)) return std::nullopt;
+    const double z0 = -zNear, z1 = (camera.view * glm::vec4(glm::vec3(p1) / p1.w, 1.0f)).z;
+    const double nearestAlongU = (frame * glm::vec4(space.nearest, 1.0f)).y;   // b of p0
     w.n = options.nFactor * nOpt(w.dForN, z0, z1) + std::max(0.0, nearestAlongU - bMin);
     if (!(w.n > 0.0) || !std::isfinite(w.n) || w.n > 100.0 * w.d) return std::nullopt;
 
@@ -186,8 +198,49 @@ inline std::optional<Warp> directionalWarp(const std::vector<glm::vec3>& body, g
     for (int row = 0; row < 4; ++row)
         for (int col = 0; col < 4; ++col) projection[col][row] = float(rows[row][col]);
     w.projection = projection;
-    w.viewProjection = projection * frame;
+    w.viewProjection = projection * frame * space.toSpace;
     return w;
+}
+
+// The warp focused on `body` (B's vertices) for a directional light travelling along
+// `lightDirection`, seen from `camera`, with `nearestDepth` the eye depth z_n' of the nearest
+// visible point. No warp (nullopt) when it would be uniform anyway or ill-defined: the axis'
+// source direction (the view direction or the body vector) and the light (anti)parallel within
+// `minSinGamma`, an empty body, or n beyond 100 d (n_opt grows without bound as sin g -> 0:
+// duelling frusta, Fig. 8.11).
+inline std::optional<Warp> directionalWarp(const std::vector<glm::vec3>& body, glm::vec3 lightDirection,
+                                           const CameraInfo& camera, float nearestDepth, const WarpOptions& options) {
+    const glm::vec3 view = -glm::normalize(glm::vec3(camera.view[0][2], camera.view[1][2], camera.view[2][2]));
+    const WarpSpace space{.toSpace = glm::mat4(1.0f), .light = lightDirection, .eye = camera.position, .view = view,
+                          .nearest = camera.position + view * std::max(nearestDepth, 1e-4f)};
+    return warpInSpace(space, body, camera, nearestDepth, options);
+}
+
+// A spot light's warp (sec. 8.2.4, 9.2.3): B and the view taken into the spot's post-perspective
+// space `lightViewProjection` (P_L V_L, cropped or not), where its rays run parallel along +z, and
+// warped there; the result's viewProjection is the whole W P_L V_L. B must lie in the light's
+// frustum (kit::focusBody clips it there). No warp where the nearest visible point on the view axis
+// is behind the light or the warp is ill-defined.
+inline std::optional<Warp> spotWarp(const std::vector<glm::vec3>& body, const glm::mat4& lightViewProjection,
+                                    const CameraInfo& camera, float nearestDepth, WarpOptions options) {
+    const glm::vec3 view = -glm::normalize(glm::vec3(camera.view[0][2], camera.view[1][2], camera.view[2][2]));
+    const float zNear = std::max(nearestDepth, 1e-4f);
+    const glm::vec3 p0 = camera.position + view * zNear;
+    const glm::vec4 p0Clip = lightViewProjection * glm::vec4(p0, 1.0f);
+    if (!(p0Clip.w > 1e-6f)) return std::nullopt;
+    WarpSpace space{.toSpace = lightViewProjection, .light = glm::vec3(0, 0, 1)};
+    space.nearest = glm::vec3(p0Clip) / p0Clip.w;
+    // The view direction there: the image of a short step along v from p0 (the projection's Jacobian).
+    space.view = toWarpSpace(space, p0 + view * (1e-3f * zNear)) - space.nearest;
+    // The eye as the origin where it is in front of the light, else p0 (both on the view axis).
+    const glm::vec4 eyeClip = lightViewProjection * glm::vec4(camera.position, 1.0f);
+    space.eye = eyeClip.w > 1e-6f ? glm::vec3(eyeClip) / eyeClip.w : space.nearest;
+    std::vector<glm::vec3> local;
+    for (const glm::vec3& p : body) local.push_back(toWarpSpace(space, p));
+    for (glm::vec3& p : options.bodyForN) p = toWarpSpace(space, p);
+    if (glm::length(options.axisSource) > 0.0f)   // a direction: its image at p0, like v's
+        options.axisSource = toWarpSpace(space, p0 + options.axisSource * (1e-3f * zNear)) - space.nearest;
+    return warpInSpace(space, local, camera, nearestDepth, options);
 }
 
 // The view-direction warp with n = nFactor * n_opt from B itself (the recipe up to sec. 9.2.5).

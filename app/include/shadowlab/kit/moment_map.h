@@ -89,7 +89,8 @@ constexpr ParamDesc momentBlurParam() {
             "fragment|compute"};
 }
 
-// Two that vsm, evsm and msm share, with one meaning (esm has neither): listed by each of them.
+// Two that vsm, evsm and msm share, with one meaning (esm has neither): vsm and evsm list both
+// (SHADOWLAB_CHEBYSHEV_PARAMS below), msm the second alone.
 constexpr ParamDesc minVarianceParam() {
     return {"min_variance", "minimum variance", ParamType::Float, 0, 0.001, 0.00002, "depth^2",
             "Lower clamp of the variance sigma^2, in squared depth normalised to [0, 1] over the casters (seed 000 "
@@ -106,6 +107,11 @@ constexpr ParamDesc lightBleedingParam() {
             "evsm and msm leave far less of the halo and need far less.",
             nullptr};
 }
+
+// The Chebyshev bound's two (seed 000 eq. 3.14 and sec. 3.2.5), as vsm and evsm list them.
+#define SHADOWLAB_CHEBYSHEV_PARAMS(X)                              \
+    X(float, min_variance, ::shadowlab::kit::minVarianceParam()) \
+    X(float, light_bleeding, ::shadowlab::kit::lightBleedingParam())
 
 #define SHADOWLAB_MOMENT_MAP_PARAMS(X, defaultResolution)                                  \
     X(int, resolution, ::shadowlab::kit::momentResolutionParam(defaultResolution))         \

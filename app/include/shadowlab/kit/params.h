@@ -75,9 +75,13 @@ consteval bool sameId(const ParamDesc& desc, std::string_view id) { return std::
 
 // Groups spliced into a technique's list. The shadow map of the depth-map techniques
 // (kit/depth_map.h): resolution, depth format, bias and culling.
-#define SHADOWLAB_BIAS_PARAMS(X, constantBiasMax, cullDefault)                     \
+// The polygon offset alone (constant and slope-scaled), for maps drawn without a culling choice
+// (kit/translucent_maps.h, stochastic-sm's map); SHADOWLAB_BIAS_PARAMS adds the culling.
+#define SHADOWLAB_OFFSET_BIAS_PARAMS(X, constantBiasMax)                            \
     X(float, constant_bias, ::shadowlab::kit::constantBiasParam(constantBiasMax))  \
-    X(float, slope_bias, ::shadowlab::kit::slopeBiasParam())                       \
+    X(float, slope_bias, ::shadowlab::kit::slopeBiasParam())
+#define SHADOWLAB_BIAS_PARAMS(X, constantBiasMax, cullDefault) \
+    SHADOWLAB_OFFSET_BIAS_PARAMS(X, constantBiasMax)           \
     X(int, cull, ::shadowlab::kit::cullParam(cullDefault))
 #define SHADOWLAB_DEPTH_MAP_PARAMS(X, resolutionDefault, constantBiasMax, cullDefault) \
     X(int, resolution, ::shadowlab::kit::resolutionParam(resolutionDefault))           \

@@ -53,8 +53,7 @@ constexpr ParamDesc translucentHardwareFilterParam() {
     X(int, resolution, ::shadowlab::kit::resolutionParam())                      \
     X(int, variant, ::shadowlab::kit::translucentVariantParam())                 \
     X(bool, hardware_filter, ::shadowlab::kit::translucentHardwareFilterParam()) \
-    X(float, constant_bias, ::shadowlab::kit::constantBiasParam())               \
-    X(float, slope_bias, ::shadowlab::kit::slopeBiasParam())                     \
+    SHADOWLAB_OFFSET_BIAS_PARAMS(X, 64)                                          \
     SHADOWLAB_FIT_PARAMS(X)
 
 namespace shadowlab::kit {

@@ -1,7 +1,8 @@
 // Sample distribution shadow maps (Lauritzen, Salvi and Lefohn 2011; Lauritzen 2010, "Sample
 // distribution shadow maps", SIGGRAPH course): the nearest and farthest view depth of what the
 // camera sees, reduced from the host's camera pre-pass. One texel per invocation, a 16 x 16 tile
-// reduced in shared memory, then one atomic per tile into the frame's slot of the ring.
+// reduced in shared memory, then one atomic per tile into the frame's slot of the ring. kit::ViewDepthBounds dispatches it
+// (csm's fit = sdsm; lispsm's and tsm's range = receivers: kit/receiver_range.h).
 #include "shadowlab/frame_block.h"
 #include "shadowlab/kit/csm_shared.h"
 

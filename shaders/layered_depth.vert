@@ -1,8 +1,9 @@
-// lispsm's depth pass for linear depth and depth peeling: the warp places the fragment, the
-// linear depth along the light (uLinearDepthPlane) travels as a varying to the fragment stage.
+// kit::LayeredDepthMap's depth pass (linear depth, depth peeling): the light matrix (warped or
+// not) places the fragment, the linear depth along the light (uLinearDepthPlane) travels as a
+// varying to the fragment stage.
 #include "common.glsl"
 #include "shadowlab/kit/depth_map_shared.h"
-#include "lispsm_shared.h"
+#include "shadowlab/kit/layered_depth_shared.h"
 
 layout(location = 0) in vec3 inPosition;
 

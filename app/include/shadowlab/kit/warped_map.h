@@ -1,0 +1,49 @@
+// The frame of a single map focused on B and then warped (lispsm, tsm): the view-depth range
+// (kit/receiver_range.h, `range`), the focus (kit/focus.h, always the focus body, `snap` for the
+// uniform fallback), the technique's warp, and the depth pass of kit::LayeredDepthMap (fragment
+// bias, linear depth, two layers). A technique derives from WarpedMapTechnique<Params> and gives
+// its warp; its Params hold resolution, the bias group, snap, range, hardware_filter and the
+// two-layer group.
+#pragma once
+
+#include <optional>
+
+#include <shadowlab/kit/layered_depth.h>
+#include <shadowlab/kit/receiver_range.h>
+#include <shadowlab/kit/technique_base.h>
+
+namespace shadowlab::kit {
+
+template <class Params>
+class WarpedMapTechnique : public TechniqueBase {
+protected:
+    // The whole matrix (world -> clip, projective) of the map focused by `focused`, or none: the
+    // focused uniform map. `range`: the view depths to warp for.
+    virtual std::optional<glm::mat4> warp(const FrameContext& frame, const Params& p, const FocusedLightSpace& focused,
+                                          const DepthRange& range) = 0;
+    // Whether the map stores linear depth along the light (else the matrix's own z).
+    virtual bool linearDepth(const Params& p) const = 0;
+
+private:
+    bool setup(std::string& error) override { return maps_.create(host(), error) && range_.create(host(), error); }
+    void shutdown() override { range_.destroy(); }
+
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        const Params p = Params::read(params);
+        const DepthMapConfig config = depthMapConfig(p);
+        // Before the map's timer scope: the receivers' reduction is a pass of its own.
+        const DepthRange range = range_.range(frame, p.range == 1);
+        GpuPass pass(host(), "shadow map");
+        const FocusedLightSpace focused = focusLightSpace(host(), frame, {Fit::FocusBody, bool(p.snap)}, config.resolution);
+        maps_.drawWarped(focused, warp(frame, p, focused, range), config, layeredDepthConfig(p), linearDepth(p));
+    }
+
+    void bindMainPass(const FrameContext&, const ParamValues& params) override {
+        maps_.bindMainPass(Params::read(params).hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+    }
+
+    LayeredDepthMap maps_;
+    ReceiverRange range_;
+};
+
+} // namespace shadowlab::kit
