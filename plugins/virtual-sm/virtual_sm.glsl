@@ -23,7 +23,8 @@ float vsmTap(int level, vec2 t, float depth, inout uint drawnFrame) {
     if (entry.x == 0u || ivec2(entry.yz) != page) return -1.0;
     drawnFrame = entry.w;
     vec2 inPage = clamp(t - pageInWindow * float(VSM_PAGE_TEXELS), vec2(0.5), vec2(float(VSM_PAGE_TEXELS) - 0.5));
-    vec2 atlas = (vsmTileOrigin(entry.x - 1u) + inPage) / (float(uVsmSizes.z) * float(VSM_PAGE_TEXELS));
+    // The texture may be larger than the atlas in use (it only grows: virtual_sm_pages.cpp).
+    vec2 atlas = (vsmTileOrigin(entry.x - 1u) + inPage) / vec2(textureSize(uAtlas, 0));
     return texture(uAtlas, vec3(atlas, depth));
 }
 

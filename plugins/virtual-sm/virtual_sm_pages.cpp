@@ -15,6 +15,12 @@ constexpr GLbitfield kStorage = GL_SHADER_STORAGE_BARRIER_BIT;
 kit::Buffer makeStorage(IHost& host, size_t bytes, const char* label) {
     return kit::Buffer(host, host.createBuffer(std::max<size_t>(bytes, 16), nullptr, GL_DYNAMIC_STORAGE_BIT, label));
 }
+// Grows `buffer` to at least `bytes`, never shrinks it (see VirtualPages::configure).
+void growStorage(IHost& host, kit::Buffer& buffer, size_t& capacity, size_t bytes, const char* label) {
+    if (buffer && bytes <= capacity) return;
+    capacity = std::max(bytes, capacity);
+    buffer = makeStorage(host, capacity, label);
+}
 } // namespace
 
 bool VirtualPages::create(IHost& host, std::string& error) {
@@ -54,21 +60,30 @@ void VirtualPages::configure(const PageLayout& layout) {
     layout_ = layout;
     const size_t entries = size_t(layout.virtualPages());
     const size_t physical = size_t(layout.physicalPages());
-    pageTable_ = makeStorage(*host_, entries * 4 * sizeof(uint32_t), "virtual-sm page table");
-    requests_ = makeStorage(*host_, entries * sizeof(uint32_t), "virtual-sm page requests");
-    free_ = makeStorage(*host_, physical * sizeof(uint32_t), "virtual-sm free list");
-    dirty_ = makeStorage(*host_, physical * 4 * sizeof(uint32_t), "virtual-sm pages to draw");
+    // Buffers and atlas only grow: a smaller layout uses their start (the atlas: its corner, through
+    // the draws' viewport and the lookup's textureSize). Under llvmpipe every GL object's storage is
+    // a malloc'd block; freeing a 16 MiB atlas each time physical_size alternated raised glibc's
+    // dynamic mmap threshold to 16 MiB, after which smaller blocks of every technique came from
+    // the heap and fragmented it (the soak test's RSS grew). All released with the plugin.
+    growStorage(*host_, pageTable_, capacity_[0], entries * 4 * sizeof(uint32_t), "virtual-sm page table");
+    growStorage(*host_, requests_, capacity_[1], entries * sizeof(uint32_t), "virtual-sm page requests");
+    growStorage(*host_, free_, capacity_[2], physical * sizeof(uint32_t), "virtual-sm free list");
+    growStorage(*host_, dirty_, capacity_[3], physical * 4 * sizeof(uint32_t), "virtual-sm pages to draw");
     const int side = layout.atlasPages * VSM_PAGE_TEXELS;
-    atlas_ = kit::makeTexture(*host_, {.internalFormat = GL_DEPTH_COMPONENT32F, .width = side, .height = side,
-                                       .label = "virtual shadow map atlas"});
-    kit::attachDepthTarget(*host_, framebuffer_, atlas_, "virtual shadow map atlas");
-    host_->registerDebugImage("physical atlas", atlas_, DebugImageKind::Depth);
+    if (side > atlasSide_) {
+        atlasSide_ = side;
+        atlas_ = kit::makeTexture(*host_, {.internalFormat = GL_DEPTH_COMPONENT32F, .width = side, .height = side,
+                                           .label = "virtual shadow map atlas"});
+        kit::attachDepthTarget(*host_, framebuffer_, atlas_, "virtual shadow map atlas");
+        host_->registerDebugImage("physical atlas", atlas_, DebugImageKind::Depth);
+    }
     invalidate();
 }
 
 void VirtualPages::invalidate() {
     const uint32_t zero = 0;
-    glClearNamedBufferData(pageTable_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferSubData(pageTable_, GL_R32UI, 0, GLsizeiptr(layout_.virtualPages()) * 16, GL_RED_INTEGER,
+                              GL_UNSIGNED_INT, &zero);
     std::vector<uint32_t>& all = freeList_;   // kept: invalidate() runs every frame the light moves
     all.resize(size_t(layout_.physicalPages()));
     std::iota(all.begin(), all.end(), 0u);
@@ -95,7 +110,8 @@ void VirtualPages::render(const PageDraw& draw) {
     statsRead_ = stats_.poll() || statsRead_;
     // This frame's counters from zero (GPU-side clears: nothing waits).
     const uint32_t zero = 0;
-    glClearNamedBufferData(requests_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferSubData(requests_, GL_R32UI, 0, GLsizeiptr(layout_.virtualPages()) * 4, GL_RED_INTEGER,
+                              GL_UNSIGNED_INT, &zero);
     glClearNamedBufferSubData(state_, GL_R32UI, VSM_DIRTY_COUNT * 4, (VSM_PAIRS - VSM_DIRTY_COUNT + 1) * 4, GL_RED_INTEGER,
                               GL_UNSIGNED_INT, &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, VSM_PAGE_TABLE_BINDING, pageTable_);

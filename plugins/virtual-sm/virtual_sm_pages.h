@@ -49,7 +49,8 @@ class VirtualPages {
 public:
     bool create(IHost& host, std::string& error);
     void destroy();
-    // Buffers and atlas for a layout (reallocated only when it changes); empties the cache.
+    // Buffers for a layout (reallocated only when it changes), the atlas grown to hold it (never
+    // shrunk); empties the cache.
     void configure(const PageLayout& layout);
     // Forgets every page (the light, the scene or the bias changed): all pages free.
     void invalidate();
@@ -60,6 +61,7 @@ public:
     // The newest statistics read back (VSM_STATS_WORDS words), and whether any were.
     const std::vector<uint32_t>& statistics() const { return stats_.latest(); }
     bool hasStatistics() const { return statsRead_; }
+    // The layout's atlas (what the technique uses; the texture may be larger after a larger layout).
     uint64_t atlasBytes() const { return uint64_t(layout_.atlasPages) * layout_.atlasPages * 128 * 128 * 4; }
     GLuint atlas() const { return atlas_; }
 
@@ -78,6 +80,8 @@ private:
     kit::Framebuffer framebuffer_;
     GLuint vao_ = 0;                          // the pair attribute of the page draws
     glm::ivec2 levelImageSize_{0};
+    int atlasSide_ = 0;                       // the atlas texture's side: the largest layout's so far
+    std::array<size_t, 4> capacity_{};        // bytes of pageTable_, requests_, free_, dirty_ (grow only)
     uint32_t objectCount_ = 0;
     size_t objectCapacity_ = 0;               // casters objects_ and commands_ hold
     std::vector<uint32_t> freeList_;          // invalidate()'s upload, kept between calls
