@@ -21,8 +21,7 @@
 #include <cmath>
 #include <cstring>
 
-#include <shadowlab/kit/cube_depth_map.h>
-#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/depth_maps.h>
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/technique_base.h>
 
@@ -103,16 +102,19 @@ struct CacheKey {
 class VirtualShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override {
         uniforms_.create(host(), "virtual-sm uniforms");
-        return pages_.create(host(), error) && map_.create(host(), error) && cube_.create(host(), error);
+        return pages_.create(host(), error) && maps_.create(host(), error);
     }
     void shutdown() override { pages_.destroy(); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
-        kit::DepthMapConfig fallback{.resolution = p.physical_size, .constantBias = p.constant_bias,
-                                     .slopeBias = p.slope_bias, .cull = kit::Cull(p.cull)};
-        if (frame.light.type == LightType::Point) return cube_.render(frame, {.resolution = p.physical_size / 2});
-        if (frame.light.type == LightType::Spot) return map_.render(frame, fallback);
+        if (frame.light.type != LightType::Directional) {
+            // One map (a cube of half the side for point lights): what `shadowmap` draws.
+            const int side = frame.light.type == LightType::Point ? p.physical_size / 2 : p.physical_size;
+            maps_.render(frame, {.resolution = side, .constantBias = p.constant_bias, .slopeBias = p.slope_bias,
+                                 .cull = kit::Cull(p.cull)});
+            return;
+        }
         const Adjacency* adjacency = static_cast<const Adjacency*>(host().extension(SHADOWLAB_EXT_ADJACENCY));
         const AdjacencyScene* casters = adjacency ? adjacency->scene(adjacency->context) : nullptr;
         const PageLayout layout{.levels = std::clamp(p.levels, 1, VSM_MAX_LEVELS),
@@ -136,8 +138,8 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues&) override {
-        if (frame.light.type == LightType::Point) return cube_.bindMainPass(SamplerKind::CompareLinear);
-        if (frame.light.type == LightType::Spot) return map_.bindMainPass(SamplerKind::CompareLinear);
+        if (frame.light.type != LightType::Directional)
+            return maps_.bindMainPass(frame, SamplerKind::CompareLinear, SamplerKind::CompareLinear);
         uniforms_.bind();
         pages_.bindMainPass();
     }
@@ -223,8 +225,7 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
 
     virtual_sm::VirtualPages pages_;
     kit::UniformBlock<VsmUniforms> uniforms_;
-    kit::DepthMap map_;
-    kit::CubeDepthMap cube_;
+    kit::DepthMaps maps_;   // spot and point lights
     CacheKey key_;
     glm::mat4 lightView_{1.0f};
     glm::vec2 depthRange_{0.0f, 1.0f};
