@@ -1,8 +1,8 @@
 // Issue 30, virtual shadow maps (plugin virtual-sm): accuracy against the Embree hard reference
 // (like shadowmap at 2048 on the test scenes; better than shadowmap near the viewer on forest-002
 // at equal atlas memory), the page cache (a still camera draws no page and gives the same image; a
-// small move draws few), consistent statistics, the spot-light fallback and parameter validation.
-// Small images and maps: the suite runs under ASan on two cores.
+// small move draws few), a smaller atlas after a larger one, consistent statistics, the spot-light
+// fallback and parameter validation. Small images and maps: the suite runs under ASan on two cores.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -65,6 +65,28 @@ TEST(VirtualSm, BeatsOneMapOfEqualMemoryNearTheViewerOnForest002) {
                 vsm.maeByViewDepth[0], vsm.maeByViewDepth[1], vsm.maeByViewDepth[2]);
     EXPECT_LT(vsm.maeByViewDepth[0], map.maeByViewDepth[0]);
     EXPECT_EQ(vsmStatistics(*app)["pages failed"], 0.0) << "the atlas held every marked page";
+}
+
+// The atlas only grows (virtual_sm_pages.cpp: freeing it on every physical_size change grew the
+// soak's resident memory): after a 2048^2 atlas, a 1024^2 one lives in its corner and must give the
+// image a fresh 1024^2 atlas gives, while the texture keeps its larger size.
+TEST(VirtualSm, ASmallerAtlasAfterALargerOneGivesTheSameImage) {
+    auto app = test::makeHeadlessApp("cube", {160, 120});
+    ASSERT_TRUE(app);
+    const std::vector<glm::vec4> fresh = test::renderVisibility(*app, "virtual-sm", {"virtual_size=4096", "physical_size=1024"});
+    size_t shadowed = 0;
+    for (const glm::vec4& v : fresh) shadowed += v.r < 0.5f ? 1 : 0;
+    ASSERT_GT(shadowed, 100u) << "the cube's shadow is in view";
+    test::renderVisibility(*app, "virtual-sm", {"physical_size=2048"});
+    const std::vector<glm::vec4> corner = test::renderVisibility(*app, "virtual-sm", {"physical_size=1024"});
+    ASSERT_EQ(corner.size(), fresh.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < fresh.size(); ++i) differing += glm::any(glm::greaterThan(glm::abs(corner[i] - fresh[i]), glm::vec4(1e-3f)));
+    EXPECT_EQ(differing, 0u) << "of " << fresh.size() << " pixels";
+    std::string error;
+    LoadedTechnique* loaded = app->techniques().get("virtual-sm", error);
+    ASSERT_TRUE(loaded) << error;
+    EXPECT_GE(loaded->host().gpuBytes(), size_t(2048) * 2048 * 4) << "the 2048^2 atlas was kept";
 }
 
 // The cache: the second frame of a still camera draws no page and its image is the first's, bit
