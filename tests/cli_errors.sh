@@ -35,6 +35,9 @@ expect 2 "has no parameter 'kernel'" -- render --backend osmesa -t shadowmap --s
 expect 2 "parameter 'shadow_blur': 99 is out of range" -- render --backend osmesa -t shadowmap --set host.shadow_blur=99 --out "$tmp/a.png"
 expect 2 "'flat' is not one of phong, none" -- render --backend osmesa -t shadowmap --set host.lighting=flat --out "$tmp/a.png"
 expect 2 "host.shadow_blur=...: parameter 'shadow_blur': 40 is out of range" -- bench --backend osmesa --techniques shadowmap --sweep host.shadow_blur=0,40 --out "$tmp/b.json"
+# Virtual shadow maps (issue 30): the plugin's ranges and options, named.
+expect 2 "parameter 'virtual_size': 65536 is out of range" -- render --backend osmesa -t virtual-sm --set virtual_size=65536 --out "$tmp/a.png"
+expect 2 "parameter 'filter': 'box' is not one of hardware, pcf" -- render --backend osmesa -t virtual-sm --set filter=box --out "$tmp/a.png"
 # Contact shadows (issue 30): every host.contact_* key checked, in --set, sweeps and stress --set.
 expect 2 "parameter 'contact_shadows': -1 is out of range" -- render --backend osmesa -t shadowmap --set host.contact_shadows=-1 --out "$tmp/a.png"
 expect 2 "host.contact_steps=...: parameter 'contact_steps': 65 is out of range" -- bench --backend osmesa --techniques shadowmap --sweep host.contact_steps=16,65 --out "$tmp/b.json"

@@ -151,7 +151,8 @@ TEST(Seed000Spec, PathGroupsAreCheckedBeforeTheFirstFrame) {
     };
     EXPECT_EQ(problem(R"({"techniques": ["adaptive-pcf"], "scenes": ["cube"], "path": "orbit", "sweep": {"grid": [4, 8]}})"), "");
     EXPECT_NE(problem(R"({"techniques": ["pcf"], "path": "orbit", "sizes": ["64x64", "128x128"]})").find("one size"), std::string::npos);
-    EXPECT_NE(problem(R"({"techniques": ["pcf"], "path": "orbit", "accuracy": true})").find("no accuracy"), std::string::npos);
+    EXPECT_NE(problem(R"({"techniques": ["pcf"], "path": "orbit", "accuracy": true})").find("hard or soft"), std::string::npos);
+    EXPECT_EQ(problem(R"({"techniques": ["pcf"], "scenes": ["cube"], "path": "orbit", "accuracy": true, "reference": "hard"})"), "");
     EXPECT_NE(problem(R"({"techniques": ["pcf"], "scenes": ["spheres"], "path": "orbit", "sweep": {"scene.floating": [1, 2]}})")
                   .find("technique parameters only"),
               std::string::npos);

@@ -513,6 +513,8 @@ static bool runBenchPathGroup(App& app, const BenchSpec& spec, const std::vector
             options.path = spec.path;
             options.frames = spec.pathFrames;
             options.warmupFrames = spec.warmupFrames;
+            options.accuracy = spec.accuracy;   // reference: hard or soft (checkBenchSpec)
+            options.reference = spec.reference == "soft" ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
             for (const auto& text : spec.base) {
                 const std::string param = benchParamFor(*info, text.substr(0, text.find('=')));
                 if (!param.empty()) options.sets.push_back(param + text.substr(text.find('=')));

@@ -531,10 +531,16 @@ static bool checkBenchSpecContent(const BenchSpec& spec, const std::vector<Techn
     }
 
     if (!spec.path.empty()) {
-        // bench --path's rows: one size, timings only, the technique's parameters per combination.
-        if (spec.sizes.size() != 1 || spec.accuracy || spec.depthFloor || spec.stableWithin > 0.0) {
+        // bench --path's rows: one size, the technique's parameters per combination; with accuracy
+        // bench --path --accuracy's temporal metrics against the hard or soft reference.
+        if (spec.sizes.size() != 1 || spec.depthFloor || spec.stableWithin > 0.0) {
             error = nameOf(spec, "--path", "path") + " '" + spec.path +
-                    "': a path group times every frame at one size (one entry in sizes; no accuracy, depthFloor or stableWithin)";
+                    "': a path group times every frame at one size (one entry in sizes; no depthFloor or stableWithin)";
+            return false;
+        }
+        if (spec.accuracy && spec.reference != "hard" && spec.reference != "soft") {
+            error = nameOf(spec, "--path", "path") + " '" + spec.path + "': with accuracy, a path group's reference is hard or soft, not '" +
+                    spec.reference + "'";
             return false;
         }
         for (const auto& entry : spec.sweeps) {

@@ -57,7 +57,8 @@ struct BenchSpec {
     bool overlapAccuracy = true;
     // "path": every frame of a camera and light path timed per technique, scene and combination of
     // the technique parameters swept (the rows of `bench --path`, tagged); "pathFrames": 0 is the
-    // path's own count. One size, no accuracy, no scene, light or host sweeps.
+    // path's own count. One size, no scene, light or host sweeps; accuracy (the temporal metrics)
+    // with the hard or soft reference.
     std::string path;
     int pathFrames = 0;
     bool fromCommandLine = false;            // errors name options (--sweep) rather than fields (sweep)

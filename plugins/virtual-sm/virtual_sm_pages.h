@@ -1,0 +1,93 @@
+// The GPU side of virtual-sm: page table, free list, requests and the physical atlas in storage
+// buffers and one depth texture, and the passes that run on them each frame (mark, allocate,
+// cull, clear, draw). The technique (virtual_sm.cpp) decides the layout and the light space;
+// this class owns every GL object of the virtual map and never reads anything back but the
+// statistics, through kit::ReadbackRing, frames late.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <shadowlab/kit/handles.h>
+#include <shadowlab/kit/readback_ring.h>
+
+#include "virtual_sm_shared.h"
+
+namespace shadowlab::virtual_sm {
+
+// One opaque caster as the cull pass and the page draws read it (vsm_objects.glsl, std430).
+struct VsmObject {
+    glm::vec4 lightRect{0.0f};   // light-space bounds: min x, min y, max x, max y
+    uint32_t firstTriangle = 0;
+    uint32_t triangleCount = 0;
+    int32_t baseVertex = 0;
+    uint32_t transform = 0;
+};
+static_assert(sizeof(VsmObject) == 32);
+
+struct PageLayout {
+    int levels = 1;
+    int pagesPerSide = 32;   // of each level's window (virtual_size / 128)
+    int atlasPages = 32;     // physical atlas side in pages (physical_size / 128)
+    bool operator==(const PageLayout&) const = default;
+    int virtualPages() const { return levels * pagesPerSide * pagesPerSide; }
+    int physicalPages() const { return atlasPages * atlasPages; }
+};
+
+// What the page draws need from the frame.
+struct PageDraw {
+    const CameraPrepass* prepass = nullptr;   // null: nothing is marked
+    const AdjacencyScene* scene = nullptr;    // the casters' vertices and indices
+    float constantBias = 0.0f;
+    float slopeBias = 0.0f;
+    int cull = 0;                             // kit::Cull
+    bool levelImage = false;                  // write the "page levels" debug image
+};
+
+class VirtualPages {
+public:
+    bool create(IHost& host, std::string& error);
+    void destroy();
+    // Buffers for a layout (reallocated only when it changes), the atlas grown to hold it (never
+    // shrunk); empties the cache.
+    void configure(const PageLayout& layout);
+    // Forgets every page (the light, the scene or the bias changed): all pages free.
+    void invalidate();
+    void setObjects(const std::vector<VsmObject>& objects);
+    // One frame: collects finished statistics, then marks, allocates, clears and draws pages.
+    void render(const PageDraw& draw);
+    void bindMainPass() const;
+    // The newest statistics read back (VSM_STATS_WORDS words), and whether any were.
+    const std::vector<uint32_t>& statistics() const { return stats_.latest(); }
+    bool hasStatistics() const { return statsRead_; }
+    // The layout's atlas (what the technique uses; the texture may be larger after a larger layout).
+    uint64_t atlasBytes() const { return uint64_t(layout_.atlasPages) * layout_.atlasPages * 128 * 128 * 4; }
+    GLuint atlas() const { return atlas_; }
+
+private:
+    void mark(const PageDraw& draw);
+    void allocate();
+    void drawPages(const PageDraw& draw);
+    void dispatchPhase(int phase, GLuint groups);
+
+    IHost* host_ = nullptr;
+    PageLayout layout_{};
+    kit::Program mark_, cull_, clear_, depth_;
+    std::array<kit::Program, 5> allocate_;   // [phase - 1]
+    kit::Buffer pageTable_, requests_, state_, free_, dirty_, objects_, commands_, pairs_;
+    kit::Texture atlas_, levelImage_;
+    kit::Framebuffer framebuffer_;
+    GLuint vao_ = 0;                          // the pair attribute of the page draws
+    glm::ivec2 levelImageSize_{0};
+    int atlasSide_ = 0;                       // the atlas texture's side: the largest layout's so far
+    std::array<size_t, 4> capacity_{};        // bytes of pageTable_, requests_, free_, dirty_ (grow only)
+    uint32_t objectCount_ = 0;
+    size_t objectCapacity_ = 0;               // casters objects_ and commands_ hold
+    std::vector<uint32_t> freeList_;          // invalidate()'s upload, kept between calls
+    uint32_t pairCapacity_ = 0;
+    kit::ReadbackRing stats_;
+    bool statsRead_ = false;
+};
+
+} // namespace shadowlab::virtual_sm
