@@ -12,10 +12,8 @@
 #include <algorithm>
 #include <array>
 
-#include <shadowlab/kit/cube_depth_map.h>
-#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/depth_maps.h>
 #include <shadowlab/kit/params.h>
-#include <shadowlab/kit/technique_base.h>
 
 #include "edtsm_shared.h"
 
@@ -58,39 +56,36 @@ int edtJumpSteps(int reach, std::array<int, 8>& steps) {
     return count;
 }
 
-class DistanceTransformShadows final : public kit::TechniqueBase {
+class DistanceTransformShadows final : public kit::RawDepthTechnique<Params, shared::edtsm::EdtMainUniforms> {
     bool setup(std::string& error) override {
-        mainUniforms_.create(host(), "edtsm uniforms");
         for (auto& block : passUniforms_) block.create(host(), "edtsm pass");
-        return map_.create(host(), error) && cube_.create(host(), error) &&
-               passes_.build(host(), {.computeFile = "edtsm.comp"}, error);
+        return RawDepthTechnique::setup(error) && passes_.build(host(), {.computeFile = "edtsm.comp"}, error);
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
-        const kit::DepthMapConfig config = kit::depthMapConfig(p);
-        if (frame.light.type == LightType::Point) return cube_.render(frame, config);
-        map_.render(frame, config);
-        distanceTransform(p);
+        if (renderMap(frame, p)) distanceTransform(p);   // 2D maps only
+    }
+
+    shared::edtsm::EdtMainUniforms configure(const Params& p) const override {
+        return {{}, p.width, float(p.reach) + 1.0f, p.edge_depth, 0.0f};
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
-        if (frame.light.type == LightType::Point) return cube_.bindMainPass(SamplerKind::CompareNearest);
-        const Params p = Params::read(params);
-        map_.bindMainPass(SamplerKind::Nearest);
+        RawDepthTechnique::bindMainPass(frame, params);
+        if (frame.light.type == LightType::Point) return;
         glBindTextureUnit(shared::edtsm::kEdtSitesUnit, sites_[result_]);
         glBindSampler(shared::edtsm::kEdtSitesUnit, 0);
-        mainUniforms_.set({{}, p.width, float(p.reach) + 1.0f, p.edge_depth, 0.0f});
     }
 
     // Seeds into sites_[0], then each jump reads one texture and writes the other. Image stores
     // reach the next pass's fetches only after a barrier; the last one also covers the main pass.
     void distanceTransform(const Params& p) {
-        ensureSites(map_.resolution());
+        ensureSites(map().resolution());
         GpuPass pass(host(), "distance transform");
         std::array<int, 8> steps{};
         const int jumps = edtJumpSteps(p.reach, steps);
-        map_.bindMainPass(SamplerKind::Nearest);   // raw depths and the light's depth range (block 1)
+        map().bindMainPass(SamplerKind::Nearest);   // raw depths and the light's depth range (block 1)
         passes_.use();
         const GLuint groups = GLuint(size_ + 7) / 8u;   // edtsm.comp's 8 x 8 groups
         for (int k = 0; k <= jumps; ++k) {
@@ -119,13 +114,10 @@ class DistanceTransformShadows final : public kit::TechniqueBase {
         }
     }
 
-    kit::DepthMap map_;
-    kit::CubeDepthMap cube_;
     kit::Program passes_;
     kit::Texture sites_[2];
     int size_ = 0;
     int result_ = 0;
-    kit::UniformBlock<shared::edtsm::EdtMainUniforms> mainUniforms_;
     kit::UniformBlock<EdtPassUniforms> passUniforms_[9];   // the seed and up to 8 jumps (reach 32: 32..1, 1)
 };
 
