@@ -34,9 +34,9 @@ constexpr ParamDesc kSamples{"samples", "light samples N", ParamType::Int, 1, 25
      "Shadow maps rendered from points spread over the light, averaged per pixel. 1 is plain shadow mapping "
      "from the light's centre; few samples show N + 1 distinct bands in the penumbra; cost grows linearly "
      "(N shadow passes and N fullscreen passes per frame).", nullptr};
-constexpr ParamDesc kResolution{"resolution", "resolution", ParamType::Int, 256, 8192, 2048, "texels",
+constexpr ParamDesc kResolution = kit::withHelp(kit::resolutionParam(),
      "Width and height of each sample's shadow map. Low values add each map's blocky edges to the penumbra; "
-     "high values multiply the cost of every one of the N passes.", nullptr};
+     "high values multiply the cost of every one of the N passes.");
 
 #define AREA_REFERENCE_PARAMS(X)    \
     X(int, samples, kSamples)       \

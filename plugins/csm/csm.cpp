@@ -229,8 +229,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueMap,
                     "Stabilised cascades (snap) hold shadow edges still while the camera moves; without it they "
                     "shimmer. fit = sdsm measures the depth range the camera really sees on the GPU (sample "
                     "distribution shadow maps). Turn on the cascade colours and move the camera.",
-     .shadowGlsl = "csm.glsl",
-     .flags = kTechniqueNeedsCameraPrepass},   // fit = sdsm reduces the pre-pass's depth
+     .shadowGlsl = "csm.glsl"},
     Params::table, kFlagConditions);
 
 } // namespace

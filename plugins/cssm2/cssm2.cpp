@@ -27,10 +27,10 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kResolution{"resolution", "resolution", ParamType::Int, 256, 4096, 2048, "texels",
+// Capped below kit::resolutionParam's 8192: the map is 16 bytes a texel (8192^2: 1 GiB).
+constexpr ParamDesc kResolution = kit::withHelp(kit::resolutionParam(2048, 4096),
      "Width and height of the depth buffer and the RGBA32F colour map (16 + 4 bytes a texel: 80 MiB at "
-     "2048). Low values make edges blocky; a kernel in texels then covers more of the scene.",
-     nullptr};
+     "2048). Low values make edges blocky; a kernel in texels then covers more of the scene.");
 constexpr ParamDesc kKernel{"kernel", "kernel size n", ParamType::Int, 1, 11, 5, "taps",
      "n x n texel fetches, each compared per channel in the shader and averaged. 1 shows the raw "
      "photons (every texel all or nothing per channel); seed 001 timed 9 x 9 and 3 x 3. Cost grows with "
@@ -47,7 +47,6 @@ constexpr ParamDesc kSlopeBias{"slope_bias", "slope-scaled bias", ParamType::Flo
      "contacts.",
      nullptr};
 
-// Capped below kit::resolutionParam's 8192: the map is 16 bytes a texel (8192^2: 1 GiB).
 #define CSSM2_PARAMS(X)                      \
     X(int, resolution, kResolution)          \
     X(int, kernel, kKernel)                  \

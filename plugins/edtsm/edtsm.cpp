@@ -16,10 +16,8 @@
 #include <string>
 #include <vector>
 
-#include <shadowlab/kit/cube_depth_map.h>
-#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/depth_maps.h>
 #include <shadowlab/kit/params.h>
-#include <shadowlab/kit/technique_base.h>
 
 #include "edtsm_shared.h"
 
@@ -71,31 +69,28 @@ int edtFloodSpan(const std::array<int, 8>& steps, int count) {
     return span;
 }
 
-class DistanceTransformShadows final : public kit::TechniqueBase {
+class DistanceTransformShadows final : public kit::RawDepthTechnique<Params, shared::edtsm::EdtMainUniforms> {
     bool setup(std::string& error) override {
-        mainUniforms_.create(host(), "edtsm uniforms");
         for (auto& block : passUniforms_) block.create(host(), "edtsm pass");
         const char* dense = std::getenv("SHADOWLAB_EDTSM_DENSE");
         dense_ = dense && std::string(dense) == "1";
-        return map_.create(host(), error) && cube_.create(host(), error) &&
-               passes_.build(host(), {.computeFile = "edtsm.comp"}, error);
+        return RawDepthTechnique::setup(error) && passes_.build(host(), {.computeFile = "edtsm.comp"}, error);
     }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
-        const kit::DepthMapConfig config = kit::depthMapConfig(p);
-        if (frame.light.type == LightType::Point) return cube_.render(frame, config);
-        map_.render(frame, config);
-        distanceTransform(p);
+        if (renderMap(frame, p)) distanceTransform(p);   // 2D maps only
+    }
+
+    shared::edtsm::EdtMainUniforms configure(const Params& p) const override {
+        return {{}, p.width, float(p.reach) + 1.0f, p.edge_depth, 0.0f};
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
-        if (frame.light.type == LightType::Point) return cube_.bindMainPass(SamplerKind::CompareNearest);
-        const Params p = Params::read(params);
-        map_.bindMainPass(SamplerKind::Nearest);
+        RawDepthTechnique::bindMainPass(frame, params);
+        if (frame.light.type == LightType::Point) return;
         glBindTextureUnit(shared::edtsm::kEdtSitesUnit, sites_[result_]);
         glBindSampler(shared::edtsm::kEdtSitesUnit, 0);
-        mainUniforms_.set({{}, p.width, float(p.reach) + 1.0f, p.edge_depth, 0.0f});
     }
 
     // Seeds into both site textures, lists the tiles within the flood's reach of an edge, then
@@ -106,11 +101,11 @@ class DistanceTransformShadows final : public kit::TechniqueBase {
     // reference the sparse flood must match bit for bit (tests/test_anti_aliased_edges.cpp).
     void distanceTransform(const Params& p) {
         using namespace shared::edtsm;
-        ensureSites(map_.resolution());
+        ensureSites(map().resolution());
         GpuPass pass(host(), "distance transform");
         std::array<int, 8> steps{};
         const int jumps = edtJumpSteps(p.reach, steps);
-        map_.bindMainPass(SamplerKind::Nearest);   // raw depths and the light's depth range (block 1)
+        map().bindMainPass(SamplerKind::Nearest);   // raw depths and the light's depth range (block 1)
         passes_.use();
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEdtTileMaskBinding, tileMask_);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEdtTileListBinding, tileList_);
@@ -176,15 +171,12 @@ class DistanceTransformShadows final : public kit::TechniqueBase {
                                                             "edtsm active tiles"));
     }
 
-    kit::DepthMap map_;
-    kit::CubeDepthMap cube_;
     kit::Program passes_;
     kit::Texture sites_[2];
     kit::Buffer tileMask_, tileList_;
     bool dense_ = false;   // SHADOWLAB_EDTSM_DENSE=1: jump over the whole map (the sparse path's reference)
     int size_ = 0;
     int result_ = 0;
-    kit::UniformBlock<shared::edtsm::EdtMainUniforms> mainUniforms_;
     kit::UniformBlock<EdtPassUniforms> passUniforms_[10];   // seeds, tile list, up to 8 jumps (reach 32: 32..1, 1)
 };
 

@@ -44,16 +44,12 @@ constexpr ParamDesc kDepth{"depth", "stored depth", ParamType::Enum, 0, 1, 0, ""
      "warp so that one bias is too small at one end and too large at the other, or linear depth along "
      "the light over the focus body (TSM's linear z), written per fragment with the slope-scaled bias "
      "done in the shader.", "hyperbolic|linear"};
-// room for a constant bias alone to remove acne (Fig. 5.6)
 #define LISPSM_PARAMS(X)                                 \
     X(int, resolution, kit::resolutionParam())           \
     X(float, n_factor, kNFactor)                         \
     X(float, virtual_far, kVirtualFar)                   \
     X(bool, body_vector, kBodyVector)                    \
-    X(int, range, kit::warpRangeParam())                 \
-    SHADOWLAB_BIAS_PARAMS(X, 65536, 2)                   \
-    X(bool, hardware_filter, kit::hardwareFilterParam()) \
-    X(bool, snap, kit::snapParam())                      \
+    SHADOWLAB_WARPED_MAP_PARAMS(X)                       \
     X(int, depth, kDepth)                                \
     SHADOWLAB_TWO_LAYER_PARAMS(X)
 SHADOWLAB_PARAMS(Params, LISPSM_PARAMS);

@@ -13,10 +13,8 @@
 // revectorization cannot add light leaks). `filtered` replaces the binary side test by the
 // coverage of the pixel's footprint (RSMSS's smoothing of the revectorized boundary, in spirit).
 // Point lights: the kit's cube map with the plain test (revectorization is for 2D maps here).
-#include <shadowlab/kit/cube_depth_map.h>
-#include <shadowlab/kit/depth_map.h>
+#include <shadowlab/kit/depth_maps.h>
 #include <shadowlab/kit/params.h>
-#include <shadowlab/kit/technique_base.h>
 
 #include "rbsm_shared.h"
 
@@ -49,29 +47,11 @@ constexpr ParamDesc kFiltered{"filtered", "filtered edge", ParamType::Bool, 0, 1
     SHADOWLAB_FIT_PARAMS(X)
 SHADOWLAB_PARAMS(Params, RBSM_PARAMS);
 
-class Revectorization final : public kit::TechniqueBase {
-    bool setup(std::string& error) override {
-        uniforms_.create(host(), "rbsm uniforms");
-        return map_.create(host(), error) && cube_.create(host(), error);
+class Revectorization final : public kit::RawDepthTechnique<Params, shared::rbsm::RbsmUniforms> {
+    // Every test of rbsm.glsl compares the receiver with one whole texel's raw depth.
+    shared::rbsm::RbsmUniforms configure(const Params& p) const override {
+        return {{}, p.variant == 0 ? 1 : 0, p.max_search, p.filtered ? 1 : 0, 0};
     }
-
-    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
-        const kit::DepthMapConfig config = kit::depthMapConfig(Params::read(params));
-        if (frame.light.type == LightType::Point) return cube_.render(frame, config);
-        map_.render(frame, config);
-    }
-
-    void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
-        if (frame.light.type == LightType::Point) return cube_.bindMainPass(SamplerKind::CompareNearest);
-        const Params p = Params::read(params);
-        // Raw depths: every test of rbsm.glsl compares the receiver with one whole texel.
-        map_.bindMainPass(SamplerKind::Nearest);
-        uniforms_.set({{}, p.variant == 0 ? 1 : 0, p.max_search, p.filtered ? 1 : 0, 0});
-    }
-
-    kit::DepthMap map_;
-    kit::CubeDepthMap cube_;
-    kit::UniformBlock<shared::rbsm::RbsmUniforms> uniforms_;
 };
 
 constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,

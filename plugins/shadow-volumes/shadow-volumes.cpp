@@ -227,7 +227,7 @@ class ShadowVolumes final : public kit::TechniqueBase {
     uint32_t stencil_ = 0;   // this frame's count (the pre-pass's stencil view), 0: none counted
 };
 
-constexpr TechniqueDesc kDescriptor = kit::describe(
+constexpr TechniqueDesc kDescriptor = kit::describe(kit::kCasterGeometry,   // no map for the host's views
     {.id = "shadow-volumes",
      .displayName = "Shadow volumes (stencil)",
      .category = "hard",
@@ -240,9 +240,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "indirectly. Translucent casters block like opaque ones. Its images (debug images on): volume "
                     "overdraw, silhouette edges, and the volume mask.",
      .shadowGlsl = "shadow-volumes.glsl",
-     .flags = kTechniqueNeedsCameraDepth,   // the depth alone: no position, normal or id
-     .translucencyModel = TranslucencyModel::Opaque,
-     .debugViews = kit::views::kNone},   // the host's views need a map; its own images are listed with them
+     .flags = kTechniqueNeedsCameraDepth},   // the depth alone: no position, normal or id
     Params::table);
 
 } // namespace

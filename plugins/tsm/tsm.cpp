@@ -31,10 +31,7 @@ constexpr ParamDesc kLine{"line", "focus line", ParamType::Float, 0.1, 0.9, 0.8,
     X(int, resolution, kit::resolutionParam())           \
     X(float, focus, kFocus)                              \
     X(float, line, kLine)                                \
-    X(int, range, kit::warpRangeParam())                 \
-    SHADOWLAB_BIAS_PARAMS(X, 65536, 2)                   \
-    X(bool, hardware_filter, kit::hardwareFilterParam()) \
-    X(bool, snap, kit::snapParam())                      \
+    SHADOWLAB_WARPED_MAP_PARAMS(X)                       \
     SHADOWLAB_TWO_LAYER_PARAMS(X)
 SHADOWLAB_PARAMS(Params, TSM_PARAMS);
 

@@ -1,7 +1,8 @@
 // The kit's depth maps switched by light type: the 2D depth map (kit/depth_map.h) under
-// directional and spot lights, the cube (kit/cube_depth_map.h) under point lights. shadowmap uses
-// them as they are; the filtering techniques through FilteredDepthMaps (kit/filtered_depth_maps.h),
-// which adds the 2D map's depth-range mips.
+// directional and spot lights, the cube (kit/cube_depth_map.h) under point lights. The techniques
+// that read the 2D map's raw depths (rbsm, edtsm) through RawDepthTechnique below; the filtering
+// techniques through FilteredDepthMaps (kit/filtered_depth_maps.h), which adds the 2D map's
+// depth-range mips.
 #pragma once
 
 #include <string>
@@ -10,6 +11,8 @@
 
 #include "shadowlab/kit/cube_depth_map.h"
 #include "shadowlab/kit/depth_map.h"
+#include "shadowlab/kit/handles.h"
+#include "shadowlab/kit/technique_base.h"
 
 namespace shadowlab::kit {
 
@@ -41,6 +44,38 @@ public:
 private:
     DepthMap map_;
     CubeDepthMap cube_;
+};
+
+// A technique whose main pass does its own tests on the 2D map's raw depths (rbsm, edtsm), its
+// parameters `Params` (a SHADOWLAB_PARAMS struct with SHADOWLAB_DEPTH_MAP_PARAMS and
+// SHADOWLAB_FIT_PARAMS: the same pass, bias and fit as shadowmap) and its own main-pass block
+// `Block`: setup, the map's pass and bindMainPass are done here; the plugin states its block's
+// values in configure(). Point lights get the cube with the plain comparison and no block.
+template <class Params, class Block>
+class RawDepthTechnique : public TechniqueBase {
+protected:
+    // The technique's block for this frame (directional and spot lights).
+    virtual Block configure(const Params& p) const = 0;
+
+    bool setup(std::string& error) override {
+        uniforms_.create(host(), "technique uniforms");
+        return maps_.create(host(), error);
+    }
+    void renderShadows(const FrameContext& frame, const ParamValues& params) override {
+        renderMap(frame, Params::read(params));
+    }
+    void bindMainPass(const FrameContext& frame, const ParamValues& params) override {
+        maps_.bindMainPass(frame, SamplerKind::Nearest, SamplerKind::CompareNearest);
+        if (frame.light.type != LightType::Point) uniforms_.set(configure(Params::read(params)));
+    }
+
+    // The frame's map (DepthMaps::render): true when it is the 2D map.
+    bool renderMap(const FrameContext& frame, const Params& p) { return maps_.render(frame, depthMapConfig(p)); }
+    const DepthMap& map() const { return maps_.map(); }
+
+private:
+    DepthMaps maps_;
+    UniformBlock<Block> uniforms_;
 };
 
 } // namespace shadowlab::kit

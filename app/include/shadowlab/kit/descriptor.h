@@ -2,7 +2,7 @@
 // kit::describe(), which fills in the parameter table (kit/params.h), the flag conditions with
 // their count, and the fields a family of techniques shares: how its maps treat translucent
 // casters and which of the host's debug views they feed. The technique states only its own
-// fields (id, names, explanation, GLSL file, flags):
+// fields (id, names, explanation, GLSL file, the flags no condition covers):
 //
 //   constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
 //       {.id = "shadowmap", .displayName = ..., .category = "hard", .explanation = ..., .shadowGlsl = ...},
@@ -60,11 +60,13 @@ constexpr TechniqueDesc describe(TechniqueDesc desc, const ParamDesc (&params)[N
     return desc;
 }
 
-// ... and with the flags that hold only for some parameter values (count from the array).
+// ... and with the flags that hold only for some parameter values (count from the array). Each
+// condition's flags join `flags` (what the technique may ask for), so a flag is named once.
 template <size_t N, size_t C>
 constexpr TechniqueDesc describe(TechniqueDesc desc, const ParamDesc (&params)[N], const FlagCondition (&conditions)[C]) {
     desc.flagConditions = conditions;
     desc.flagConditionCount = uint32_t(C);
+    for (const FlagCondition& condition : conditions) desc.flags |= condition.flags;
     return describe(desc, params);
 }
 

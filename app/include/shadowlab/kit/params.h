@@ -100,9 +100,16 @@ consteval bool sameId(const ParamDesc& desc, std::string_view id) { return std::
 
 namespace shadowlab::kit {
 
+// A kit parameter (its id, label, type, range and default stated once, below) with the help text
+// of a technique where it means more, e.g. a bias the shader adds or a resolution paid N times.
+constexpr ParamDesc withHelp(ParamDesc desc, const char* help) {
+    desc.help = help;
+    return desc;
+}
+
 // Shadow-map parameters shared by the depth-map techniques (kit/depth_map.h).
-constexpr ParamDesc resolutionParam(double defaultValue = 2048) {
-    return {"resolution", "resolution", ParamType::Int, 256, 8192, defaultValue, "texels",
+constexpr ParamDesc resolutionParam(double defaultValue = 2048, double maxValue = 8192) {
+    return {"resolution", "resolution", ParamType::Int, 256, maxValue, defaultValue, "texels",
             "Width and height of the shadow map. Low values make edges blocky and let texel steps show "
             "through a filter; memory and shadow-pass time grow with the square, and a kernel given in "
             "texels then covers less of the scene.",

@@ -2,15 +2,25 @@
 // (kit/receiver_range.h, `range`), the focus (kit/focus.h, always the focus body, `snap` for the
 // uniform fallback), the technique's warp, and the depth pass of kit::LayeredDepthMap (fragment
 // bias, linear depth, two layers). A technique derives from WarpedMapTechnique<Params> and gives
-// its warp; its Params hold resolution, the bias group, snap, range, hardware_filter and the
-// two-layer group.
+// its warp; its Params hold resolution, SHADOWLAB_WARPED_MAP_PARAMS (range, the bias group,
+// hardware_filter, snap) and the two-layer group.
 #pragma once
 
 #include <optional>
 
 #include <shadowlab/kit/layered_depth.h>
+#include <shadowlab/kit/params.h>
 #include <shadowlab/kit/receiver_range.h>
 #include <shadowlab/kit/technique_base.h>
+
+// What the warped map reads besides resolution and the two layers: the view depths to warp for,
+// the bias (constant bias up to 65536 units; front faces culled, back faces stored by default:
+// seed 002 sec. 9.3, Fig. 5.6), the hardware 2x2 filter and snap (the uniform fallback's).
+#define SHADOWLAB_WARPED_MAP_PARAMS(X)                                     \
+    X(int, range, ::shadowlab::kit::warpRangeParam())                      \
+    SHADOWLAB_BIAS_PARAMS(X, 65536, 2)                                     \
+    X(bool, hardware_filter, ::shadowlab::kit::hardwareFilterParam())      \
+    X(bool, snap, ::shadowlab::kit::snapParam())
 
 namespace shadowlab::kit {
 
