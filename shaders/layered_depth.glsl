@@ -14,7 +14,9 @@ float layeredShadowMap(vec3 worldPos) {
     if (clip.w <= 0.0) return 1.0;
     vec3 coord = clip.xyz / clip.w * 0.5 + 0.5;
     if (!insideShadowMap(coord)) return 1.0;
-    float reference = uLinearDepth == 1 ? dot(uLinearDepthPlane, vec4(worldPos, 1.0)) : coord.z;
+    // Linear depth beyond the map's far end (a receiver past B by rounding) compares as the far
+    // end: a 32F map does not clamp the reference, and its cleared 1.0 must read lit (issue 28).
+    float reference = uLinearDepth == 1 ? min(dot(uLinearDepthPlane, vec4(worldPos, 1.0)), 1.0) : coord.z;
     if (uBiasMethod == 0) return texture(uShadowMap, vec3(coord.xy, reference));
     float first = texture(uFirstLayer, coord.xy).r, second = texture(uSecondLayer, coord.xy).r;
     // Eq. 5.1: halfway to the second surface (closed casters), at most z_offset (far pairs).

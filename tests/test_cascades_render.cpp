@@ -357,7 +357,7 @@ TEST(PointLight, CubePathsCountSixFaces) {
 
 // csm asks for the camera pre-pass only while fit = sdsm (its flag condition): no pre-pass pass
 // is timed and the extension gives the technique nothing for the other fits; with sdsm both are
-// there and the depth reduction runs on it.
+// there, depth only, and the depth reduction runs on it.
 TEST(CsmRender, CameraPrePassOnlyForTheSampleDistributionFit) {
     auto app = test::makeHeadlessApp("forest-002", {256, 160});
     ASSERT_TRUE(app);
@@ -377,9 +377,13 @@ TEST(CsmRender, CameraPrePassOnlyForTheSampleDistributionFit) {
         EXPECT_EQ(reduction == history.end() ? 0u : reduction->second.size(), sdsm ? 3u : 0u);
         LoadedTechnique* loaded = app->techniques().get("csm", error);
         ASSERT_TRUE(loaded) << error;
-        EXPECT_EQ(loaded->host().extension(SHADOWLAB_EXT_CAMERA_PREPASS) != nullptr, sdsm);
-        EXPECT_EQ(loaded->info().flagsFor(app->params().values(loaded->info())) & kTechniqueNeedsCameraPrepass,
-                  sdsm ? uint32_t(kTechniqueNeedsCameraPrepass) : 0u);
+        const auto* camera = static_cast<const CameraPrepass*>(loaded->host().extension(SHADOWLAB_EXT_CAMERA_PREPASS));
+        EXPECT_EQ(camera != nullptr, sdsm);
+        // The reduction reads depth alone: the depth-only pre-pass, not the full one (issue 28's cost).
+        EXPECT_TRUE(!camera || (camera->depth != 0 && camera->position == 0));
+        const uint32_t flags = loaded->info().flagsFor(app->params().values(loaded->info()));
+        EXPECT_EQ(flags & kTechniqueNeedsCameraDepth, sdsm ? uint32_t(kTechniqueNeedsCameraDepth) : 0u);
+        EXPECT_EQ(flags & kTechniqueNeedsCameraPrepass, 0u);
     }
 }
 

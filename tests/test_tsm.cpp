@@ -167,6 +167,26 @@ TEST(Tsm, AliasingPlaneNearErrorFarBelowTheUniformMap) {
     EXPECT_LT(firstFull(trapezoid), 0.25 * firstFull(uniform));
 }
 
+// Issue 28's defect, found on the H200 at 1920x1080: on `aliasing-plane` seen 16:9 (the view 91
+// degrees wide; 16:10 and the tall views above did not show it) tsm's mid and far view-depth
+// thirds read shadowed on the right (MAE 0.305 / 0.397; lispsm and psm 0). The light is 4.4e-8
+// rad off vertical (float trigonometry of elevation 90), B's far corners came out of the clipping
+// 4e-6 above the ground, and the far right ground's linear depth was 1 + 4e-6 against the map's
+// cleared 1.0 (a 32F map does not clamp the reference). 240x135 has the aspect and a mid third;
+// before the fix its mid third's MAE was 0.368.
+TEST(Tsm, AliasingPlaneWideViewKeepsTheFarGroundLit) {
+    auto app = test::makeHeadlessApp("aliasing-plane", {240, 135});
+    ASSERT_TRUE(app);
+    const AccuracyMetrics trapezoid = tsmEvaluate(*app, "tsm", {"resolution=2048", "cull=front"}).metrics;
+    const AccuracyMetrics warped = tsmEvaluate(*app, "lispsm", {"resolution=2048", "cull=front"}).metrics;
+    std::printf("aliasing-plane 16:9 MAE near / mid: tsm %.4f %.4f, lispsm %.4f %.4f (mid-third pixels %zu)\n",
+                trapezoid.maeByViewDepth[0], trapezoid.maeByViewDepth[1], warped.maeByViewDepth[0],
+                warped.maeByViewDepth[1], trapezoid.pixelsByViewDepth[1]);
+    ASSERT_GT(trapezoid.pixelsByViewDepth[1], 100u) << "the view must reach the mid third";
+    for (int third = 0; third < 2; ++third) EXPECT_LE(trapezoid.maeByViewDepth[third], warped.maeByViewDepth[third] + 0.01) << third;
+    EXPECT_LT(trapezoid.falseShadowRate, 0.001);
+}
+
 // LiSPSM's spot-light warp against the hard reference and the focused uniform map it replaces
 // (shadowmap fit = focus-body, the old fallback). On `spotlight` (the camera 10 m from a lit
 // patch seen between 7 and 15 m: eq. 8.13's z1 / z0 about 2, little to redistribute) no worse in

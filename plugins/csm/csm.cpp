@@ -97,7 +97,7 @@ using Id = Params::Id;
 
 // The camera pre-pass only feeds sdsm's depth reduction: asked for on those frames alone (it cost
 // 4.26 of csm's 5.6 ms on an H200 when the flag held for every fit).
-constexpr FlagCondition kFlagConditions[] = {{kTechniqueNeedsCameraPrepass, "fit", "sdsm"}};
+constexpr FlagCondition kFlagConditions[] = {{kTechniqueNeedsCameraDepth, "fit", "sdsm"}};
 
 class CascadedShadowMaps final : public kit::TechniqueBase {
     bool setup(std::string& error) override {

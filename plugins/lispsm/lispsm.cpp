@@ -86,7 +86,7 @@ class LightSpacePerspectiveShadowMaps final : public kit::WarpedMapTechnique<Par
     }
 };
 
-constexpr FlagCondition kFlagConditions[] = {kit::kReceiverRangeNeedsPrepass};
+constexpr FlagCondition kFlagConditions[] = {kit::kReceiverRangeNeedsDepth};
 
 constexpr TechniqueDesc kDescriptor = kit::describe(
     {.id = "lispsm",
@@ -102,7 +102,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "views: footprint (the warp's texels per pixel, near against far), texel-grid and coverage "
                     "(the warped map and its volume), focus-body (B, seed 002 eq. 4.2), and the depth image.",
      .shadowGlsl = "lispsm.glsl",
-     .flags = kTechniqueNeedsCameraPrepass,            // range = receivers reduces the pre-pass's depth
+     .flags = kTechniqueNeedsCameraDepth,              // range = receivers reduces the pre-pass's depth
      .translucencyModel = TranslucencyModel::Ignore},  // its map holds opaque casters only
     Params::table, kFlagConditions);
 

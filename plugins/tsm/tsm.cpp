@@ -59,7 +59,7 @@ class TrapezoidalShadowMaps final : public kit::WarpedMapTechnique<Params> {
     }
 };
 
-constexpr FlagCondition kFlagConditions[] = {kit::kReceiverRangeNeedsPrepass};
+constexpr FlagCondition kFlagConditions[] = {kit::kReceiverRangeNeedsDepth};
 
 constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
     {.id = "tsm",
@@ -72,7 +72,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(kit::kOpaqueFittedMap,
                     "of the warp, so one bias fits near and far. Looking along the light it falls back to the "
                     "plain focused map, like lispsm. Compare with lispsm and psm on forest-002 and aliasing-plane.",
      .shadowGlsl = "tsm.glsl",
-     .flags = kTechniqueNeedsCameraPrepass},   // range = receivers reduces the pre-pass's depth
+     .flags = kTechniqueNeedsCameraDepth},     // range = receivers reduces the pre-pass's depth
     Params::table, kFlagConditions);
 
 } // namespace

@@ -91,21 +91,36 @@ inline DepthRange narrowToMeasured(DepthRange range, const std::optional<DepthRa
 
 // The view depths the camera pre-pass holds, reduced on the GPU by a compute program (the
 // kit's shaders/view_depth_bounds.comp: min and max as ordered bits in an SSBO at
-// CSM_DEPTH_BOUNDS_BINDING). The results come back through a ring of buffers, each with a
-// timestamp query issued after its dispatch: a slot is read only once its query is available (the
-// GPU is past it), so glGetNamedBufferSubData never waits. With three slots a result is one to
-// three frames old.
+// CSM_DEPTH_BOUNDS_BINDING), from the pre-pass's depth alone (kTechniqueNeedsCameraDepth: the
+// depth-only pre-pass, not the full one with its position, normal and id targets). The 8 bytes
+// are copied on the GPU's queue into one slot of a persistently mapped client buffer, a fence
+// after the copy; a slot is read through the mapping only once its fence has signalled, so the
+// CPU never waits for the GPU. (The first version read the SSBO back with
+// glGetNamedBufferSubData after a timestamp query: the query said the GPU was past the dispatch,
+// but the driver still synchronises a read of a device buffer with the whole queue, which on the
+// H200 serialised CPU and GPU every frame: `range = receivers` and csm's `fit = sdsm` cost 4-5
+// ms more a frame, issue 28.) With three slots a result is one to three frames old.
 class ViewDepthBounds {
 public:
     static constexpr int kRingSize = 3;
+    static constexpr GLbitfield kMapBits = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
 
     void create(IHost& host) {
         host_ = &host;
-        for (auto& slot : ring_)
-            slot.buffer = Buffer(host, host.createBuffer(2 * sizeof(uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT, "view depth bounds"));
-        glCreateQueries(GL_TIMESTAMP, kRingSize, queries_.data());
+        reduced_ = Buffer(host, host.createBuffer(2 * sizeof(uint32_t), nullptr, 0, "view depth bounds"));
+        readback_ = Buffer(host, host.createBuffer(kRingSize * 2 * sizeof(uint32_t), nullptr,
+                                                   kMapBits | GL_CLIENT_STORAGE_BIT, "view depth bounds readback"));
+        mapped_ = static_cast<const uint32_t*>(
+            glMapNamedBufferRange(readback_, 0, kRingSize * 2 * sizeof(uint32_t), kMapBits));
     }
-    void destroy() { glDeleteQueries(kRingSize, queries_.data()); }
+    void destroy() {
+        for (GLsync& fence : fences_) {
+            if (fence) glDeleteSync(fence);
+            fence = nullptr;
+        }
+        if (mapped_) glUnmapNamedBuffer(readback_);
+        mapped_ = nullptr;
+    }
 
     // The newest bounds the GPU has finished, if any.
     const std::optional<DepthRange>& latest() const { return latest_; }
@@ -113,54 +128,59 @@ public:
     // First collects the newest result the GPU has finished (never waiting), then reduces this
     // frame's pre-pass into the next slot of the ring.
     void reduce(const Program& program) {
-        for (int age = 1; age <= kRingSize; ++age) {   // newest pending first
-            Slot& slot = ring_[size_t((next_ + kRingSize - age) % kRingSize)];
-            if (!slot.pending) continue;
-            const GLuint query = queries_[size_t(&slot - ring_.data())];
-            GLuint available = 0;
-            glGetQueryObjectuiv(query, GL_QUERY_RESULT_AVAILABLE, &available);
-            if (!available) continue;
-            uint32_t bits[2] = {0, 0};
-            glGetNamedBufferSubData(slot.buffer, 0, sizeof(bits), bits);
-            for (Slot& older : ring_)
-                if (older.pending && older.serial <= slot.serial) older.pending = false;
-            const uint32_t maxBits = ~bits[1];
-            float nearest = 0.0f, farthest = 0.0f;
-            std::memcpy(&nearest, &bits[0], sizeof(float));
-            std::memcpy(&farthest, &maxBits, sizeof(float));
-            // Nothing drawn (cleared values) or nonsense: keep the previous bounds.
-            if (bits[0] != 0xFFFFFFFFu && std::isfinite(nearest) && std::isfinite(farthest) && farthest >= nearest &&
-                nearest > 0.0f)
-                latest_ = DepthRange{nearest, farthest};
-            break;
-        }
+        collect();
         const auto* prepass = static_cast<const CameraPrepass*>(host_->extension(SHADOWLAB_EXT_CAMERA_PREPASS));
-        if (!prepass || !prepass->position) return;
-        Slot& slot = ring_[size_t(next_)];
+        if (!prepass || !prepass->depth || !mapped_) return;
         GpuPass pass(*host_, "depth bounds");
         const uint32_t ones = 0xFFFFFFFFu;
-        glClearNamedBufferData(slot.buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CSM_DEPTH_BOUNDS_BINDING, slot.buffer);
-        glBindTextureUnit(shared::csm::kPrepassPositionUnit, prepass->position);
-        glBindSampler(shared::csm::kPrepassPositionUnit, host_->sampler(SamplerKind::Nearest));
+        glClearNamedBufferData(reduced_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &ones);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CSM_DEPTH_BOUNDS_BINDING, reduced_);
+        glBindTextureUnit(shared::csm::kPrepassDepthUnit, prepass->depth);
+        glBindSampler(shared::csm::kPrepassDepthUnit, host_->sampler(SamplerKind::Nearest));
         glUseProgram(program.get());
         glDispatchCompute(GLuint((prepass->size.x + 15) / 16), GLuint((prepass->size.y + 15) / 16), 1);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        glQueryCounter(queries_[size_t(next_)], GL_TIMESTAMP);
-        slot.pending = true;
-        slot.serial = ++serial_;
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);   // the copy reads what the atomics wrote
+        const GLintptr offset = GLintptr(next_) * 2 * GLintptr(sizeof(uint32_t));
+        glCopyNamedBufferSubData(reduced_, readback_, 0, offset, 2 * sizeof(uint32_t));
+        GLsync& fence = fences_[size_t(next_)];
+        if (fence) glDeleteSync(fence);   // never read: a newer result replaces it
+        fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+        serials_[size_t(next_)] = ++serial_;
         next_ = (next_ + 1) % kRingSize;
     }
 
 private:
-    struct Slot {
-        Buffer buffer;
-        bool pending = false;
-        uint64_t serial = 0;
-    };
+    // The newest slot whose fence has signalled (polled with timeout 0), read through the mapping;
+    // it and every older slot are then done.
+    void collect() {
+        int newest = -1;
+        for (int i = 0; i < kRingSize; ++i) {
+            GLsync fence = fences_[size_t(i)];
+            if (!fence || (newest >= 0 && serials_[size_t(i)] < serials_[size_t(newest)])) continue;
+            const GLenum status = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 0);   // poll, no wait
+            if (status == GL_ALREADY_SIGNALED || status == GL_CONDITION_SATISFIED) newest = i;
+        }
+        if (newest < 0) return;
+        for (int i = 0; i < kRingSize; ++i)
+            if (fences_[size_t(i)] && serials_[size_t(i)] <= serials_[size_t(newest)]) {
+                glDeleteSync(fences_[size_t(i)]);
+                fences_[size_t(i)] = nullptr;
+            }
+        const uint32_t minBits = mapped_[2 * newest], maxBits = ~mapped_[2 * newest + 1];
+        float nearest = 0.0f, farthest = 0.0f;
+        std::memcpy(&nearest, &minBits, sizeof(float));
+        std::memcpy(&farthest, &maxBits, sizeof(float));
+        // Nothing drawn (cleared values) or nonsense: keep the previous bounds.
+        if (minBits != 0xFFFFFFFFu && std::isfinite(nearest) && std::isfinite(farthest) && farthest >= nearest &&
+            nearest > 0.0f)
+            latest_ = DepthRange{nearest, farthest};
+    }
+
     IHost* host_ = nullptr;
-    std::array<Slot, kRingSize> ring_;
-    std::array<GLuint, kRingSize> queries_{};
+    Buffer reduced_, readback_;
+    const uint32_t* mapped_ = nullptr;
+    std::array<GLsync, kRingSize> fences_{};
+    std::array<uint64_t, kRingSize> serials_{};
     int next_ = 0;
     uint64_t serial_ = 0;
     std::optional<DepthRange> latest_;

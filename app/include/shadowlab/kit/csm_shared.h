@@ -5,7 +5,7 @@
 #include "shadowlab/kit/shared.h"
 SHADOWLAB_SHARED_BEGIN(csm)
 SHADOWLAB_TEXTURE_UNIT(kCascadeMapsUnit, 4)      // sampler2DArrayShadow, one layer per cascade
-SHADOWLAB_TEXTURE_UNIT(kPrepassPositionUnit, 5)  // the host's camera pre-pass, world positions
+SHADOWLAB_TEXTURE_UNIT(kPrepassDepthUnit, 5)     // the host's camera pre-pass depth (the reduction)
 SHADOWLAB_UNIFORM_BLOCK(CsmUniforms, 2) {
     mat4 uCascadeMatrix[8];   // world -> clip of cascade i (kit::kMaxCascades)
     vec4 uCascadeRange[8];    // x: served view depth begin, y: end, z: fitted begin (blend band), w: texel world size

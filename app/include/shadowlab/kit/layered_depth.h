@@ -67,12 +67,26 @@ LayeredDepthConfig layeredDepthConfig(const Values& values) {
 // Linear depth 0..1 along the light matrix's view axis over `points` (seed 002 sec. 5.3; TSM's
 // linear z): the plane for LayeredDepthConfig::linearDepthPlane. Along any ray from a spot light
 // the distance along its axis grows too, so the order of depths is the light's for both types.
+// The range is padded by 1e-4 of the points' extent at both ends (issue 28): a receiver on B's
+// boundary lies outside B by its clipping's rounding, which scales with B's size, not with its
+// depth range. On `aliasing-plane` (B 205 m wide and 1 m deep along the light, the light 4.4e-8
+// rad off vertical from float trigonometry) the ground's far right came out 4e-6 beyond the far
+// end: depth 1 + 4e-6 against a cleared 1.0, which a 32F map does not clamp, so tsm's far view
+// read shadowed wherever the view was wide enough (16:9, not 16:10).
 inline glm::vec4 linearDepthPlane(const LightSpace& lightSpace, const std::vector<glm::vec3>& points) {
     const glm::vec3 axis = -glm::vec3(lightSpace.view[0][2], lightSpace.view[1][2], lightSpace.view[2][2]);
     float lo = INFINITY, hi = -INFINITY;
+    glm::vec3 boxLo(INFINITY), boxHi(-INFINITY);
     for (const glm::vec3& p : points) {
         lo = std::min(lo, glm::dot(axis, p));
         hi = std::max(hi, glm::dot(axis, p));
+        boxLo = glm::min(boxLo, p);
+        boxHi = glm::max(boxHi, p);
+    }
+    if (!points.empty()) {
+        const float pad = 1e-4f * glm::length(boxHi - boxLo);
+        lo -= pad;
+        hi += pad;
     }
     const float range = std::max(hi - lo, 1e-6f);
     return points.empty() ? glm::vec4(0.0f) : glm::vec4(axis / range, -lo / range);

@@ -20,8 +20,8 @@ constexpr ParamDesc warpRangeParam() {
             "scene|receivers"};
 }
 
-// The flag condition of a technique with warpRangeParam(): the pre-pass only when it is measured.
-inline constexpr FlagCondition kReceiverRangeNeedsPrepass{kTechniqueNeedsCameraPrepass, "range", "receivers"};
+// The flag condition of a technique with warpRangeParam(): the depth-only pre-pass only when it is measured.
+inline constexpr FlagCondition kReceiverRangeNeedsDepth{kTechniqueNeedsCameraDepth, "range", "receivers"};
 
 class ReceiverRange {
 public:
