@@ -388,8 +388,9 @@ TEST(CsmRender, CameraPrePassOnlyForTheSampleDistributionFit) {
 }
 
 // The host counts what the techniques allocate exactly: the cube's six faces, every layer of the
-// cascades' array (and nothing else but the techniques' small buffers; the cube path's block only
-// once a point light needed it).
+// cascades' array (and nothing else but the techniques' small buffers: the depth reduction's
+// result and its three mapped readback slots; the cube path's block only once a point light
+// needed it).
 TEST(CsmRender, MemoryCountsSixFacesAndEveryArrayLayer) {
     using kit::CubeDepthMapUniforms;
     using kit::DepthMapUniforms;
@@ -403,7 +404,7 @@ TEST(CsmRender, MemoryCountsSixFacesAndEveryArrayLayer) {
                       sizeof(shared::layered_depth::LayeredDepthUniforms) + sizeof(CubeDepthMapUniforms));
         test::renderVisibility(*app, "csm", {"resolution=512"});
         EXPECT_EQ(techniqueBytes(*app, "csm"), 6 * res * res * texel + sizeof(shared::csm::CsmUniforms) +
-                                                   3 * 2 * sizeof(uint32_t) + sizeof(CubeDepthMapUniforms));
+                                                   (1 + 3) * 2 * sizeof(uint32_t) + sizeof(CubeDepthMapUniforms));
     }
     auto app = test::makeHeadlessApp("cube", {160, 120});
     ASSERT_TRUE(app);
@@ -411,6 +412,6 @@ TEST(CsmRender, MemoryCountsSixFacesAndEveryArrayLayer) {
         SCOPED_TRACE(cascades);
         test::renderVisibility(*app, "csm", {"resolution=512", "cascades=" + std::to_string(cascades)});
         EXPECT_EQ(techniqueBytes(*app, "csm"),
-                  size_t(cascades) * res * res * texel + sizeof(shared::csm::CsmUniforms) + 3 * 2 * sizeof(uint32_t));
+                  size_t(cascades) * res * res * texel + sizeof(shared::csm::CsmUniforms) + (1 + 3) * 2 * sizeof(uint32_t));
     }
 }
