@@ -20,7 +20,10 @@ layout(std430, binding = VSM_STATE_BINDING) buffer State { int uState[VSM_STATE_
 layout(std430, binding = VSM_FREE_BINDING) buffer FreeList { uint uFree[]; };
 layout(std430, binding = VSM_DIRTY_BINDING) writeonly buffer Dirty { uvec4 uDirty[]; };
 
-void pushFree(uint physical) { uFree[atomicAdd(uState[VSM_FREE_COUNT], 1)] = physical; }
+void pushFree(uint physical) {
+    int slot = atomicAdd(uState[VSM_FREE_COUNT], 1);
+    uFree[slot] = physical;
+}
 
 void main() {
 #if VSM_PHASE == 5
@@ -55,7 +58,12 @@ void main() {
     }
     if (!marked) return;
     atomicAdd(uState[VSM_MARKED], 1);
-    atomicAdd(uState[resident ? VSM_CACHED : VSM_NEED], 1);
+    // Two plain atomics, not one on a ternary index: NVIDIA's 580 compiler fails to link the
+    // latter ("fatal error C9999: unexpected expression in DUI_foreachId").
+    if (resident)
+        atomicAdd(uState[VSM_CACHED], 1);
+    else
+        atomicAdd(uState[VSM_NEED], 1);
 #elif VSM_PHASE == 2
     if (!resident || marked) return;
     if (atomicAdd(uState[VSM_EVICT], -1) <= 0) return;   // the shortfall phase 5 left
