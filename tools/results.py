@@ -80,6 +80,7 @@ STYLE = OrderedDict([
     ("shadow-volumes", ("#31a354", "X")),
     ("rbsm", ("#756bb1", "D")),
     ("edtsm", ("#636363", "v")),
+    ("virtual-sm", ("#bd9e39", "P")),
 ])
 FALLBACK_COLOURS = ("#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
                     "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac")
