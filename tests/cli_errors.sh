@@ -207,6 +207,8 @@ expect_bounded 0 "bad_huge_param_count.so: invalid descriptor: paramCount 100000
 expect_bounded 0 "claimed by 2 libraries: .*bad_duplicate_a.so, .*bad_duplicate_b.so" -- list --json
 expect_bounded 1 "bad_create_null.so: create() returned nothing" -- "${render[@]}" -t create_null
 unset SHADOWLAB_PLUGIN_DIR
+# A plugin folder that does not exist, or holds no plugin: bad input, naming the folder.
+SHADOWLAB_PLUGIN_DIR="$tmp/no-such-folder" expect_bounded 2 "no technique plugins found in .*no-such-folder" -- "${render[@]}"
 
 # The scratch folder: gone after a run, after SIGINT and SIGTERM; stale ones of dead processes cleaned
 mkdir -p "$tmp/t/shadowlab-999999999" && touch "$tmp/t/shadowlab-999999999/old.so" && touch -d '-1 hour' "$tmp/t/shadowlab-999999999"

@@ -89,7 +89,10 @@ bool App::init(const AppOptions& options, bool windowed, std::string& error, boo
             &sceneGeneration_);
     });
     if (techniques_->techniques().size() <= 1) {
-        error = "no technique plugins found in " + pluginDir().string();
+        // The folder is the user's setting (SHADOWLAB_PLUGIN_DIR) or an unbuilt tree: bad input.
+        error = "no technique plugins found in " + pluginDir().string() +
+                " (build the project, or set SHADOWLAB_PLUGIN_DIR to the folder of the plugins)";
+        badInput = true;
         return false;
     }
     return true;
