@@ -12,7 +12,10 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <chrono>
 #include <map>
+#include <mutex>
+#include <optional>
 #include <set>
 #include <system_error>
 
@@ -265,6 +268,49 @@ PluginLibrary::~PluginLibrary() {
     if (!loadedCopy_.empty()) std::filesystem::remove(loadedCopy_, ec);
 }
 
+namespace {
+
+// What opening one library gave: its descriptor or the error. A scan only reads descriptors, so a
+// library unchanged since an earlier scan in this process need not be copied and loaded again:
+// each load is a copy and a dlopen, and under the sanitizers (23 instrumented libraries of several
+// MiB, each dlopen relocating and registering tens of thousands of globals) one scan took about
+// 0.5 s of CPU; a test process scanned five times before its first line and once more for each
+// App, and a command-line run twice (issue 31).
+struct OpenedDescriptor {
+    std::filesystem::file_time_type time{};
+    uintmax_t size = 0;
+    std::optional<TechniqueInfo> info;
+    std::string error;
+};
+
+// A file is taken as unchanged when its time and size are those of the earlier open and that time
+// was already two seconds old then: file times are kept at the kernel's clock tick, so a file
+// rewritten within a tick of being read can keep its time and size (git's "racily clean" entries).
+constexpr auto kSettledAge = std::chrono::seconds(2);
+
+OpenedDescriptor openDescriptor(const std::filesystem::path& file) {
+    static std::mutex mutex;
+    static std::map<std::filesystem::path, OpenedDescriptor> opened;
+    std::error_code timeError, sizeError;
+    const auto time = std::filesystem::last_write_time(file, timeError);
+    const uintmax_t size = std::filesystem::file_size(file, sizeError);
+    const bool known = !timeError && !sizeError;
+    if (known) {
+        const std::lock_guard lock(mutex);
+        if (auto it = opened.find(file); it != opened.end() && it->second.time == time && it->second.size == size)
+            return it->second;
+    }
+    OpenedDescriptor result{time, size, std::nullopt, ""};
+    if (auto library = PluginLibrary::open(file, result.error)) result.info = library->info();
+    if (known && std::filesystem::file_time_type::clock::now() - time > kSettledAge) {
+        const std::lock_guard lock(mutex);
+        opened[file] = result;
+    }
+    return result;
+}
+
+} // namespace
+
 PluginScan scanPlugins(const std::filesystem::path& dir, const std::vector<std::string>& reservedIds) {
     PluginScan scan;
     std::error_code ec;
@@ -280,18 +326,17 @@ PluginScan scanPlugins(const std::filesystem::path& dir, const std::vector<std::
     // (a stale copy, a renamed build) and taking either silently changes what is measured.
     std::map<std::string, std::vector<TechniqueInfo>> byId;
     for (const auto& file : files) {
-        std::string error;
-        auto library = PluginLibrary::open(file, error);
-        if (!library) {
-            scan.errors.push_back(error);
+        OpenedDescriptor opened = openDescriptor(file);
+        if (!opened.info) {
+            scan.errors.push_back(opened.error);
             continue;
         }
-        if (std::find(reservedIds.begin(), reservedIds.end(), library->info().id) != reservedIds.end()) {
-            scan.errors.push_back(file.string() + ": technique id '" + library->info().id +
+        if (std::find(reservedIds.begin(), reservedIds.end(), opened.info->id) != reservedIds.end()) {
+            scan.errors.push_back(file.string() + ": technique id '" + opened.info->id +
                                   "' belongs to the host's built-in technique");
             continue;
         }
-        byId[library->info().id].push_back(library->info());
+        byId[opened.info->id].push_back(std::move(*opened.info));
     }
     for (auto& [id, claims] : byId) {
         if (claims.size() == 1) {

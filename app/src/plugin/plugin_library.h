@@ -66,7 +66,8 @@ struct PluginScan {
     std::vector<std::string> errors;         // one line per skipped library
 };
 
-// Opens every *.so in `dir` to read its descriptor (no GL involved) and closes it again. An id
+// Opens every *.so in `dir` to read its descriptor (no GL involved) and closes it again; a library
+// this process already read, unchanged since (same time and size, settled), is not opened again. An id
 // claimed by two libraries is refused for both, with an error naming both files. A library claiming
 // one of `reservedIds` (the host's built-in techniques) is refused too.
 PluginScan scanPlugins(const std::filesystem::path& dir, const std::vector<std::string>& reservedIds = {});
