@@ -85,12 +85,14 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-} // namespace
-
-int main(int argc, char** argv) {
+struct BenchOptions {
     int threads = 0, samples = 64, width = 1280, height = 720, adaptive = 0, firstBatch = 32, radius = 2;
     bool quick = false;
     std::vector<std::string> names;
+};
+
+// Returns false (after printing the usage) on an unknown option.
+bool parseOptions(int argc, char** argv, BenchOptions& o) {
     for (int i = 1; i < argc; ++i) {
         auto value = [&](const char* flag) {
             if (i + 1 >= argc) {
@@ -99,133 +101,121 @@ int main(int argc, char** argv) {
             }
             return std::atoi(argv[++i]);
         };
-        if (!std::strcmp(argv[i], "--threads")) threads = value("--threads");
-        else if (!std::strcmp(argv[i], "--spp")) samples = value("--spp");
-        else if (!std::strcmp(argv[i], "--width")) width = value("--width");
-        else if (!std::strcmp(argv[i], "--height")) height = value("--height");
-        else if (!std::strcmp(argv[i], "--adaptive")) adaptive = value("--adaptive");
-        else if (!std::strcmp(argv[i], "--first-batch")) firstBatch = value("--first-batch");
-        else if (!std::strcmp(argv[i], "--radius")) radius = value("--radius");
-        else if (!std::strcmp(argv[i], "--quick")) quick = true;
+        if (!std::strcmp(argv[i], "--threads")) o.threads = value("--threads");
+        else if (!std::strcmp(argv[i], "--spp")) o.samples = value("--spp");
+        else if (!std::strcmp(argv[i], "--width")) o.width = value("--width");
+        else if (!std::strcmp(argv[i], "--height")) o.height = value("--height");
+        else if (!std::strcmp(argv[i], "--adaptive")) o.adaptive = value("--adaptive");
+        else if (!std::strcmp(argv[i], "--first-batch")) o.firstBatch = value("--first-batch");
+        else if (!std::strcmp(argv[i], "--radius")) o.radius = value("--radius");
+        else if (!std::strcmp(argv[i], "--quick")) o.quick = true;
         else if (argv[i][0] == '-') {
             std::fprintf(stderr,
                          "usage: %s [--threads N] [--spp N] [--width W --height H] [--adaptive N [--first-batch B] "
                          "[--radius R] [--quick]] [scene ...]\n",
                          argv[0]);
-            return 2;
-        } else names.emplace_back(argv[i]);
+            return false;
+        } else o.names.emplace_back(argv[i]);
     }
+    return true;
+}
 
-    std::string error;
-    GroundTruthPtr groundTruth = loadGroundTruth(error);
-    if (!groundTruth) {
-        std::fprintf(stderr, "%s\n", error.c_str());
-        return 1;
-    }
-
-    std::vector<Scene> scenes;
-    try {
-        if (names.empty()) {
-            scenes.push_back(cubeScene());
-            scenes.push_back(spheresScene());
-        }
-        for (const std::string& name : names) scenes.push_back(loadScene(name));
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 1;
-    }
-
+// --adaptive N: the adaptive soft reference against uniform sampling (time, refined pixels, error
+// floor), scene by scene.
+void compareAdaptive(IGroundTruth& groundTruth, std::vector<Scene>& scenes, const BenchOptions& o) {
     const unsigned cores = std::thread::hardware_concurrency();
-    if (adaptive > 0) {
-        std::printf("soft reference %dx%d, %d thread(s) (%u hardware): uniform %d against adaptive %d (first batch %d, "
-                    "radius %d) and uniform %d\n",
-                    width, height, threads > 0 ? threads : static_cast<int>(cores), cores, samples, adaptive, firstBatch,
-                    radius, adaptive);
-        for (Scene& scene : scenes) {
-            if (scene.light.size <= 0.0f) scene.light.size = scene.light.type == LightType::Directional ? 0.05f : 0.2f;
-            groundTruth->setScene(scene);
-            const SceneCamera& camera = scene.camera;
-            const glm::mat4 viewProjection =
-                glm::perspective(camera.fovY, static_cast<float>(width) / static_cast<float>(height), camera.nearPlane,
-                                 camera.farPlane) *
-                glm::lookAt(camera.position, camera.target, camera.up);
-            std::vector<glm::vec4> positions, normals;
-            groundTruth->tracePrimary(viewProjection, camera.position, width, height, positions, normals);
-            const GBufferView gbuffer{width, height, positions.data(), normals.data()};
-            const std::vector<uint8_t> mask = compareMask(gbuffer, scene.light);
+    std::printf("soft reference %dx%d, %d thread(s) (%u hardware): uniform %d against adaptive %d (first batch %d, "
+                "radius %d) and uniform %d\n",
+                o.width, o.height, o.threads > 0 ? o.threads : static_cast<int>(cores), cores, o.samples, o.adaptive, o.firstBatch,
+                o.radius, o.adaptive);
+    for (Scene& scene : scenes) {
+        if (scene.light.size <= 0.0f) scene.light.size = scene.light.type == LightType::Directional ? 0.05f : 0.2f;
+        groundTruth.setScene(scene);
+        const SceneCamera& camera = scene.camera;
+        const glm::mat4 viewProjection =
+            glm::perspective(camera.fovY, static_cast<float>(o.width) / static_cast<float>(o.height), camera.nearPlane,
+                             camera.farPlane) *
+            glm::lookAt(camera.position, camera.target, camera.up);
+        std::vector<glm::vec4> positions, normals;
+        groundTruth.tracePrimary(viewProjection, camera.position, o.width, o.height, positions, normals);
+        const GBufferView gbuffer{o.width, o.height, positions.data(), normals.data()};
+        const std::vector<uint8_t> mask = compareMask(gbuffer, scene.light);
 
-            struct Run {
-                const char* name;
-                int samples;
-                bool adaptive;
-                uint32_t seed;
-                std::vector<glm::vec3> image;
-                ReferenceStats stats;
-                double seconds = 0.0, cpuSeconds = 0.0, floor = 0.0;
-            };
-            Run runs[] = {{"uniform", samples, false, 1, {}, {}, 0.0, 0.0, 0.0}, {"adaptive", adaptive, true, 1, {}, {}, 0.0, 0.0, 0.0},
-                          {"uniform", adaptive, false, 1, {}, {}, 0.0, 0.0, 0.0},
-                          {"uniform", adaptive, false, 2, {}, {}, 0.0, 0.0, 0.0}};
-            for (Run& run : runs) {
-                if (quick && &run - runs >= 2) break;
-                ReferenceOptions options;
-                options.mode = ReferenceOptions::Mode::Soft;
-                options.threads = threads;
-                options.samplesPerPixel = run.samples;
-                options.adaptive = run.adaptive;
-                options.firstBatch = firstBatch;
-                options.refineRadius = radius;
-                options.seed = run.seed;
-                const auto start = std::chrono::steady_clock::now();
-                const std::clock_t cpuStart = std::clock();
-                groundTruth->trace(gbuffer, scene.light, options, run.image, &run.stats);
-                run.seconds = secondsSince(start);
-                // CPU time of the whole process (every tracing thread): on a shared machine the
-                // wall time also counts other jobs' use of the cores.
-                run.cpuSeconds = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
-                run.floor = penumbraMean(run.stats.sampleError, run.image, mask, width, height);
-                std::printf("%-12s %-8s %5d rays seed %u: %8.2f s wall, %8.2f s CPU, %6.2f%% of %zu pixels refined, "
-                            "%.1f rays per pixel, floor (estimated) %.5f\n",
-                            scene.name.c_str(), run.name, run.samples, run.seed, run.seconds, run.cpuSeconds,
-                            100.0 * double(run.stats.refinedPixels) / double(std::max<size_t>(run.stats.tracedPixels, 1)),
-                            run.stats.tracedPixels, double(run.stats.shadowRays) / double(std::max<size_t>(run.stats.tracedPixels, 1)),
-                            run.floor);
-                std::fflush(stdout);
-            }
-            const Run &baseline = runs[0], &fast = runs[1], &uniform = runs[2], &other = runs[3];
-            if (quick) {
-                std::printf("%-12s time: adaptive %d / uniform %d = %.2fx wall, %.2fx CPU\n", scene.name.c_str(), adaptive,
-                            samples, fast.seconds / baseline.seconds, fast.cpuSeconds / baseline.cpuSeconds);
-                continue;
-            }
-            // Differences against the uniform N reference over its penumbra (compareVisibility's
-            // maePenumbra with the uniform image as the reference).
-            const AccuracyMetrics adaptiveVsUniform = compareVisibility(fast.image, uniform.image, mask, width, height);
-            const AccuracyMetrics seeds = compareVisibility(other.image, uniform.image, mask, width, height);
-            const AccuracyMetrics lowVsHigh = compareVisibility(baseline.image, uniform.image, mask, width, height);
-            size_t differing = 0;
-            float largest = 0.0f;
-            for (size_t i = 0; i < mask.size(); ++i) {
-                const glm::vec3 e = glm::abs(fast.image[i] - uniform.image[i]);
-                const float d = std::max(e.x, std::max(e.y, e.z));
-                differing += d > 0.0f;
-                largest = std::max(largest, d);
-            }
-            std::printf("%-12s time: adaptive %d / uniform %d = %.2fx wall, %.2fx CPU; uniform %d / uniform %d = %.2fx wall, "
-                        "%.2fx CPU\n",
-                        scene.name.c_str(), adaptive, samples, fast.seconds / baseline.seconds,
-                        fast.cpuSeconds / baseline.cpuSeconds, adaptive, samples, uniform.seconds / baseline.seconds,
-                        uniform.cpuSeconds / baseline.cpuSeconds);
-            std::printf("%-12s penumbra MAE: adaptive vs uniform %d %.5f (%zu pixels differ, largest %.4f); uniform %d seed 2 "
-                        "vs seed 1 %.5f (/sqrt 2: measured floor %.5f); uniform %d vs uniform %d %.5f\n",
-                        scene.name.c_str(), adaptive, adaptiveVsUniform.maePenumbra, differing, largest, adaptive,
-                        seeds.maePenumbra, seeds.maePenumbra / std::sqrt(2.0), samples, adaptive, lowVsHigh.maePenumbra);
+        struct Run {
+            const char* name;
+            int samples;
+            bool adaptive;
+            uint32_t seed;
+            std::vector<glm::vec3> image;
+            ReferenceStats stats;
+            double seconds = 0.0, cpuSeconds = 0.0, floor = 0.0;
+        };
+        Run runs[] = {{"uniform", o.samples, false, 1, {}, {}, 0.0, 0.0, 0.0}, {"adaptive", o.adaptive, true, 1, {}, {}, 0.0, 0.0, 0.0},
+                      {"uniform", o.adaptive, false, 1, {}, {}, 0.0, 0.0, 0.0},
+                      {"uniform", o.adaptive, false, 2, {}, {}, 0.0, 0.0, 0.0}};
+        for (Run& run : runs) {
+            if (o.quick && &run - runs >= 2) break;
+            ReferenceOptions options;
+            options.mode = ReferenceOptions::Mode::Soft;
+            options.threads = o.threads;
+            options.samplesPerPixel = run.samples;
+            options.adaptive = run.adaptive;
+            options.firstBatch = o.firstBatch;
+            options.refineRadius = o.radius;
+            options.seed = run.seed;
+            const auto start = std::chrono::steady_clock::now();
+            const std::clock_t cpuStart = std::clock();
+            groundTruth.trace(gbuffer, scene.light, options, run.image, &run.stats);
+            run.seconds = secondsSince(start);
+            // CPU time of the whole process (every tracing thread): on a shared machine the
+            // wall time also counts other jobs' use of the cores.
+            run.cpuSeconds = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
+            run.floor = penumbraMean(run.stats.sampleError, run.image, mask, o.width, o.height);
+            std::printf("%-12s %-8s %5d rays seed %u: %8.2f s wall, %8.2f s CPU, %6.2f%% of %zu pixels refined, "
+                        "%.1f rays per pixel, floor (estimated) %.5f\n",
+                        scene.name.c_str(), run.name, run.samples, run.seed, run.seconds, run.cpuSeconds,
+                        100.0 * double(run.stats.refinedPixels) / double(std::max<size_t>(run.stats.tracedPixels, 1)),
+                        run.stats.tracedPixels, double(run.stats.shadowRays) / double(std::max<size_t>(run.stats.tracedPixels, 1)),
+                        run.floor);
             std::fflush(stdout);
         }
-        return 0;
+        const Run &baseline = runs[0], &fast = runs[1], &uniform = runs[2], &other = runs[3];
+        if (o.quick) {
+            std::printf("%-12s time: adaptive %d / uniform %d = %.2fx wall, %.2fx CPU\n", scene.name.c_str(), o.adaptive,
+                        o.samples, fast.seconds / baseline.seconds, fast.cpuSeconds / baseline.cpuSeconds);
+            continue;
+        }
+        // Differences against the uniform N reference over its penumbra (compareVisibility's
+        // maePenumbra with the uniform image as the reference).
+        const AccuracyMetrics adaptiveVsUniform = compareVisibility(fast.image, uniform.image, mask, o.width, o.height);
+        const AccuracyMetrics seeds = compareVisibility(other.image, uniform.image, mask, o.width, o.height);
+        const AccuracyMetrics lowVsHigh = compareVisibility(baseline.image, uniform.image, mask, o.width, o.height);
+        size_t differing = 0;
+        float largest = 0.0f;
+        for (size_t i = 0; i < mask.size(); ++i) {
+            const glm::vec3 e = glm::abs(fast.image[i] - uniform.image[i]);
+            const float d = std::max(e.x, std::max(e.y, e.z));
+            differing += d > 0.0f;
+            largest = std::max(largest, d);
+        }
+        std::printf("%-12s time: adaptive %d / uniform %d = %.2fx wall, %.2fx CPU; uniform %d / uniform %d = %.2fx wall, "
+                    "%.2fx CPU\n",
+                    scene.name.c_str(), o.adaptive, o.samples, fast.seconds / baseline.seconds,
+                    fast.cpuSeconds / baseline.cpuSeconds, o.adaptive, o.samples, uniform.seconds / baseline.seconds,
+                    uniform.cpuSeconds / baseline.cpuSeconds);
+        std::printf("%-12s penumbra MAE: adaptive vs uniform %d %.5f (%zu pixels differ, largest %.4f); uniform %d seed 2 "
+                    "vs seed 1 %.5f (/sqrt 2: measured floor %.5f); uniform %d vs uniform %d %.5f\n",
+                    scene.name.c_str(), o.adaptive, adaptiveVsUniform.maePenumbra, differing, largest, o.adaptive,
+                    seeds.maePenumbra, seeds.maePenumbra / std::sqrt(2.0), o.samples, o.adaptive, lowVsHigh.maePenumbra);
+        std::fflush(stdout);
     }
-    std::printf("ground truth %dx%d, %d thread(s) (%u hardware), soft: %d samples per pixel\n", width, height,
-                threads > 0 ? threads : static_cast<int>(cores), cores, samples);
+}
+
+// The default run: BVH build, primary rays, hard and soft reference times per scene.
+void timeReferences(IGroundTruth& groundTruth, std::vector<Scene>& scenes, const BenchOptions& o) {
+    const unsigned cores = std::thread::hardware_concurrency();
+    std::printf("ground truth %dx%d, %d thread(s) (%u hardware), soft: %d samples per pixel\n", o.width, o.height,
+                o.threads > 0 ? o.threads : static_cast<int>(cores), cores, o.samples);
     std::printf("%-10s %10s %8s %10s %10s %10s %9s\n", "scene", "triangles", "bvh s", "primary s", "hard s", "soft s",
                 "compared");
     for (Scene& scene : scenes) {
@@ -235,38 +225,66 @@ int main(int argc, char** argv) {
             scene.light.size = scene.light.type == LightType::Directional ? 0.05f : 0.2f;
 
         auto start = std::chrono::steady_clock::now();
-        groundTruth->setScene(scene);
+        groundTruth.setScene(scene);
         const double bvh = secondsSince(start);
 
         const SceneCamera& camera = scene.camera;
         const glm::mat4 viewProjection =
-            glm::perspective(camera.fovY, static_cast<float>(width) / static_cast<float>(height), camera.nearPlane,
+            glm::perspective(camera.fovY, static_cast<float>(o.width) / static_cast<float>(o.height), camera.nearPlane,
                              camera.farPlane) *
             glm::lookAt(camera.position, camera.target, camera.up);
         std::vector<glm::vec4> positions, normals;
         start = std::chrono::steady_clock::now();
-        groundTruth->tracePrimary(viewProjection, camera.position, width, height, positions, normals);
+        groundTruth.tracePrimary(viewProjection, camera.position, o.width, o.height, positions, normals);
         const double primary = secondsSince(start);
-        const GBufferView gbuffer{width, height, positions.data(), normals.data()};
+        const GBufferView gbuffer{o.width, o.height, positions.data(), normals.data()};
 
         ReferenceOptions options;
-        options.threads = threads;
+        options.threads = o.threads;
         std::vector<glm::vec3> hard, soft;
         start = std::chrono::steady_clock::now();
-        groundTruth->trace(gbuffer, scene.light, options, hard);
+        groundTruth.trace(gbuffer, scene.light, options, hard);
         const double hardSeconds = secondsSince(start);
 
         options.mode = ReferenceOptions::Mode::Soft;
-        options.samplesPerPixel = samples;
+        options.samplesPerPixel = o.samples;
         start = std::chrono::steady_clock::now();
-        groundTruth->trace(gbuffer, scene.light, options, soft);
+        groundTruth.trace(gbuffer, scene.light, options, soft);
         const double softSeconds = secondsSince(start);
 
         const std::vector<uint8_t> mask = compareMask(gbuffer, scene.light);
-        const AccuracyMetrics hardVsSoft = compareVisibility(hard, soft, mask, width, height);
+        const AccuracyMetrics hardVsSoft = compareVisibility(hard, soft, mask, o.width, o.height);
         std::printf("%-10s %10zu %8.3f %10.3f %10.3f %10.3f %8.1f%%\n", scene.name.c_str(), triangles, bvh, primary,
                     hardSeconds, softSeconds, 100.0 * hardVsSoft.comparedFraction);
         std::printf("           hard vs soft reference: %s\n", metricsToJson(hardVsSoft).c_str());
     }
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    BenchOptions o;
+    if (!parseOptions(argc, argv, o)) return 2;
+    std::string error;
+    GroundTruthPtr groundTruth = loadGroundTruth(error);
+    if (!groundTruth) {
+        std::fprintf(stderr, "%s\n", error.c_str());
+        return 1;
+    }
+
+    std::vector<Scene> scenes;
+    try {
+        if (o.names.empty()) {
+            scenes.push_back(cubeScene());
+            scenes.push_back(spheresScene());
+        }
+        for (const std::string& name : o.names) scenes.push_back(loadScene(name));
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 1;
+    }
+
+    if (o.adaptive > 0) compareAdaptive(*groundTruth, scenes, o);
+    else timeReferences(*groundTruth, scenes, o);
     return 0;
 }
