@@ -132,7 +132,7 @@ void VirtualPages::render(const PageDraw& draw) {
 
 void VirtualPages::mark(const PageDraw& draw) {
     GpuPass pass(*host_, "mark pages");
-    if (!draw.prepass || !draw.prepass->position) return;
+    if (!draw.prepass || !draw.prepass->depth) return;
     const glm::ivec2 size = draw.prepass->size;
     if (draw.levelImage && size != levelImageSize_) {
         levelImageSize_ = size;
@@ -140,15 +140,14 @@ void VirtualPages::mark(const PageDraw& draw) {
                                                 .label = "page levels"});
         host_->registerDebugImage("page levels", levelImage_, DebugImageKind::Color);
     }
-    glBindTextureUnit(shared::virtual_sm::kPrepassPositionUnit, draw.prepass->position);
-    glBindTextureUnit(shared::virtual_sm::kPrepassNormalUnit, draw.prepass->normal);
-    for (uint32_t unit : {shared::virtual_sm::kPrepassPositionUnit, shared::virtual_sm::kPrepassNormalUnit})
-        glBindSampler(unit, host_->sampler(SamplerKind::Nearest));
+    glBindTextureUnit(shared::virtual_sm::kPrepassDepthUnit, draw.prepass->depth);
+    glBindSampler(shared::virtual_sm::kPrepassDepthUnit, host_->sampler(SamplerKind::Nearest));
     const bool writeImage = draw.levelImage && levelImage_;
     if (writeImage)
         glBindImageTexture(shared::virtual_sm::kLevelImageUnit, levelImage_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
     glUseProgram(mark_.get());
     glUniform1i(16, writeImage ? 1 : 0);
+    glUniformMatrix4fv(17, 1, GL_FALSE, &draw.inverseViewProjection[0][0]);
     glDispatchCompute(GLuint((size.x + 7) / 8), GLuint((size.y + 7) / 8), 1);
     glMemoryBarrier(kStorage | (writeImage ? GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT : 0));
 }

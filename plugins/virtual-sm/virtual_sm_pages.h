@@ -37,7 +37,8 @@ struct PageLayout {
 
 // What the page draws need from the frame.
 struct PageDraw {
-    const CameraPrepass* prepass = nullptr;   // null: nothing is marked
+    const CameraPrepass* prepass = nullptr;   // its depth (the depth-only pre-pass); null: nothing is marked
+    glm::mat4 inverseViewProjection{1.0f};    // rebuilds the pixels' world positions from depth
     const AdjacencyScene* scene = nullptr;    // the casters' vertices and indices
     float constantBias = 0.0f;
     float slopeBias = 0.0f;
