@@ -117,9 +117,10 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
         }
         const Adjacency* adjacency = static_cast<const Adjacency*>(host().extension(SHADOWLAB_EXT_ADJACENCY));
         const AdjacencyScene* casters = adjacency ? adjacency->scene(adjacency->context) : nullptr;
-        const PageLayout layout{.levels = std::clamp(p.levels, 1, VSM_MAX_LEVELS),
+        const PageLayout layout = PageLayout{.levels = std::clamp(p.levels, 1, VSM_MAX_LEVELS),
                                 .pagesPerSide = std::max(1, p.virtual_size / VSM_PAGE_TEXELS),
-                                .atlasPages = std::max(1, p.physical_size / VSM_PAGE_TEXELS)};
+                                .atlasPages = std::max(1, p.physical_size / VSM_PAGE_TEXELS)}
+                                   .fitRows();
         const CacheKey key{frame.light.direction, host().bounds(DrawSet::All), host().objectCount(),
                            casters ? casters->indices : 0u, layout, p.constant_bias, p.slope_bias, p.cull,
                            2.0f / (frame.camera.projection[1][1] * float(std::max(1, frame.camera.viewport.y)))};
@@ -212,7 +213,8 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
     // The newest counters the GPU has finished (a few frames old; never waited for).
     void reportStatistics(const PageLayout& layout) {
         host().reportStatistic("physical pages", layout.physicalPages());
-        host().reportStatistic("physical MiB", double(pages_.atlasBytes()) / (1024.0 * 1024.0));
+        // The layout's atlas and its page buffers: what a physical_size^2 map's memory is compared with.
+        host().reportStatistic("physical MiB", double(layout.atlasBytes() + layout.bufferBytes()) / (1024.0 * 1024.0));
         if (!pages_.hasStatistics()) return;
         const std::vector<uint32_t>& s = pages_.statistics();
         host().reportStatistic("pages marked", s[VSM_MARKED]);

@@ -9,7 +9,6 @@
 namespace shadowlab::virtual_sm {
 
 namespace {
-constexpr uint32_t kPairCapacity = 1u << 18;   // (page, object) instances a frame: 2 MiB
 constexpr GLbitfield kStorage = GL_SHADER_STORAGE_BARRIER_BIT;
 
 kit::Buffer makeStorage(IHost& host, size_t bytes, const char* label) {
@@ -69,10 +68,10 @@ void VirtualPages::configure(const PageLayout& layout) {
     growStorage(*host_, requests_, capacity_[1], entries * sizeof(uint32_t), "virtual-sm page requests");
     growStorage(*host_, free_, capacity_[2], physical * sizeof(uint32_t), "virtual-sm free list");
     growStorage(*host_, dirty_, capacity_[3], physical * 4 * sizeof(uint32_t), "virtual-sm pages to draw");
-    const int side = layout.atlasPages * VSM_PAGE_TEXELS;
-    if (side > atlasSide_) {
-        atlasSide_ = side;
-        atlas_ = kit::makeTexture(*host_, {.internalFormat = GL_DEPTH_COMPONENT32F, .width = side, .height = side,
+    const glm::ivec2 size = glm::ivec2(layout.atlasPages, layout.atlasRows) * VSM_PAGE_TEXELS;
+    if (glm::any(glm::greaterThan(size, atlasSize_))) {
+        atlasSize_ = glm::max(size, atlasSize_);
+        atlas_ = kit::makeTexture(*host_, {.internalFormat = GL_DEPTH_COMPONENT32F, .width = atlasSize_.x, .height = atlasSize_.y,
                                            .label = "virtual shadow map atlas"});
         kit::attachDepthTarget(*host_, framebuffer_, atlas_, "virtual shadow map atlas");
         host_->registerDebugImage("physical atlas", atlas_, DebugImageKind::Depth);
@@ -177,9 +176,8 @@ void VirtualPages::drawPages(const PageDraw& draw) {
         glDispatchCompute(GLuint((objectCount_ + 63) / 64), 1, 1);
         glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | kStorage);
     }
-    const int side = layout_.atlasPages * VSM_PAGE_TEXELS;
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-    glViewport(0, 0, side, side);
+    glViewport(0, 0, layout_.atlasPages * VSM_PAGE_TEXELS, layout_.atlasRows * VSM_PAGE_TEXELS);
     glBindVertexArray(vao_);
     // Clear the new pages' tiles to the far depth: a quad per page, instance count from the GPU.
     glDepthFunc(GL_ALWAYS);
