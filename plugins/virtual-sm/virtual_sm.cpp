@@ -3,8 +3,8 @@
 // data/shaders/shadows/vsm/, whose author co-wrote the GPU Zen 3 chapter). A directional light
 // gets a virtual map of `virtual_size`^2 texels per clipmap level, `levels` levels of doubling
 // texel size, each a window of 128 x 128-texel pages around the camera that moves in whole pages.
-// Each frame, on the GPU alone (virtual_sm_pages.cpp): every visible pixel of the camera
-// pre-pass marks the page its lookup will read, at the level whose texels match its screen
+// Each frame, on the GPU alone (virtual_sm_pages.cpp): every visible pixel of the camera's
+// depth-only pre-pass marks the page its lookup will read, at the level whose texels match its screen
 // footprint (vsm_mark.comp); pages are allocated from a free list into a page table (both storage
 // buffers, vsm_allocate.comp); only the newly allocated pages are cleared and drawn into a physical
 // depth atlas of `physical_size`^2 texels, each caster culled against each page's light-space
@@ -117,9 +117,10 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
         }
         const Adjacency* adjacency = static_cast<const Adjacency*>(host().extension(SHADOWLAB_EXT_ADJACENCY));
         const AdjacencyScene* casters = adjacency ? adjacency->scene(adjacency->context) : nullptr;
-        const PageLayout layout{.levels = std::clamp(p.levels, 1, VSM_MAX_LEVELS),
+        const PageLayout layout = PageLayout{.levels = std::clamp(p.levels, 1, VSM_MAX_LEVELS),
                                 .pagesPerSide = std::max(1, p.virtual_size / VSM_PAGE_TEXELS),
-                                .atlasPages = std::max(1, p.physical_size / VSM_PAGE_TEXELS)};
+                                .atlasPages = std::max(1, p.physical_size / VSM_PAGE_TEXELS)}
+                                   .fitRows();
         const CacheKey key{frame.light.direction, host().bounds(DrawSet::All), host().objectCount(),
                            casters ? casters->indices : 0u, layout, p.constant_bias, p.slope_bias, p.cull,
                            2.0f / (frame.camera.projection[1][1] * float(std::max(1, frame.camera.viewport.y)))};
@@ -132,6 +133,7 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
         writeUniforms(frame, p, layout);
         GpuPass pass(host(), "shadow map");
         pages_.render({.prepass = static_cast<const CameraPrepass*>(host().extension(SHADOWLAB_EXT_CAMERA_PREPASS)),
+                       .inverseViewProjection = glm::inverse(frame.camera.viewProjection),
                        .scene = casters, .constantBias = p.constant_bias, .slopeBias = p.slope_bias, .cull = p.cull,
                        .levelImage = p.debug_images});
         reportStatistics(layout);
@@ -211,7 +213,8 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
     // The newest counters the GPU has finished (a few frames old; never waited for).
     void reportStatistics(const PageLayout& layout) {
         host().reportStatistic("physical pages", layout.physicalPages());
-        host().reportStatistic("physical MiB", double(pages_.atlasBytes()) / (1024.0 * 1024.0));
+        // The layout's atlas and its page buffers: what a physical_size^2 map's memory is compared with.
+        host().reportStatistic("physical MiB", double(layout.atlasBytes() + layout.bufferBytes()) / (1024.0 * 1024.0));
         if (!pages_.hasStatistics()) return;
         const std::vector<uint32_t>& s = pages_.statistics();
         host().reportStatistic("pages marked", s[VSM_MARKED]);
@@ -243,7 +246,9 @@ constexpr TechniqueDesc kDescriptor = kit::describe(kit::Family{TranslucencyMode
                     "Pages stay cached while the light and scene stand still: a still camera draws nothing. Turn on the "
                     "page levels tint and move the camera.",
      .shadowGlsl = "virtual_sm.glsl",
-     .flags = kTechniqueNeedsCameraPrepass},   // the mark pass reads the pre-pass's positions and normals
+     // The mark pass reads depth alone (positions rebuilt through the inverse view-projection):
+     // the depth-only pre-pass costs a fraction of the full one's position, normal and id targets.
+     .flags = kTechniqueNeedsCameraDepth},
     Params::table);
 
 } // namespace

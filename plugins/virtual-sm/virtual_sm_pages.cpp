@@ -9,7 +9,6 @@
 namespace shadowlab::virtual_sm {
 
 namespace {
-constexpr uint32_t kPairCapacity = 1u << 18;   // (page, object) instances a frame: 2 MiB
 constexpr GLbitfield kStorage = GL_SHADER_STORAGE_BARRIER_BIT;
 
 kit::Buffer makeStorage(IHost& host, size_t bytes, const char* label) {
@@ -69,10 +68,10 @@ void VirtualPages::configure(const PageLayout& layout) {
     growStorage(*host_, requests_, capacity_[1], entries * sizeof(uint32_t), "virtual-sm page requests");
     growStorage(*host_, free_, capacity_[2], physical * sizeof(uint32_t), "virtual-sm free list");
     growStorage(*host_, dirty_, capacity_[3], physical * 4 * sizeof(uint32_t), "virtual-sm pages to draw");
-    const int side = layout.atlasPages * VSM_PAGE_TEXELS;
-    if (side > atlasSide_) {
-        atlasSide_ = side;
-        atlas_ = kit::makeTexture(*host_, {.internalFormat = GL_DEPTH_COMPONENT32F, .width = side, .height = side,
+    const glm::ivec2 size = glm::ivec2(layout.atlasPages, layout.atlasRows) * VSM_PAGE_TEXELS;
+    if (glm::any(glm::greaterThan(size, atlasSize_))) {
+        atlasSize_ = glm::max(size, atlasSize_);
+        atlas_ = kit::makeTexture(*host_, {.internalFormat = GL_DEPTH_COMPONENT32F, .width = atlasSize_.x, .height = atlasSize_.y,
                                            .label = "virtual shadow map atlas"});
         kit::attachDepthTarget(*host_, framebuffer_, atlas_, "virtual shadow map atlas");
         host_->registerDebugImage("physical atlas", atlas_, DebugImageKind::Depth);
@@ -132,7 +131,7 @@ void VirtualPages::render(const PageDraw& draw) {
 
 void VirtualPages::mark(const PageDraw& draw) {
     GpuPass pass(*host_, "mark pages");
-    if (!draw.prepass || !draw.prepass->position) return;
+    if (!draw.prepass || !draw.prepass->depth) return;
     const glm::ivec2 size = draw.prepass->size;
     if (draw.levelImage && size != levelImageSize_) {
         levelImageSize_ = size;
@@ -140,15 +139,14 @@ void VirtualPages::mark(const PageDraw& draw) {
                                                 .label = "page levels"});
         host_->registerDebugImage("page levels", levelImage_, DebugImageKind::Color);
     }
-    glBindTextureUnit(shared::virtual_sm::kPrepassPositionUnit, draw.prepass->position);
-    glBindTextureUnit(shared::virtual_sm::kPrepassNormalUnit, draw.prepass->normal);
-    for (uint32_t unit : {shared::virtual_sm::kPrepassPositionUnit, shared::virtual_sm::kPrepassNormalUnit})
-        glBindSampler(unit, host_->sampler(SamplerKind::Nearest));
+    glBindTextureUnit(shared::virtual_sm::kPrepassDepthUnit, draw.prepass->depth);
+    glBindSampler(shared::virtual_sm::kPrepassDepthUnit, host_->sampler(SamplerKind::Nearest));
     const bool writeImage = draw.levelImage && levelImage_;
     if (writeImage)
         glBindImageTexture(shared::virtual_sm::kLevelImageUnit, levelImage_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
     glUseProgram(mark_.get());
     glUniform1i(16, writeImage ? 1 : 0);
+    glUniformMatrix4fv(17, 1, GL_FALSE, &draw.inverseViewProjection[0][0]);
     glDispatchCompute(GLuint((size.x + 7) / 8), GLuint((size.y + 7) / 8), 1);
     glMemoryBarrier(kStorage | (writeImage ? GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT : 0));
 }
@@ -178,9 +176,8 @@ void VirtualPages::drawPages(const PageDraw& draw) {
         glDispatchCompute(GLuint((objectCount_ + 63) / 64), 1, 1);
         glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | kStorage);
     }
-    const int side = layout_.atlasPages * VSM_PAGE_TEXELS;
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-    glViewport(0, 0, side, side);
+    glViewport(0, 0, layout_.atlasPages * VSM_PAGE_TEXELS, layout_.atlasRows * VSM_PAGE_TEXELS);
     glBindVertexArray(vao_);
     // Clear the new pages' tiles to the far depth: a quad per page, instance count from the GPU.
     glDepthFunc(GL_ALWAYS);

@@ -51,6 +51,11 @@ vec2 vsmTileOrigin(uint physical) {
     return vec2(float(physical % Q), float(physical / Q)) * float(VSM_PAGE_TEXELS);
 }
 
+// The atlas in use, in texels: physical pages (uVsmOptions.z) in rows of uVsmSizes.z.
+vec2 vsmAtlasTexels() {
+    return vec2(float(uVsmSizes.z), float(uVsmOptions.z / uVsmSizes.z)) * float(VSM_PAGE_TEXELS);
+}
+
 vec3 vsmLevelColour(int level) {
     const vec3 kColours[8] = vec3[8](vec3(1.0, 0.25, 0.25), vec3(0.25, 1.0, 0.25), vec3(0.3, 0.45, 1.0),
                                      vec3(1.0, 0.9, 0.2), vec3(1.0, 0.3, 1.0), vec3(0.2, 1.0, 1.0),

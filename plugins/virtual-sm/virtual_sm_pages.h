@@ -26,18 +26,45 @@ struct VsmObject {
 };
 static_assert(sizeof(VsmObject) == 32);
 
+constexpr uint32_t kPairCapacity = 1u << 18;   // (page, object) instances a frame: 2 MiB
+constexpr uint64_t kPageBytes = uint64_t(VSM_PAGE_TEXELS) * VSM_PAGE_TEXELS * 4;   // 32-bit depth
+
 struct PageLayout {
     int levels = 1;
     int pagesPerSide = 32;   // of each level's window (virtual_size / 128)
-    int atlasPages = 32;     // physical atlas side in pages (physical_size / 128)
+    int atlasPages = 32;     // physical atlas width in pages (physical_size / 128)
+    int atlasRows = 32;      // its height in pages (fewer where the page buffers take rows: fitRows)
     bool operator==(const PageLayout&) const = default;
     int virtualPages() const { return levels * pagesPerSide * pagesPerSide; }
-    int physicalPages() const { return atlasPages * atlasPages; }
+    int physicalPages() const { return atlasPages * atlasRows; }
+    uint64_t atlasBytes() const { return uint64_t(physicalPages()) * kPageBytes; }
+    // The storage buffers beside the atlas (VirtualPages::configure): page table (16 bytes a
+    // virtual page), requests (4), free list (4 a physical page), pages to draw (16), the per-page
+    // caster instances and the state block.
+    uint64_t bufferBytes() const {
+        return uint64_t(virtualPages()) * 20 + uint64_t(physicalPages()) * 20 + uint64_t(kPairCapacity) * 8 +
+               VSM_STATE_WORDS * 4;
+    }
+    // Budget: atlas + buffers within physical_size^2 depth texels (a square map's memory, as csm's
+    // cascades are counted). A real engine sizes its page pool in pages against a memory budget
+    // (UE5: r.Shadow.Virtual.MaxPhysicalPages), not as a square; so the atlas gives up whole page
+    // rows to the buffers where they are at most a quarter of the budget (4096 at the default
+    // virtual size: 3 rows, 96 pages). Below that they would take most of the atlas, and the
+    // layout stays square (over budget by the buffers, reported in "physical MiB").
+    PageLayout fitRows() const {
+        PageLayout fitted = *this;
+        fitted.atlasRows = atlasPages;
+        const uint64_t rowBytes = uint64_t(atlasPages) * kPageBytes;
+        const uint64_t reserve = (fitted.bufferBytes() + rowBytes - 1) / rowBytes;
+        if (reserve * 4 <= uint64_t(atlasPages)) fitted.atlasRows = atlasPages - int(reserve);
+        return fitted;
+    }
 };
 
 // What the page draws need from the frame.
 struct PageDraw {
-    const CameraPrepass* prepass = nullptr;   // null: nothing is marked
+    const CameraPrepass* prepass = nullptr;   // its depth (the depth-only pre-pass); null: nothing is marked
+    glm::mat4 inverseViewProjection{1.0f};    // rebuilds the pixels' world positions from depth
     const AdjacencyScene* scene = nullptr;    // the casters' vertices and indices
     float constantBias = 0.0f;
     float slopeBias = 0.0f;
@@ -62,7 +89,7 @@ public:
     const std::vector<uint32_t>& statistics() const { return stats_.latest(); }
     bool hasStatistics() const { return statsRead_; }
     // The layout's atlas (what the technique uses; the texture may be larger after a larger layout).
-    uint64_t atlasBytes() const { return uint64_t(layout_.atlasPages) * layout_.atlasPages * 128 * 128 * 4; }
+    uint64_t atlasBytes() const { return layout_.atlasBytes(); }
     GLuint atlas() const { return atlas_; }
 
 private:
@@ -80,7 +107,7 @@ private:
     kit::Framebuffer framebuffer_;
     GLuint vao_ = 0;                          // the pair attribute of the page draws
     glm::ivec2 levelImageSize_{0};
-    int atlasSide_ = 0;                       // the atlas texture's side: the largest layout's so far
+    glm::ivec2 atlasSize_{0};                 // the atlas texture's size: the largest layout's so far
     std::array<size_t, 4> capacity_{};        // bytes of pageTable_, requests_, free_, dirty_ (grow only)
     uint32_t objectCount_ = 0;
     size_t objectCapacity_ = 0;               // casters objects_ and commands_ hold

@@ -5,8 +5,7 @@
 #include "shadowlab/kit/shared.h"
 SHADOWLAB_SHARED_BEGIN(virtual_sm)
 SHADOWLAB_TEXTURE_UNIT(kAtlasUnit, 6)             // sampler2DShadow: the physical depth atlas
-SHADOWLAB_TEXTURE_UNIT(kPrepassPositionUnit, 7)   // the camera pre-pass: world positions
-SHADOWLAB_TEXTURE_UNIT(kPrepassNormalUnit, 8)     // ... and normals facing the viewer
+SHADOWLAB_TEXTURE_UNIT(kPrepassDepthUnit, 7)      // the camera's depth-only pre-pass (window depth)
 SHADOWLAB_IMAGE_UNIT(kLevelImageUnit, 1)          // debug image "page levels", written by the mark pass
 SHADOWLAB_UNIFORM_BLOCK(VsmUniforms, 2) {
     mat4 uLightView;         // world -> light space: x, y across the virtual map, z along the light

@@ -8,6 +8,6 @@ layout(std430, binding = VSM_DIRTY_BINDING) readonly buffer Dirty { uvec4 uDirty
 void main() {
     vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1));
     vec2 atlas = (vsmTileOrigin(uDirty[gl_InstanceID].w) + corner * float(VSM_PAGE_TEXELS)) /
-                 (float(uVsmSizes.z) * float(VSM_PAGE_TEXELS));
+                 vsmAtlasTexels();
     gl_Position = vec4(atlas * 2.0 - 1.0, 1.0, 1.0);
 }

@@ -28,6 +28,6 @@ void main() {
     gl_ClipDistance[1] = float(VSM_PAGE_TEXELS) - texel.x;
     gl_ClipDistance[2] = texel.y;
     gl_ClipDistance[3] = float(VSM_PAGE_TEXELS) - texel.y;
-    vec2 atlas = (vsmTileOrigin(dirty.w) + texel) / (float(uVsmSizes.z) * float(VSM_PAGE_TEXELS));
+    vec2 atlas = (vsmTileOrigin(dirty.w) + texel) / vsmAtlasTexels();
     gl_Position = vec4(atlas * 2.0 - 1.0, vsmDepth(light.z) * 2.0 - 1.0, 1.0);
 }
