@@ -127,6 +127,14 @@ TEST(Soak, TenThousandFramesCyclingEveryTechniqueLeaveNothingBehind) {
     for (const auto& t : app->techniques().techniques()) ids.push_back(t.id);
     ASSERT_GE(ids.size(), 10u) << "every plugin and the reference";
     const int cycle = kFramesPerTechnique * int(ids.size());
+#if defined(__SANITIZE_ADDRESS__)
+    // Resident memory is not checked under AddressSanitizer (below): three snapshots, six cycles
+    // (every technique at both settings three times), check the GL objects and tracked memory and
+    // give the sanitizers every code path, in 40% of the ten thousand frames (issue 31).
+    const int frames = 6 * cycle;
+#else
+    const int frames = kFrames;
+#endif
     const glm::vec3 sceneLight = app->light().direction;
     while (glGetError() != GL_NO_ERROR) {
     }
@@ -141,7 +149,7 @@ TEST(Soak, TenThousandFramesCyclingEveryTechniqueLeaveNothingBehind) {
     };
     std::vector<Snapshot> snapshots;
     const auto start = std::chrono::steady_clock::now();
-    for (int frame = 0; frame < kFrames; ++frame) {
+    for (int frame = 0; frame < frames; ++frame) {
         const std::string& technique = ids[size_t(frame / kFramesPerTechnique) % ids.size()];
         if (frame % kFramesPerTechnique == 0) setCheapParameters(*app, technique, (frame / cycle) % 2 == 1);
         // The light circles slowly, so techniques refit and the reference retraces.
@@ -159,8 +167,8 @@ TEST(Soak, TenThousandFramesCyclingEveryTechniqueLeaveNothingBehind) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ASSERT_GE(snapshots.size(), 3u);
     const Snapshot& warm = snapshots.front();
-    std::printf("soak: %d frames of %zu techniques at 64x64 in %.1f s (%.2f ms/frame)\n", kFrames, ids.size(), seconds,
-                1000.0 * seconds / kFrames);
+    std::printf("soak: %d frames of %zu techniques at 64x64 in %.1f s (%.2f ms/frame)\n", frames, ids.size(), seconds,
+                1000.0 * seconds / frames);
     double peakGrowth = 0.0;
     for (const Snapshot& s : snapshots) {
         std::printf("soak: frame %5d: %d GL objects, RSS %.1f MiB, tracked GPU memory %zu bytes\n", s.frame, s.gl.total(),
@@ -173,7 +181,10 @@ TEST(Soak, TenThousandFramesCyclingEveryTechniqueLeaveNothingBehind) {
     // Resident memory: llvmpipe's and malloc's own churn moves it within a band of about 8 MiB
     // (measured over 40,000 frames: 120-128 MiB, no trend), so the test compares the mean of the
     // first and second halves of the snapshots after warm-up: a leak of 1.5 KiB a frame moves it
-    // by 6 MiB. A gross leak fails the peak check (one 64x64 RGBA16F texture a frame is 300 MiB).
+    // by 6 MiB. A gross leak fails the peak check (one 64x64 RGBA16F texture a frame is 300 MiB),
+    // whose bound leaves room for that churn on top of a large atlas (virtual-sm's 58 MiB grown
+    // once and kept): with the suite running beside it the peak reached 18.8 MiB above warm-up
+    // with no trend between the halves (issue 30's helper run; 12-13 MiB alone).
     const size_t half = (snapshots.size() - 1) / 2;
     double first = 0.0, second = 0.0;
     for (size_t i = 1; i <= half; ++i) first += snapshots[i].rssMiB / double(half);
@@ -186,7 +197,7 @@ TEST(Soak, TenThousandFramesCyclingEveryTechniqueLeaveNothingBehind) {
     std::printf("soak: RSS not checked under AddressSanitizer\n");
 #else
     EXPECT_LT(second - first, 6.0) << "RSS grows: " << first << " MiB, then " << second << " MiB";
-    EXPECT_LT(peakGrowth, 16.0) << "RSS grew from " << warm.rssMiB << " MiB";
+    EXPECT_LT(peakGrowth, 32.0) << "RSS grew from " << warm.rssMiB << " MiB";
 #endif
 }
 

@@ -39,9 +39,9 @@ constexpr ParamDesc kVirtualSize{"virtual_size", "virtual size", ParamType::Int,
      "at the cost of a larger page table; rounded down to whole pages.",
      nullptr};
 constexpr ParamDesc kPhysicalSize{"physical_size", "physical atlas", ParamType::Int, 1024, 8192, 4096, "texels",
-     "Width and height of the depth atlas the resident pages live in: 4096 holds 1024 pages, 64 MiB in 32-bit "
-     "depth, as much memory as csm's 4 x 2048. When a view marks more pages than fit, the excess read as lit "
-     "(the statistic 'pages failed').",
+     "The memory budget, a 32-bit depth map of this side: the atlas the resident pages live in and its page "
+     "buffers together. 4096 is 64 MiB, csm 4 x 2048's memory: an atlas of 928 pages (4096 x 3712) and 5 MiB "
+     "of buffers. When a view marks more pages than fit, the excess read as lit (the statistic 'pages failed').",
      nullptr};
 constexpr ParamDesc kLevels{"levels", "clipmap levels", ParamType::Int, 1, 16, 10, "",
      "Levels of doubling texel size; the coarsest window holds the whole scene. More levels give finer texels "
@@ -136,7 +136,7 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
                        .inverseViewProjection = glm::inverse(frame.camera.viewProjection),
                        .scene = casters, .constantBias = p.constant_bias, .slopeBias = p.slope_bias, .cull = p.cull,
                        .levelImage = p.debug_images});
-        reportStatistics(layout);
+        pages_.reportStatistics(host());
     }
 
     void bindMainPass(const FrameContext& frame, const ParamValues&) override {
@@ -208,22 +208,6 @@ class VirtualShadowMaps final : public kit::TechniqueBase {
         u.uVsmOptions = {p.debug_levels ? 1 : 0, int(objectCount_), layout.physicalPages(),
                          int(frame.frameIndex & 0x7FFFFFFFu)};
         uniforms_.set(u);
-    }
-
-    // The newest counters the GPU has finished (a few frames old; never waited for).
-    void reportStatistics(const PageLayout& layout) {
-        host().reportStatistic("physical pages", layout.physicalPages());
-        // The layout's atlas and its page buffers: what a physical_size^2 map's memory is compared with.
-        host().reportStatistic("physical MiB", double(layout.atlasBytes() + layout.bufferBytes()) / (1024.0 * 1024.0));
-        if (!pages_.hasStatistics()) return;
-        const std::vector<uint32_t>& s = pages_.statistics();
-        host().reportStatistic("pages marked", s[VSM_MARKED]);
-        host().reportStatistic("pages allocated", s[VSM_RESIDENT]);
-        host().reportStatistic("pages drawn", s[VSM_DIRTY_COUNT]);
-        host().reportStatistic("pages cached", s[VSM_CACHED]);
-        host().reportStatistic("pages failed", s[VSM_FAILED]);
-        host().reportStatistic("pages drawn total", s[VSM_DRAWN_TOTAL]);
-        host().reportStatistic("page caster instances", s[VSM_PAIRS]);
     }
 
     virtual_sm::VirtualPages pages_;

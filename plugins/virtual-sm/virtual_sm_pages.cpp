@@ -210,4 +210,19 @@ void VirtualPages::bindMainPass() const {
     glBindSampler(shared::virtual_sm::kAtlasUnit, host_->sampler(SamplerKind::CompareLinear));
 }
 
+void VirtualPages::reportStatistics(IHost& host) const {
+    host.reportStatistic("physical pages", layout_.physicalPages());
+    // The layout's atlas and its page buffers: what a physical_size^2 map's memory is compared with.
+    host.reportStatistic("physical MiB", double(layout_.atlasBytes() + layout_.bufferBytes()) / (1024.0 * 1024.0));
+    if (!statsRead_) return;
+    const std::vector<uint32_t>& s = stats_.latest();
+    host.reportStatistic("pages marked", s[VSM_MARKED]);
+    host.reportStatistic("pages allocated", s[VSM_RESIDENT]);
+    host.reportStatistic("pages drawn", s[VSM_DIRTY_COUNT]);
+    host.reportStatistic("pages cached", s[VSM_CACHED]);
+    host.reportStatistic("pages failed", s[VSM_FAILED]);
+    host.reportStatistic("pages drawn total", s[VSM_DRAWN_TOTAL]);
+    host.reportStatistic("page caster instances", s[VSM_PAIRS]);
+}
+
 } // namespace shadowlab::virtual_sm

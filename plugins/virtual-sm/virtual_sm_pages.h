@@ -88,6 +88,9 @@ public:
     // The newest statistics read back (VSM_STATS_WORDS words), and whether any were.
     const std::vector<uint32_t>& statistics() const { return stats_.latest(); }
     bool hasStatistics() const { return statsRead_; }
+    // Reports the layout's capacity and memory and the newest page counters (a few frames old,
+    // never waited for) as the technique's statistics.
+    void reportStatistics(IHost& host) const;
     // The layout's atlas (what the technique uses; the texture may be larger after a larger layout).
     uint64_t atlasBytes() const { return layout_.atlasBytes(); }
     GLuint atlas() const { return atlas_; }
