@@ -101,10 +101,15 @@ inline glm::vec4 linearDepthPlane(const LightSpace& lightSpace, const ConvexBody
 
 class LayeredDepthMap {
 public:
-    bool create(IHost& host, std::string& error) {
+    // `resolvable`: the map also builds resolve() (the filtering techniques' one compare map).
+    bool create(IHost& host, std::string& error, bool resolvable = false) {
         host_ = &host;
         if (!map_.create(host, error) || !second_.create(host, error)) return false;
         uniforms_.create(host, "layered depth");
+        if (resolvable && (!resolved_.create(host, error) ||
+                           !resolveProgram_.build(host, {.vertexFile = "fullscreen.vert",
+                                                         .fragmentFile = "layered_depth_resolve.frag"}, error)))
+            return false;
         return program_.build(host, {.vertexFile = "layered_depth.vert", .fragmentFile = "layered_depth.frag"}, error);
     }
 
@@ -172,6 +177,7 @@ public:
         }
         uniforms_.set(block);
         uniforms_.bind();
+        format_ = config.format;
         map_.ensureTexture(config.resolution, config.format);
         map_.drawDepth(lightSpace, config, cullPlanes);
         if (!twoLayers_) return;
@@ -195,12 +201,48 @@ public:
         glBindSampler(shared::layered_depth::kSecondDepthUnit, nearest);
     }
 
+    // The filtering techniques' path (kit::FilteredDepthMaps; create() with `resolvable`): after
+    // draw() with a two-layer method, both layers resolved into one more map of depths, the surface
+    // eq. 5.1 tests against: z1 + min((z2 - z1) / 2, z_offset) (midpoint) or z2 (second depth), in
+    // the first layer's light space. A comparison sampler, a gather, depth-range mips or a blocker
+    // search on that map then read the biased surface as they read any depth map: every tap of a
+    // kernel gets the two-layer test with no change to the technique's GLSL. One full-screen pass
+    // writing depth (gl_FragDepth, depth test always); nothing without two layers.
+    void resolve() {
+        if (!twoLayers_) return;
+        GpuPass pass(*host_, "two-layer resolve");
+        resolved_.ensureTexture(map_.resolution(), format_);
+        resolved_.adoptLightSpace(map_.lightSpace());
+        uniforms_.bind();
+        const GLuint nearest = host_->sampler(SamplerKind::Nearest);
+        glBindTextureUnit(shared::layered_depth::kFirstDepthUnit, map_.texture());
+        glBindSampler(shared::layered_depth::kFirstDepthUnit, nearest);
+        glBindTextureUnit(shared::layered_depth::kSecondDepthUnit, second_.texture());
+        glBindSampler(shared::layered_depth::kSecondDepthUnit, nearest);
+        glBindFramebuffer(GL_FRAMEBUFFER, resolved_.framebuffer());
+        glViewport(0, 0, map_.resolution(), map_.resolution());
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_DEPTH_TEST);   // depth writes need the test on; every texel is written
+        glDepthFunc(GL_ALWAYS);
+        glDepthMask(GL_TRUE);
+        resolveProgram_.use();
+        host_->drawFullscreenTriangle();
+        glDepthFunc(GL_LESS);      // the host's default (Renderer::resetPipelineState)
+    }
+
+    // The map a comparison reads after resolve(): the resolved one under a two-layer method, else
+    // the first layer (the only one).
+    const DepthMap& compareMap() const { return twoLayers_ ? resolved_ : map_; }
+
     DepthMap& map() { return map_; }
 
 private:
     IHost* host_ = nullptr;
     DepthMap map_, second_;
+    DepthMap resolved_;         // resolve()'s target (created only when resolvable)
     Program program_;
+    Program resolveProgram_;    // fullscreen.vert + layered_depth_resolve.frag
+    GLenum format_ = GL_DEPTH_COMPONENT32F;
     UniformBlock<shared::layered_depth::LayeredDepthUniforms> uniforms_;
     bool twoLayers_ = false;
 };
