@@ -22,8 +22,10 @@ TEST(TwoLayerFiltered, MidpointRemovesAcneInPcfAdaptivePcfAndPcss) {
     ASSERT_TRUE(app);
     for (const char* technique : {"pcf", "adaptive-pcf", "pcss"}) {
         SCOPED_TRACE(technique);
+        // No offset at all: the cone bias (a receiver-plane bias, on by default) alone keeps these
+        // kernels free of acne, so it is off too (docs/plugin-api.md has the figures with it on).
         const std::vector<std::string> bare = {"resolution=2048", "constant_bias=0", "slope_bias=0", "cull=none",
-                                               "bias_method=offset"};
+                                               "cone_bias=false", "bias_method=offset"};
         std::vector<std::string> midpoint = bare, second = bare;
         midpoint.back() = "bias_method=midpoint";
         second.back() = "bias_method=second-depth";
@@ -34,9 +36,10 @@ TEST(TwoLayerFiltered, MidpointRemovesAcneInPcfAdaptivePcfAndPcss) {
                     technique, 100 * acne.falseShadowRate, 100 * acne.falseLightRate, 100 * fixed.falseShadowRate,
                     100 * fixed.falseLightRate, 100 * secondDepth.falseShadowRate, 100 * secondDepth.falseLightRate);
         EXPECT_GT(acne.falseShadowRate, 0.1) << "no offset: acne";
-        EXPECT_LT(fixed.falseShadowRate, 0.2 * acne.falseShadowRate);
+        // Measured on llvmpipe: 19-26 times fewer, under 1% false light.
+        EXPECT_LT(fixed.falseShadowRate, 0.1 * acne.falseShadowRate);
         EXPECT_LT(fixed.falseLightRate, 0.01);
-        EXPECT_LT(secondDepth.falseShadowRate, 0.2 * acne.falseShadowRate);
+        EXPECT_LT(secondDepth.falseShadowRate, 0.1 * acne.falseShadowRate);
         EXPECT_LT(secondDepth.falseLightRate, 0.02);
     }
 }
