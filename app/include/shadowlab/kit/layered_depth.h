@@ -180,6 +180,9 @@ public:
         format_ = config.format;
         map_.ensureTexture(config.resolution, config.format);
         map_.drawDepth(lightSpace, config, cullPlanes);
+        // The debug view shows the first layer (each layer's allocation registers itself; a frame
+        // after a two-layer one must not show a stale layer). resolve() shows its map instead.
+        host_->registerDebugImage("shadow map", map_.texture(), DebugImageKind::Depth);
         if (!twoLayers_) return;
         second_.ensureTexture(config.resolution, config.format);
         glBindTextureUnit(shared::layered_depth::kFirstDepthUnit, map_.texture());
@@ -187,6 +190,7 @@ public:
         block.uPeel = 1;
         uniforms_.set(block);
         second_.drawDepth(lightSpace, config, cullPlanes);
+        host_->registerDebugImage("shadow map", map_.texture(), DebugImageKind::Depth);
     }
 
     // The map with `sampling` for the comparison, the raw layers (the first again where there is
@@ -228,6 +232,7 @@ public:
         resolveProgram_.use();
         host_->drawFullscreenTriangle();
         glDepthFunc(GL_LESS);      // the host's default (Renderer::resetPipelineState)
+        host_->registerDebugImage("shadow map", resolved_.texture(), DebugImageKind::Depth);
     }
 
     // The map a comparison reads after resolve(): the resolved one under a two-layer method, else
