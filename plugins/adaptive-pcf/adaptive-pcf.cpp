@@ -147,7 +147,7 @@ class AdaptivePcf final : public kit::TechniqueBase {
         const Params p = Params::read(params);
         offsets_.ensure(host(), p.grid, p.sets, "disc offsets (m x m x n^2/2)");
         counters_.beginFrame();
-        if (!maps_.render(frame, kit::depthMapConfig(p))) return;   // the cube: no kernel report, no mips
+        if (!maps_.render(frame, kit::depthMapConfig(p), kit::layeredDepthConfig(p))) return;   // the cube: no kernel report, no mips
         // The disc adaptive-pcf.glsl filters over (seed 000 eq. 3.11-3.12), for the host's kernel view.
         maps_.map().reportFilter({.kernel = FilterKernel::Disc,
                                   .taps = offsets_.n(),

@@ -80,7 +80,7 @@ class PercentageCloserFiltering final : public kit::TechniqueBase {
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
         const Params p = Params::read(params);
-        if (!maps_.render(frame, kit::depthMapConfig(p))) return;   // the cube: no kernel report, no mips
+        if (!maps_.render(frame, kit::depthMapConfig(p), kit::layeredDepthConfig(p))) return;   // the cube: no kernel report, no mips
         // The n x n box pcf.glsl filters over, for the host's kernel view (--probe).
         maps_.map().reportFilter({.kernel = FilterKernel::Box,
                                   .taps = p.kernel,

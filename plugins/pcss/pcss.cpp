@@ -89,7 +89,7 @@ class PercentageCloserSoftShadows final : public kit::TechniqueBase {
         searchOffsets_.ensure(host(), p.search_grid, sets, "search disc offsets (m x m x n_s^2/2)", 2);
         filterOffsets_.ensure(host(), p.filter_grid, sets, "filter disc offsets (m x m x n_f^2/2)");
         // Raw depths: the blocker search reads them (sampled without comparison).
-        if (!maps_.render(frame, kit::depthMapConfig(p))) {
+        if (!maps_.render(frame, kit::depthMapConfig(p), kit::layeredDepthConfig(p))) {
             // The cube path bounds its search with min-depth mips per face (search_bound >= 1).
             if (p.search_bound >= 1) {
                 ensureCubeMinDepth(maps_.cube().resolution());

@@ -167,6 +167,14 @@ public:
         host_->registerDebugImage("shadow map", texture_, DebugImageKind::Depth);
     }
 
+    // Another pass's light space as this map's (its main-pass block), without drawing: a map whose
+    // depths a full-screen pass writes through framebuffer() (LayeredDepthMap::resolve()).
+    void adoptLightSpace(const LightSpace& lightSpace) {
+        lightSpace_ = lightSpace;
+        uniforms_.set(mainPassUniforms());
+    }
+    GLuint framebuffer() const { return framebuffer_; }
+
     const LightSpace& lightSpace() const { return lightSpace_; }
     GLuint texture() const { return texture_; }
     int resolution() const { return resolution_; }

@@ -1,8 +1,8 @@
 // The kit's depth maps switched by light type: the 2D depth map (kit/depth_map.h) under
 // directional and spot lights, the cube (kit/cube_depth_map.h) under point lights. The techniques
-// that read the 2D map's raw depths (rbsm, edtsm) through RawDepthTechnique below; the filtering
-// techniques through FilteredDepthMaps (kit/filtered_depth_maps.h), which adds the 2D map's
-// depth-range mips.
+// that read the 2D map's raw depths (rbsm, edtsm) through RawDepthTechnique below. The filtering
+// techniques' FilteredDepthMaps (kit/filtered_depth_maps.h) makes the same switch with a
+// LayeredDepthMap as its 2D map (the two-layer biases) and adds the depth-range mips.
 #pragma once
 
 #include <string>

@@ -1,8 +1,9 @@
 // A depth map that can write its own depth: linear depth along the light, the bias applied in the
 // fragment stage, and the two-layer biases of seed 002 ch. 5 (a second layer by depth peeling,
 // sec. 5.2: the midpoint of eq. 5.1 and second-depth shadow mapping). The plumbing of every
-// single-map technique's `bias_method` (shadowmap, psm, lispsm, tsm): with the offset method and
-// neither linear depth nor a fragment-stage bias it is a plain kit::DepthMap pass (glPolygonOffset).
+// single-map technique's `bias_method` (shadowmap, psm, lispsm, tsm; pcf, adaptive-pcf and pcss
+// through kit::FilteredDepthMaps and resolve()): with the offset method and neither linear depth
+// nor a fragment-stage bias it is a plain kit::DepthMap pass (glPolygonOffset).
 //
 // Why the bias in the fragment stage for warped maps: with depth clamp on, a warped caster's
 // unclamped window z can be far outside [0, 1], and a 32F depth buffer's offset unit is 2^(e - 23)
@@ -29,8 +30,9 @@ constexpr ParamDesc biasMethodParam() {
             "the test against min((z2 - z1) / 2, z_offset) past the first (eq. 5.1, dual shadow maps). "
             "second-depth: the test against the second layer (Wang and Molnar). inverted-back-faces: back faces "
             "stored (cull front) with the offset reversed, towards the light. The two-layer methods draw every "
-            "face, ignore the bias and cull parameters and cost a second depth pass (seed 002 ch. 5). Point "
-            "lights' cube maps: offset only.",
+            "face, ignore the bias and cull parameters and cost a second depth pass (seed 002 ch. 5); pcf, "
+            "adaptive-pcf and pcss also resolve both layers into the map their kernels read (one more pass) and "
+            "keep their cone bias, a receiver-side bias. Point lights' cube maps: offset only.",
             "offset|midpoint|second-depth|inverted-back-faces"};
 }
 constexpr ParamDesc zOffsetParam() {
@@ -101,10 +103,15 @@ inline glm::vec4 linearDepthPlane(const LightSpace& lightSpace, const ConvexBody
 
 class LayeredDepthMap {
 public:
-    bool create(IHost& host, std::string& error) {
+    // `resolvable`: the map also builds resolve() (the filtering techniques' one compare map).
+    bool create(IHost& host, std::string& error, bool resolvable = false) {
         host_ = &host;
         if (!map_.create(host, error) || !second_.create(host, error)) return false;
         uniforms_.create(host, "layered depth");
+        if (resolvable && (!resolved_.create(host, error) ||
+                           !resolveProgram_.build(host, {.vertexFile = "fullscreen.vert",
+                                                         .fragmentFile = "layered_depth_resolve.frag"}, error)))
+            return false;
         return program_.build(host, {.vertexFile = "layered_depth.vert", .fragmentFile = "layered_depth.frag"}, error);
     }
 
@@ -172,8 +179,12 @@ public:
         }
         uniforms_.set(block);
         uniforms_.bind();
+        format_ = config.format;
         map_.ensureTexture(config.resolution, config.format);
         map_.drawDepth(lightSpace, config, cullPlanes);
+        // The debug view shows the first layer (each layer's allocation registers itself; a frame
+        // after a two-layer one must not show a stale layer). resolve() shows its map instead.
+        host_->registerDebugImage("shadow map", map_.texture(), DebugImageKind::Depth);
         if (!twoLayers_) return;
         second_.ensureTexture(config.resolution, config.format);
         glBindTextureUnit(shared::layered_depth::kFirstDepthUnit, map_.texture());
@@ -181,6 +192,7 @@ public:
         block.uPeel = 1;
         uniforms_.set(block);
         second_.drawDepth(lightSpace, config, cullPlanes);
+        host_->registerDebugImage("shadow map", map_.texture(), DebugImageKind::Depth);
     }
 
     // The map with `sampling` for the comparison, the raw layers (the first again where there is
@@ -195,12 +207,49 @@ public:
         glBindSampler(shared::layered_depth::kSecondDepthUnit, nearest);
     }
 
+    // The filtering techniques' path (kit::FilteredDepthMaps; create() with `resolvable`): after
+    // draw() with a two-layer method, both layers resolved into one more map of depths, the surface
+    // eq. 5.1 tests against: z1 + min((z2 - z1) / 2, z_offset) (midpoint) or z2 (second depth), in
+    // the first layer's light space. A comparison sampler, a gather, depth-range mips or a blocker
+    // search on that map then read the biased surface as they read any depth map: every tap of a
+    // kernel gets the two-layer test with no change to the technique's GLSL. One full-screen pass
+    // writing depth (gl_FragDepth, depth test always); nothing without two layers.
+    void resolve() {
+        if (!twoLayers_) return;
+        GpuPass pass(*host_, "two-layer resolve");
+        resolved_.ensureTexture(map_.resolution(), format_);
+        resolved_.adoptLightSpace(map_.lightSpace());
+        uniforms_.bind();
+        const GLuint nearest = host_->sampler(SamplerKind::Nearest);
+        glBindTextureUnit(shared::layered_depth::kFirstDepthUnit, map_.texture());
+        glBindSampler(shared::layered_depth::kFirstDepthUnit, nearest);
+        glBindTextureUnit(shared::layered_depth::kSecondDepthUnit, second_.texture());
+        glBindSampler(shared::layered_depth::kSecondDepthUnit, nearest);
+        glBindFramebuffer(GL_FRAMEBUFFER, resolved_.framebuffer());
+        glViewport(0, 0, map_.resolution(), map_.resolution());
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_DEPTH_TEST);   // depth writes need the test on; every texel is written
+        glDepthFunc(GL_ALWAYS);
+        glDepthMask(GL_TRUE);
+        resolveProgram_.use();
+        host_->drawFullscreenTriangle();
+        glDepthFunc(GL_LESS);      // the host's default (Renderer::resetPipelineState)
+        host_->registerDebugImage("shadow map", resolved_.texture(), DebugImageKind::Depth);
+    }
+
+    // The map a comparison reads after resolve(): the resolved one under a two-layer method, else
+    // the first layer (the only one).
+    const DepthMap& compareMap() const { return twoLayers_ ? resolved_ : map_; }
+
     DepthMap& map() { return map_; }
 
 private:
     IHost* host_ = nullptr;
     DepthMap map_, second_;
+    DepthMap resolved_;         // resolve()'s target (created only when resolvable)
     Program program_;
+    Program resolveProgram_;    // fullscreen.vert + layered_depth_resolve.frag
+    GLenum format_ = GL_DEPTH_COMPONENT32F;
     UniformBlock<shared::layered_depth::LayeredDepthUniforms> uniforms_;
     bool twoLayers_ = false;
 };

@@ -92,10 +92,12 @@ consteval bool sameId(const ParamDesc& desc, std::string_view id) { return std::
     X(int, fit, ::shadowlab::kit::fitParam())       \
     X(bool, snap, ::shadowlab::kit::snapParam())
 // The tail of the PCF family (pcf, adaptive-pcf, pcss): cone bias, the map's bias (culling off:
-// every face casts, open and single-sided casters too) and the fit.
+// every face casts, open and single-sided casters too), the two-layer biases (kit/layered_depth.h,
+// which defines that group; kit::FilteredDepthMaps includes it) and the fit.
 #define SHADOWLAB_PCF_COMMON_PARAMS(X)                  \
     X(bool, cone_bias, ::shadowlab::kit::coneBiasParam()) \
     SHADOWLAB_BIAS_PARAMS(X, 64, 0)                     \
+    SHADOWLAB_TWO_LAYER_PARAMS(X)                       \
     SHADOWLAB_FIT_PARAMS(X)
 
 namespace shadowlab::kit {
