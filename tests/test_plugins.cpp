@@ -167,7 +167,7 @@ TEST(PluginLibrary, ScanSkipsBadPluginsAndKeepsGoodOnes) {
 // Scans remember the descriptors of settled libraries (issue 31: a test process scanned the plugin
 // folder five times), but never hand back an old descriptor: a rebuilt library is read again, and
 // one written within the last two seconds is not remembered at all, since a rewrite within the
-// same clock tick could keep its time and size (reload_v1.so and reload_v2.so are the same size).
+// same clock tick could keep its time and size.
 TEST(PluginLibrary, ScanReadsALibraryAgainOnceItChanges) {
     const fs::path dir = fs::temp_directory_path() / ("shadowlab-rescan-" + std::to_string(::getpid()));
     fs::remove_all(dir);
@@ -177,20 +177,26 @@ TEST(PluginLibrary, ScanReadsALibraryAgainOnceItChanges) {
         const PluginScan scan = scanPlugins(dir);
         return scan.techniques.size() == 1 ? scan.techniques[0].explanation : std::string("(no technique)");
     };
-    ASSERT_EQ(fs::file_size(kTestPlugins / "reload_v1.so"), fs::file_size(kTestPlugins / "reload_v2.so"));
+    // Both versions padded to one size (trailing bytes are outside every ELF segment), so that only
+    // the time can tell them apart.
+    const uintmax_t size = std::max(fs::file_size(kTestPlugins / "reload_v1.so"), fs::file_size(kTestPlugins / "reload_v2.so"));
+    auto install = [&](const char* version) {
+        fs::copy_file(kTestPlugins / version, file, fs::copy_options::overwrite_existing);
+        fs::resize_file(file, size);
+    };
     // Settled (an hour old): remembered; replaced by a rebuild (a new time): read again.
-    fs::copy_file(kTestPlugins / "reload_v1.so", file);
+    install("reload_v1.so");
     fs::last_write_time(file, fs::file_time_type::clock::now() - std::chrono::hours(1));
     EXPECT_EQ(explanation(), "version 1");
     EXPECT_EQ(explanation(), "version 1");
-    fs::copy_file(kTestPlugins / "reload_v2.so", file, fs::copy_options::overwrite_existing);
+    install("reload_v2.so");
     EXPECT_EQ(explanation(), "version 2");
     // Fresh: rewritten with the same size and time, as within one clock tick, it is read again.
-    fs::copy_file(kTestPlugins / "reload_v1.so", file, fs::copy_options::overwrite_existing);
+    install("reload_v1.so");
     const auto fresh = fs::file_time_type::clock::now();
     fs::last_write_time(file, fresh);
     EXPECT_EQ(explanation(), "version 1");
-    fs::copy_file(kTestPlugins / "reload_v2.so", file, fs::copy_options::overwrite_existing);
+    install("reload_v2.so");
     fs::last_write_time(file, fresh);
     EXPECT_EQ(explanation(), "version 2");
     fs::remove_all(dir);

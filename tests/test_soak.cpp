@@ -119,7 +119,6 @@ void setCheapParameters(App& app, const std::string& technique, bool stepUp) {
 } // namespace
 
 TEST(Soak, TenThousandFramesCyclingEveryTechniqueLeaveNothingBehind) {
-    constexpr int kFrames = 10000;
     constexpr int kFramesPerTechnique = 25;
     auto app = test::makeHeadlessApp("cube", {64, 64});
     ASSERT_TRUE(app);
@@ -133,7 +132,7 @@ TEST(Soak, TenThousandFramesCyclingEveryTechniqueLeaveNothingBehind) {
     // give the sanitizers every code path, in 40% of the ten thousand frames (issue 31).
     const int frames = 6 * cycle;
 #else
-    const int frames = kFrames;
+    const int frames = 10000;
 #endif
     const glm::vec3 sceneLight = app->light().direction;
     while (glGetError() != GL_NO_ERROR) {
