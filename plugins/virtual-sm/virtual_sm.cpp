@@ -230,9 +230,7 @@ constexpr TechniqueDesc kDescriptor = kit::describe(kit::Family{TranslucencyMode
                     "Pages stay cached while the light and scene stand still: a still camera draws nothing. Turn on the "
                     "page levels tint and move the camera.",
      .shadowGlsl = "virtual_sm.glsl",
-     // The mark pass reads depth alone (positions rebuilt through the inverse view-projection):
-     // the depth-only pre-pass costs a fraction of the full one's position, normal and id targets.
-     .flags = kTechniqueNeedsCameraDepth},
+     .flags = kTechniqueNeedsCameraDepth},   // the mark pass rebuilds positions from depth alone
     Params::table);
 
 } // namespace
