@@ -120,6 +120,13 @@ bool parseOptions(int argc, char** argv, BenchOptions& o) {
     return true;
 }
 
+// The scene camera's view-projection at the bench's image size.
+glm::mat4 viewProjectionOf(const SceneCamera& camera, const BenchOptions& o) {
+    return glm::perspective(camera.fovY, static_cast<float>(o.width) / static_cast<float>(o.height), camera.nearPlane,
+                            camera.farPlane) *
+           glm::lookAt(camera.position, camera.target, camera.up);
+}
+
 // --adaptive N: the adaptive soft reference against uniform sampling (time, refined pixels, error
 // floor), scene by scene.
 void compareAdaptive(IGroundTruth& groundTruth, std::vector<Scene>& scenes, const BenchOptions& o) {
@@ -132,10 +139,7 @@ void compareAdaptive(IGroundTruth& groundTruth, std::vector<Scene>& scenes, cons
         if (scene.light.size <= 0.0f) scene.light.size = scene.light.type == LightType::Directional ? 0.05f : 0.2f;
         groundTruth.setScene(scene);
         const SceneCamera& camera = scene.camera;
-        const glm::mat4 viewProjection =
-            glm::perspective(camera.fovY, static_cast<float>(o.width) / static_cast<float>(o.height), camera.nearPlane,
-                             camera.farPlane) *
-            glm::lookAt(camera.position, camera.target, camera.up);
+        const glm::mat4 viewProjection = viewProjectionOf(camera, o);
         std::vector<glm::vec4> positions, normals;
         groundTruth.tracePrimary(viewProjection, camera.position, o.width, o.height, positions, normals);
         const GBufferView gbuffer{o.width, o.height, positions.data(), normals.data()};
@@ -229,10 +233,7 @@ void timeReferences(IGroundTruth& groundTruth, std::vector<Scene>& scenes, const
         const double bvh = secondsSince(start);
 
         const SceneCamera& camera = scene.camera;
-        const glm::mat4 viewProjection =
-            glm::perspective(camera.fovY, static_cast<float>(o.width) / static_cast<float>(o.height), camera.nearPlane,
-                             camera.farPlane) *
-            glm::lookAt(camera.position, camera.target, camera.up);
+        const glm::mat4 viewProjection = viewProjectionOf(camera, o);
         std::vector<glm::vec4> positions, normals;
         start = std::chrono::steady_clock::now();
         groundTruth.tracePrimary(viewProjection, camera.position, o.width, o.height, positions, normals);
