@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "groundtruth/reference_technique.h"
+#include "plugin/assignments.h"
 #include "render/light_space.h"
 #include "shadowlab/kit/depth_map_shared.h"
 #include "render/render_limits.h"
@@ -145,23 +146,7 @@ std::string App::firstTechnique() const {
 }
 
 bool App::applyAssignments(const std::vector<std::string>& assignments, const std::string& technique, std::string& error) {
-    for (const std::string& text : assignments) {
-        const auto assignment = parseAssignment(text, error);
-        if (!assignment) return false;
-        const std::string target = assignment->technique.empty() ? technique : assignment->technique;
-        // host.*: the host's own parameters (plugin/host_params.h), unless a technique is named "host".
-        const TechniqueInfo* info = target == hostParams().id && !techniques_->find(target) ? &hostParams()
-                                                                                            : techniques_->find(target);
-        if (!info) {
-            error = "--set " + text + ": no technique '" + target + "'";
-            return false;
-        }
-        if (!params_.set(*info, assignment->param, assignment->value, error)) {
-            error = "--set " + text + ": " + error;
-            return false;
-        }
-    }
-    return true;
+    return shadowlab::applyAssignments(params_, techniques_->techniques(), assignments, technique, error);
 }
 
 namespace {

@@ -408,17 +408,19 @@ static std::string stressPage(App& app, const StressSuite& suite, const StressOp
     return page.str();
 }
 
-// Everything runStress is asked for, checked before the first frame: the techniques, the cases
-// and every --set (a key no technique measured declares would be dropped unseen). 0, or 2 with `error`.
-static int checkStressRequest(App& app, const StressSuite& suite, const StressOptions& options,
-                              std::vector<std::string>& techniques, std::vector<const StressCase*>& cases, std::string& error) {
+int checkStressRequest(const std::vector<TechniqueInfo>& found, const StressSuite& suite, const StressOptions& options,
+                       std::vector<std::string>& techniques, std::vector<const StressCase*>& cases, std::string& error) {
+    const auto find = [&found](const std::string& id) -> const TechniqueInfo* {
+        const auto it = std::find_if(found.begin(), found.end(), [&id](const TechniqueInfo& info) { return info.id == id; });
+        return it == found.end() ? nullptr : &*it;
+    };
     techniques = options.techniques;
     if (techniques.empty())
-        for (const auto& info : app.techniques().techniques()) techniques.push_back(info.id);
+        for (const auto& info : found) techniques.push_back(info.id);
     std::string available;
-    for (const auto& info : app.techniques().techniques()) appendListItem(available, info.id);
+    for (const auto& info : found) appendListItem(available, info.id);
     for (const std::string& id : techniques) {
-        if (app.techniques().find(id)) continue;
+        if (find(id)) continue;
         error = "--techniques: no technique '" + id + "' (available: " + available + ")";
         return 2;
     }
@@ -452,15 +454,13 @@ static int checkStressRequest(App& app, const StressSuite& suite, const StressOp
             return 2;
         }
     }
+    // Checked on values of their own; each cell applies them (applyWhereDeclared).
+    ParamStore values;
     for (const std::string& text : options.sets) {
         const auto assignment = parseAssignment(text, error);
         if (!assignment) return 2;
         if (assignment->technique == hostParams().id) {
-            // Checked here on a copy; each cell applies it (applyWhereDeclared).
-            const std::vector<double> saved = app.hostValues();
-            const bool valid = app.params().set(hostParams(), assignment->param, assignment->value, error);
-            app.params().values(hostParams()) = saved;
-            if (!valid) {
+            if (!values.set(hostParams(), assignment->param, assignment->value, error)) {
                 error = "--set " + text + ": " + error;
                 return 2;
             }
@@ -470,14 +470,14 @@ static int checkStressRequest(App& app, const StressSuite& suite, const StressOp
         // (applyWhereDeclared), so at least one must.
         bool declared = false;
         for (const std::string& id : assignment->technique.empty() ? techniques : std::vector<std::string>{assignment->technique}) {
-            const TechniqueInfo* info = app.techniques().find(id);
+            const TechniqueInfo* info = find(id);
             if (!info) {
                 error = "--set " + text + ": no technique '" + id + "' (available: " + available + ")";
                 return 2;
             }
             if (assignment->technique.empty() && !info->findParam(assignment->param)) continue;
             declared = true;
-            if (!app.params().set(*info, assignment->param, assignment->value, error)) {
+            if (!values.set(*info, assignment->param, assignment->value, error)) {
                 error = "--set " + text + ": " + id + ": " + error;
                 return 2;
             }
@@ -520,7 +520,7 @@ int runStress(App& app, const StressSuite& suite, const StressOptions& options, 
               std::string& error) {
     std::vector<std::string> techniques;
     std::vector<const StressCase*> cases;
-    if (const int code = checkStressRequest(app, suite, options, techniques, cases, error)) return code;
+    if (const int code = checkStressRequest(app.techniques().techniques(), suite, options, techniques, cases, error)) return code;
     if (!options.outDir.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(options.outDir / "images", ec);

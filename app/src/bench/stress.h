@@ -97,6 +97,13 @@ struct StressOptions {
     bool quiet = false;
 };
 
+// Everything runStress is asked for, checked against the techniques `found` (their descriptors:
+// no GL needed, so the command checks it before the context exists): the techniques, the cases
+// with their scenes and cameras, and every --set (a key no technique measured declares would be
+// dropped unseen). 0, or 2 with `error`; `techniques` and `cases` are what will run.
+int checkStressRequest(const std::vector<TechniqueInfo>& found, const StressSuite& suite, const StressOptions& options,
+                       std::vector<std::string>& techniques, std::vector<const StressCase*>& cases, std::string& error);
+
 // Runs one case for one technique on `app` (the scene is loaded when it differs). The cell's image
 // is written only with options.outDir.
 bool runStressCell(App& app, const StressSuite& suite, const StressCase& stressCase, const std::string& technique,

@@ -25,6 +25,7 @@
 #include "bench/report.h"
 #include "bench/stress.h"
 #include "groundtruth/reference_technique.h"
+#include "plugin/assignments.h"
 #include "render/render_limits.h"
 #include "ui/session.h"
 #include "ui/tour.h"
@@ -155,6 +156,21 @@ void addCommonOptions(CLI::App& cmd, CommonOptions& o) {
 int fail(const std::string& error, int code) {
     logError(error);
     return code;
+}
+
+int techniqueOptionsProblem(const std::string& technique, const std::vector<std::string>& sets) {
+    const std::vector<TechniqueInfo> found = describedTechniques();
+    if (found.size() <= 1) return 0;   // no plugins: startApp names the folder
+    const std::string target = technique.empty() ? found.front().id : technique;
+    if (std::none_of(found.begin(), found.end(), [&target](const TechniqueInfo& t) { return t.id == target; })) {
+        std::string known;
+        for (const TechniqueInfo& t : found) appendListItem(known, t.id);
+        return fail("--technique '" + target + "': no such technique (available: " + known + ")", kExitBadInput);
+    }
+    ParamStore values;
+    std::string error;
+    if (!applyAssignments(values, found, sets, target, error)) return fail(error, kExitBadInput);
+    return 0;
 }
 
 // Creates the App headless (or windowed) and reports errors with the right exit code.

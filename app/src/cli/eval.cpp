@@ -144,6 +144,7 @@ void printEval(const nlohmann::json& out) {
 
 int commandEval(const CommonOptions& common, const std::string& reference, int samples, bool adaptive, int frames,
                 bool json) {
+    if (int code = techniqueOptionsProblem(common.technique, common.sets)) return code;
     App app;
     if (int code = startApp(app, common, false)) return code;
     const std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;

@@ -165,6 +165,10 @@ int commandRender(const CommonOptions& common, const std::string& out, const std
     }
     std::string error;
     if (!out.empty() && !outputProblem("--out", out, !path.empty(), error)) return fail(error, kExitBadInput);
+    // The sets go to --technique, or to A of --compare A,B[,...] (which the app checks again).
+    std::vector<std::string> compared;
+    if (!compare.compare.empty() && !splitList(compare.compare, "--compare", compared, error)) return fail(error, kExitBadInput);
+    if (int code = techniqueOptionsProblem(compared.size() > 1 ? compared.front() : common.technique, common.sets)) return code;
     App app;
     if (int code = startApp(app, common, false)) return code;
     if (!probe.empty()) {

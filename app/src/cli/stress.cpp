@@ -42,6 +42,10 @@ int commandStress(const CommonOptions& common, const std::string& casesFile, con
         options.size = size;
     }
     if (!outputProblem("--out", options.outDir, true, error)) return fail(error, kExitBadInput);
+    // The request checked from the descriptors first: a refused option costs no GL context.
+    std::vector<std::string> techniques;
+    std::vector<const StressCase*> cases;
+    if (checkStressRequest(describedTechniques(), suite, options, techniques, cases, error)) return fail(error, kExitBadInput);
     App app;
     if (int code = startApp(app, common, false)) return code;
     std::vector<StressCell> cells;

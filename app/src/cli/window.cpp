@@ -147,6 +147,7 @@ int MainJob::run(const CommonOptions& common, const CLI::App& cli) {
     std::string error;
     if (!window_.screenshot.empty() && !outputProblem("--screenshot", window_.screenshot, false, error))
         return fail(error, kExitBadInput);
+    if (int code = techniqueOptionsProblem(common.technique, common.sets)) return code;
     App app;
     if (int code = startApp(app, common, display)) return code;
     const std::string technique = common.technique.empty() ? app.firstTechnique() : common.technique;

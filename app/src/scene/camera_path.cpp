@@ -25,13 +25,6 @@ constexpr int kMaxPathFrames = 100000;
 constexpr size_t kMaxKeyframes = 10000;
 constexpr double kDegrees = glm::pi<double>() / 180.0;
 
-std::string number(double value) {
-    std::ostringstream text;
-    text.precision(6);
-    text << value;
-    return text.str();
-}
-
 // Thrown inside the parser only; parsePath turns it into its error string.
 struct PathProblem {
     std::string field, what;
@@ -55,7 +48,7 @@ void onlyKnownFields(const json& node, const std::string& path, std::initializer
 double finiteNumber(const json& value, const std::string& field, double lo, double hi) {
     if (!value.is_number()) fail(field, "expected a number");
     const double v = value.get<double>();
-    if (!std::isfinite(v) || v < lo || v > hi) fail(field, "must be between " + number(lo) + " and " + number(hi) + " (got " + number(v) + ")");
+    if (!std::isfinite(v) || v < lo || v > hi) fail(field, "must be between " + formatNumber(lo) + " and " + formatNumber(hi) + " (got " + formatNumber(v) + ")");
     return v;
 }
 
@@ -214,7 +207,7 @@ bool parsePath(const json& node, const std::string& source, CameraPath& path, st
             if (!keys[i].is_object()) fail(at, "expected an object");
             if (!keys[i].contains("time")) fail(at + ".time", "missing (seconds)");
             const double time = finiteNumber(keys[i]["time"], at + ".time", -1e6, 1e6);
-            if (i > 0 && !(time > last)) fail(at + ".time", "times must increase (" + number(time) + " after " + number(last) + ")");
+            if (i > 0 && !(time > last)) fail(at + ".time", "times must increase (" + formatNumber(time) + " after " + formatNumber(last) + ")");
             last = time;
             parseKeyframe(keys[i], at, time, path);
         }
@@ -256,7 +249,7 @@ std::string pathProblem(const CameraPath& path, const std::string& sceneName, co
         return who + "turns the light, but scene '" + sceneName + "' has a point light (give position)";
     for (size_t i = 0; i < path.lightSize.values.size(); ++i)
         if (const std::string problem = lightSizeProblem(type, path.lightSize.values[i].x); !problem.empty())
-            return who + "light size at time " + number(path.lightSize.times[i]) + ": " + problem;
+            return who + "light size at time " + formatNumber(path.lightSize.times[i]) + ": " + problem;
     // Every frame as it will be drawn: a keyframe may leave the target to the scene, and
     // interpolation may bring the eye onto the target or turn the light through zero (between
     // opposite directions), which no keyframe shows. At most 100,000 samples, each a few
@@ -266,7 +259,7 @@ std::string pathProblem(const CameraPath& path, const std::string& sceneName, co
         LightInfo l = light;
         const PathState state = samplePath(path, path.frameTime(frame));
         applyPathState(state, c, l);
-        const std::string at = who + "frame " + std::to_string(frame) + " (time " + number(path.frameTime(frame)) + "): ";
+        const std::string at = who + "frame " + std::to_string(frame) + " (time " + formatNumber(path.frameTime(frame)) + "): ";
         if (const std::string problem = cameraProblem(c.position, c.target, glm::dvec3(c.up)); !problem.empty())
             return at + problem;
         if (state.lightDirection) {

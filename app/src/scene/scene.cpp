@@ -23,6 +23,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "scene/object_transform.h"
 #include "scene/scene.h"
 #include "util/progress.h"
 #include "util/log.h"
@@ -60,13 +61,6 @@ std::string formatBytes(uint64_t bytes) {
     if (bytes >= (uint64_t(1) << 30)) std::snprintf(text, sizeof(text), "%.1f GiB", double(bytes) / double(1 << 30));
     else std::snprintf(text, sizeof(text), "%.1f MiB", double(bytes) / double(1 << 20));
     return text;
-}
-
-std::string formatNumber(double value, int precision = 6) {
-    std::ostringstream text;
-    text.precision(precision);
-    text << value;
-    return text.str();
 }
 
 std::string joined(const std::vector<std::string>& items) {
@@ -487,53 +481,6 @@ Repeat readRepeat(const json& node, const std::string& path, const ParseContext&
     return repeat;
 }
 
-glm::mat4 objectToWorld(glm::vec3 translate, glm::vec3 rotateRadians, glm::vec3 scale) {
-    // Scale, then rotate about x, y and z (in that order, fixed axes), then translate.
-    glm::mat4 transform = glm::translate(glm::mat4(1.0f), translate);
-    transform = glm::rotate(transform, rotateRadians.z, glm::vec3(0.0f, 0.0f, 1.0f));
-    transform = glm::rotate(transform, rotateRadians.y, glm::vec3(0.0f, 1.0f, 0.0f));
-    transform = glm::rotate(transform, rotateRadians.x, glm::vec3(1.0f, 0.0f, 0.0f));
-    return glm::scale(transform, scale);
-}
-
-bool finiteMatrix(const glm::mat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    return true;
-}
-
-// Where a transform stops being usable in single precision: not finite, not invertible (a scale
-// that underflows), or geometry beyond +-kMaxWorldCoordinate, where squared lengths overflow.
-void checkTransform(const glm::mat4& transform, const Bounds& local, const std::string& path, const ParseContext& context) {
-    const glm::mat3 linear(transform);
-    const float determinant = glm::determinant(linear);
-    if (!finiteMatrix(transform) || !std::isnormal(determinant) ||
-        !finiteMatrix(glm::mat4(glm::transpose(glm::inverse(linear))))) {
-        context.fail(path, "transform is not finite and invertible in single precision (scale " +
-                               formatNumber(std::cbrt(std::abs(double(determinant)))) + "; check scale, scaleRange and translate)");
-    }
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::vec3 point{(corner & 1) ? local.max.x : local.min.x, (corner & 2) ? local.max.y : local.min.y,
-                              (corner & 4) ? local.max.z : local.min.z};
-        const glm::vec3 world{transform * glm::vec4(point, 1.0f)};
-        for (int axis = 0; axis < 3; ++axis) {
-            if (!(std::abs(world[axis]) <= kMaxWorldCoordinate)) {
-                context.fail(path, "reaches " + formatNumber(world[axis]) + " in world space, beyond +-" +
-                                       formatNumber(kMaxWorldCoordinate) + " (the largest coordinate shadowlab handles)");
-            }
-        }
-    }
-}
-
-// World plane (n, d) of a "plane" object: its object-space plane y = 0 with normal +y.
-glm::vec4 worldPlane(const glm::mat4& transform) {
-    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(transform)));
-    const glm::vec3 normal = glm::normalize(normalMatrix * glm::vec3(0.0f, 1.0f, 0.0f));
-    const glm::vec3 origin{transform[3]};
-    return {normal, -glm::dot(normal, origin)};
-}
-
 // The state of one scene being built.
 struct SceneBuilder {
     ParseContext context;
@@ -884,8 +831,8 @@ void readObject(const json& node, const std::string& path, size_t ordinal, Scene
 
         object.transform = objectToWorld(translate + offset, rotate + (2.0f * turn - 1.0f) * repeat.randomRotate,
                                          scale * instanceScale);
-        checkTransform(object.transform, local, repeatNode ? path + " (instance " + std::to_string(i) + ")" : path,
-                       builder.context);
+        if (const std::string problem = transformProblem(object.transform, local); !problem.empty())
+            builder.context.fail(repeatNode ? path + " (instance " + std::to_string(i) + ")" : path, problem);
         if (builder.checkOnly) continue;
         object.name = repeatNode ? name + "#" + std::to_string(i) : name;
         if (object.isPlane) object.plane = worldPlane(object.transform);

@@ -21,6 +21,13 @@ inline std::string fixed(double value, int digits) {
     return text;
 }
 
+// `value` in messages: `precision` significant digits, as "%g" writes them (1e+09, 0.25, inf).
+inline std::string formatNumber(double value, int precision = 6) {
+    char text[64];
+    std::snprintf(text, sizeof(text), "%.*g", precision, value);
+    return text;
+}
+
 // `text` in single quotes for a POSIX shell command line (a ' becomes '\'').
 inline std::string shellQuote(const std::string& text) {
     std::string out = "'";
