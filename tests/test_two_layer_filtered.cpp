@@ -2,7 +2,9 @@
 // pcss) through kit::FilteredDepthMaps: both layers resolved into the one map their kernels read
 // (kit/layered_depth.h, LayeredDepthMap::resolve()). Against the hard reference on forest-002 with
 // no offset at all, as TwoLayerBias.MidpointRemovesAcneInShadowmapAndPsm (test_tsm.cpp) does for
-// the comparison techniques; and the default `offset` is the image without the parameter.
+// the comparison techniques; and the default `offset` is the image without the parameter. The
+// techniques that read the map's raw depths (rbsm, edtsm; kit::RawDepthTechnique) get the same
+// resolved map through kit::LayeredDepthMaps, their texel tests and compute passes unchanged.
 #include <gtest/gtest.h>
 
 #include "test_support.h"
@@ -44,12 +46,40 @@ TEST(TwoLayerFiltered, MidpointRemovesAcneInPcfAdaptivePcfAndPcss) {
     }
 }
 
+// rbsm's texel tests and edtsm's edge seeds, flood and main-pass tests read the resolved map
+// (kit::RawDepthTechnique): at zero offset the acne goes as for the filtering techniques. Were the
+// resolve skipped (the first layer read), the midpoint would keep the acne of no offset.
+TEST(TwoLayerFiltered, MidpointRemovesAcneInRbsmAndEdtsm) {
+    auto app = test::makeHeadlessApp("forest-002", {256, 160});
+    ASSERT_TRUE(app);
+    for (const char* technique : {"rbsm", "edtsm"}) {
+        SCOPED_TRACE(technique);
+        // Every value named each time: assignments persist from one evaluation to the next.
+        const std::vector<std::string> bare = {"resolution=2048", "constant_bias=0", "slope_bias=0", "cull=none",
+                                               "bias_method=offset"};
+        std::vector<std::string> midpoint = bare, second = bare;
+        midpoint.back() = "bias_method=midpoint";
+        second.back() = "bias_method=second-depth";
+        const AccuracyMetrics acne = twoLayerFilteredAccuracy(*app, technique, bare);
+        const AccuracyMetrics fixed = twoLayerFilteredAccuracy(*app, technique, midpoint);
+        const AccuracyMetrics secondDepth = twoLayerFilteredAccuracy(*app, technique, second);
+        std::printf("%s false shadow / false light %%: no bias %.2f / %.2f, midpoint %.2f / %.2f, second depth %.2f / %.2f\n",
+                    technique, 100 * acne.falseShadowRate, 100 * acne.falseLightRate, 100 * fixed.falseShadowRate,
+                    100 * fixed.falseLightRate, 100 * secondDepth.falseShadowRate, 100 * secondDepth.falseLightRate);
+        EXPECT_GT(acne.falseShadowRate, 0.1) << "no offset: acne";
+        EXPECT_LT(fixed.falseShadowRate, 0.1 * acne.falseShadowRate);
+        EXPECT_LT(fixed.falseLightRate, 0.01);
+        EXPECT_LT(secondDepth.falseShadowRate, 0.1 * acne.falseShadowRate);
+        EXPECT_LT(secondDepth.falseLightRate, 0.02);
+    }
+}
+
 // bias_method = offset (the default) draws the one plain depth pass: the image with the parameter
 // absent, bit for bit, also after a two-layer frame (no resolved map left bound or reported).
 TEST(TwoLayerFiltered, OffsetIsTheImageWithoutTheParameter) {
     auto app = test::makeHeadlessApp("forest-002", {256, 160});
     ASSERT_TRUE(app);
-    for (const char* technique : {"pcf", "adaptive-pcf", "pcss"}) {
+    for (const char* technique : {"pcf", "adaptive-pcf", "pcss", "rbsm", "edtsm"}) {
         SCOPED_TRACE(technique);
         const std::vector<glm::vec4> absent = test::renderVisibility(*app, technique, {"resolution=1024"});
         const std::vector<glm::vec4> midpoint = test::renderVisibility(*app, technique, {"bias_method=midpoint"});

@@ -44,7 +44,7 @@ constexpr ParamDesc kEdgeDepth{"edge_depth", "edge depth", ParamType::Float, 0.0
      nullptr};
 
 #define EDTSM_PARAMS(X)                                 \
-    SHADOWLAB_DEPTH_MAP_PARAMS(X, 1024, 200000, 1)      \
+    SHADOWLAB_RAW_DEPTH_MAP_PARAMS(X)                   \
     X(float, width, kWidth)                             \
     X(int, reach, kReach)                               \
     X(float, edge_depth, kEdgeDepth)                    \

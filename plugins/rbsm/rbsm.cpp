@@ -40,7 +40,7 @@ constexpr ParamDesc kFiltered{"filtered", "filtered edge", ParamType::Bool, 0, 1
      nullptr};
 
 #define RBSM_PARAMS(X)                                  \
-    SHADOWLAB_DEPTH_MAP_PARAMS(X, 1024, 200000, 1)      \
+    SHADOWLAB_RAW_DEPTH_MAP_PARAMS(X)                   \
     X(int, variant, kVariant)                           \
     X(int, max_search, kMaxSearch)                      \
     X(bool, filtered, kFiltered)                        \
