@@ -67,10 +67,14 @@ TEST(TwoLayerFiltered, MidpointRemovesAcneInRbsmAndEdtsm) {
                     technique, 100 * acne.falseShadowRate, 100 * acne.falseLightRate, 100 * fixed.falseShadowRate,
                     100 * fixed.falseLightRate, 100 * secondDepth.falseShadowRate, 100 * secondDepth.falseLightRate);
         EXPECT_GT(acne.falseShadowRate, 0.1) << "no offset: acne";
-        EXPECT_LT(fixed.falseShadowRate, 0.1 * acne.falseShadowRate);
+        // Measured on llvmpipe: rbsm 19.7% -> 0.33% (midpoint), 0.29% (second depth); edtsm 34.0% ->
+        // 3.20%, 0.51%. edtsm's rest is its own: its plain test takes the receiver's depth at the
+        // pixel, not on its plane at the texel (edtsm.glsl), and it keeps 3.27% at its default offset.
+        const bool isRbsm = std::string(technique) == "rbsm";
+        EXPECT_LT(fixed.falseShadowRate, (isRbsm ? 0.05 : 0.15) * acne.falseShadowRate);
         EXPECT_LT(fixed.falseLightRate, 0.01);
-        EXPECT_LT(secondDepth.falseShadowRate, 0.1 * acne.falseShadowRate);
-        EXPECT_LT(secondDepth.falseLightRate, 0.02);
+        EXPECT_LT(secondDepth.falseShadowRate, 0.05 * acne.falseShadowRate);
+        EXPECT_LT(secondDepth.falseLightRate, 0.01);
     }
 }
 
