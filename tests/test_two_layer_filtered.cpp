@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "util/log.h"
 
 using namespace shadowlab;
 
@@ -104,4 +105,31 @@ TEST(TwoLayerFiltered, OffsetIsTheImageWithoutTheParameter) {
     size_t differing = 0;
     for (size_t i = 0; i < kernels.size(); ++i) differing += kernels[i] != classified[i];
     EXPECT_EQ(differing, 0u);
+}
+
+// rbsm's and edtsm's peeled layer and resolved map: none under `offset`, both (two more maps the
+// size of the first) from the first two-layer frame, and every GL object released on unload (the
+// host warns "<id>: N GL object(s) still alive after shutdown()" otherwise).
+TEST(TwoLayerFiltered, RbsmAndEdtsmAllocateTheLayersOnlyWhenAskedAndReleaseThem) {
+    {
+        auto app = test::makeHeadlessApp("cube", {160, 120});
+        ASSERT_TRUE(app);
+        std::string error;
+        for (const char* technique : {"rbsm", "edtsm"}) {
+            SCOPED_TRACE(technique);
+            ASSERT_TRUE(app->applyAssignments({"resolution=512", "bias_method=offset"}, technique, error)) << error;
+            ASSERT_TRUE(app->renderFrame(technique, error)) << error;
+            const size_t offsetBytes = app->techniques().get(technique, error)->host().gpuBytes();
+            ASSERT_TRUE(app->applyAssignments({"bias_method=midpoint"}, technique, error)) << error;
+            ASSERT_TRUE(app->renderFrame(technique, error)) << error;
+            const size_t midpointBytes = app->techniques().get(technique, error)->host().gpuBytes();
+            EXPECT_GE(offsetBytes, size_t(512 * 512 * 4)) << "the first layer";
+            EXPECT_EQ(midpointBytes - offsetBytes, size_t(2 * 512 * 512 * 4)) << "the second layer and the resolved map";
+        }
+    }
+    for (const auto& entry : recentLog())
+        for (const char* technique : {"rbsm", "edtsm"})
+            EXPECT_FALSE(entry.message.starts_with(std::string(technique) + ": ") &&
+                         entry.message.find("still alive") != std::string::npos)
+                << entry.message;
 }
