@@ -40,19 +40,22 @@ EdgeBandMetrics aaEdgeErrors(App& app, const std::string& technique, std::vector
 // rbsm (both variants) and edtsm beside shadowmap with the 2x2 filter on `scene` at 512 and 1024:
 // both rbsm variants lower the band's error, edtsm matches or lowers it, and none is worse off the
 // band than shadowmap by more than a small tolerance (a texel's staircase may spill past the band).
-void expectSharperEdges(const std::string& scene) {
+// `biasMethod`: rbsm's and edtsm's (shadowmap keeps its offset); under the two-layer methods their
+// texel tests, edge seeds and flood read the resolved map (kit::RawDepthTechnique).
+void expectSharperEdges(const std::string& scene, const std::string& biasMethod = "offset") {
     auto app = test::makeHeadlessApp(scene, {320, 180});
     ASSERT_TRUE(app);
+    const std::string bias = "bias_method=" + biasMethod;
     for (const int resolution : {512, 1024}) {
         const EdgeBandMetrics base = aaEdgeErrors(*app, "shadowmap", {"hardware_filter=1"}, resolution);
         // Every value named: assignments persist from one evaluation to the next.
-        const EdgeBandMetrics rbsm = aaEdgeErrors(*app, "rbsm", {"variant=non-conservative"}, resolution);
-        const EdgeBandMetrics conservative = aaEdgeErrors(*app, "rbsm", {"variant=conservative"}, resolution);
-        const EdgeBandMetrics edtsm = aaEdgeErrors(*app, "edtsm", {}, resolution);
-        std::printf("%s %d, 320x180, edge band %zu px: MAE shadowmap 2x2 %.4f, rbsm %.4f, rbsm conservative %.4f, "
-                    "edtsm %.4f; off the band %.5f, %.5f, %.5f, %.5f\n",
-                    scene.c_str(), resolution, base.bandPixels, base.mae, rbsm.mae, conservative.mae, edtsm.mae,
-                    base.maeOff, rbsm.maeOff, conservative.maeOff, edtsm.maeOff);
+        const EdgeBandMetrics rbsm = aaEdgeErrors(*app, "rbsm", {"variant=non-conservative", bias}, resolution);
+        const EdgeBandMetrics conservative = aaEdgeErrors(*app, "rbsm", {"variant=conservative", bias}, resolution);
+        const EdgeBandMetrics edtsm = aaEdgeErrors(*app, "edtsm", {bias}, resolution);
+        std::printf("%s %d (%s), 320x180, edge band %zu px: MAE shadowmap 2x2 %.4f, rbsm %.4f, rbsm conservative "
+                    "%.4f, edtsm %.4f; off the band %.5f, %.5f, %.5f, %.5f\n",
+                    scene.c_str(), resolution, bias.c_str(), base.bandPixels, base.mae, rbsm.mae, conservative.mae,
+                    edtsm.mae, base.maeOff, rbsm.maeOff, conservative.maeOff, edtsm.maeOff);
         ASSERT_GT(base.bandPixels, 500u) << "the view must show shadow edges";
         EXPECT_GT(base.mae, 0.01) << "a 2x2-filtered map must be visibly off a hard edge, or the test shows nothing";
         EXPECT_LT(rbsm.mae, 0.85 * base.mae) << "rbsm at " << resolution;
@@ -93,6 +96,10 @@ TEST(EdgeBand, IsTheBoundaryDilatedWithinTheMask) {
 
 TEST(AntiAliasedEdges, SharperThanTheHardwareFilterOnCube) { expectSharperEdges("cube"); }
 TEST(AntiAliasedEdges, SharperThanTheHardwareFilterOnSpheres) { expectSharperEdges("spheres"); }
+// The same with rbsm's and edtsm's maps biased by the midpoint (seed 002 eq. 5.1): the resolved map
+// keeps the casters' edges where they were, so the revectorized and distance-transformed edges stay
+// as sharp.
+TEST(AntiAliasedEdges, SharperThanTheHardwareFilterUnderTheMidpoint) { expectSharperEdges("cube", "midpoint"); }
 
 // Bad values are refused with the parameter named, and the defaults' variant is the full one.
 TEST(AntiAliasedEdges, ParametersAreValidated) {
@@ -120,7 +127,8 @@ namespace {
 // near edges (default) or, with SHADOWLAB_EDTSM_DENSE=1 (read when the plugin is set up), the
 // whole map.
 std::vector<std::vector<glm::vec3>> edtsmTermsFor(const std::string& scene, bool dense,
-                                                   const std::vector<std::pair<int, int>>& cases) {
+                                                   const std::vector<std::pair<int, int>>& cases,
+                                                   const std::string& biasMethod = "offset") {
     if (dense) setenv("SHADOWLAB_EDTSM_DENSE", "1", 1);   // until the technique is set up (its first frame)
     auto app = test::makeHeadlessApp(scene, {320, 180});
     std::vector<std::vector<glm::vec3>> terms;
@@ -128,7 +136,8 @@ std::vector<std::vector<glm::vec3>> edtsmTermsFor(const std::string& scene, bool
         if (app)
             terms.push_back(test::shadowTerm(
                 *app, "edtsm",
-                {"reach=" + std::to_string(reach), "resolution=" + std::to_string(resolution), "width=4"}));
+                {"reach=" + std::to_string(reach), "resolution=" + std::to_string(resolution), "width=4",
+                 "bias_method=" + biasMethod}));
     unsetenv("SHADOWLAB_EDTSM_DENSE");
     return terms;
 }
@@ -140,23 +149,27 @@ std::vector<std::vector<glm::vec3>> edtsmTermsFor(const std::string& scene, bool
 // step, 4 + 2 + 1 + 1, 32 + ... + 1 + 1: a dilation of 1 to 4 tiles) and at a map size that is
 // not a multiple of the 16-texel tile. The widest ramp (4 texels) reads sites up to 3 texels from
 // the edge, beyond the edge texels' own tiles; it must show (fractional terms), or nothing is compared.
+// The last run: the same on cube with the map under the midpoint (the seeds and flood read the
+// resolved map).
 TEST(AntiAliasedEdges, EdtsmSparseFloodMatchesTheWholeMapFlood) {
     const std::vector<std::pair<int, int>> cases = {{1, 512}, {4, 1000}, {32, 512}, {3, 256}};
-    for (const std::string scene : {"cube", "spheres"}) {
-        const auto sparse = edtsmTermsFor(scene, false, cases);
-        const auto dense = edtsmTermsFor(scene, true, cases);
-        ASSERT_EQ(sparse.size(), cases.size()) << scene;
-        ASSERT_EQ(dense.size(), cases.size()) << scene;
+    for (const std::string run : {"cube", "spheres", "cube midpoint"}) {
+        const std::string scene = run.substr(0, run.find(' '));
+        const std::string biasMethod = run == "cube midpoint" ? "midpoint" : "offset";
+        const auto sparse = edtsmTermsFor(scene, false, cases, biasMethod);
+        const auto dense = edtsmTermsFor(scene, true, cases, biasMethod);
+        ASSERT_EQ(sparse.size(), cases.size()) << run;
+        ASSERT_EQ(dense.size(), cases.size()) << run;
         for (size_t c = 0; c < cases.size(); ++c) {
             size_t fractional = 0, differing = 0;
             for (size_t i = 0; i < dense[c].size(); ++i) {
                 fractional += dense[c][i].x > 0.01f && dense[c][i].x < 0.99f;
                 differing += sparse[c][i] != dense[c][i];
             }
-            std::printf("edtsm %s reach %d resolution %d: %zu fractional pixels, %zu differ\n", scene.c_str(),
+            std::printf("edtsm %s reach %d resolution %d: %zu fractional pixels, %zu differ\n", run.c_str(),
                         cases[c].first, cases[c].second, fractional, differing);
-            EXPECT_GT(fractional, 50u) << scene << " reach " << cases[c].first << ": edtsm's ramp must show";
-            EXPECT_EQ(differing, 0u) << scene << " reach " << cases[c].first << " resolution " << cases[c].second;
+            EXPECT_GT(fractional, 50u) << run << " reach " << cases[c].first << ": edtsm's ramp must show";
+            EXPECT_EQ(differing, 0u) << run << " reach " << cases[c].first << " resolution " << cases[c].second;
         }
     }
 }

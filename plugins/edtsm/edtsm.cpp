@@ -2,14 +2,16 @@
 // Transform Soft Shadow Mapping", SIBGRAPI 2017, and "Improved anti-aliasing for Euclidean distance
 // transform shadow mapping", Computers & Graphics 2017: seed 004's first research slide;
 // docs/anti-aliased-edges.md says how this light-space version departs from their screen-space one).
-// A plain shadow map (kit/depth_map.h), then compute passes (edtsm.comp): the seed pass marks the
+// shadowmap's map (kit::RawDepthTechnique: the same pass, bias and fit; with `bias_method` midpoint
+// or second-depth, seed 002 eq. 5.1, both layers resolved into the one map of depths that the
+// compute passes and the main pass read), then compute passes (edtsm.comp): the seed pass marks the
 // map's depth edges, texels beside a neighbour more than `edge depth` farther from (caster side)
 // or nearer to (background side) the light, and jump flooding spreads each kind of site over
 // `reach` texels, giving every texel its nearest site of each kind (over the tiles near edges
 // only: the seed pass flags them, a pass lists them for an indirect dispatch). The main pass (edtsm.glsl)
 // turns the receiver's distances to the two into a signed distance to the rebuilt edge and a ramp
 // `width` texels wide across it, wherever the two sites straddle the receiver's own depth test.
-// Point lights: the kit's cube map with the plain test.
+// Point lights: the kit's cube map with the plain test and the offset.
 #include <algorithm>
 #include <array>
 #include <cstdlib>
@@ -44,7 +46,7 @@ constexpr ParamDesc kEdgeDepth{"edge_depth", "edge depth", ParamType::Float, 0.0
      nullptr};
 
 #define EDTSM_PARAMS(X)                                 \
-    SHADOWLAB_DEPTH_MAP_PARAMS(X, 1024, 200000, 1)      \
+    SHADOWLAB_RAW_DEPTH_MAP_PARAMS(X)                   \
     X(float, width, kWidth)                             \
     X(int, reach, kReach)                               \
     X(float, edge_depth, kEdgeDepth)                    \

@@ -1,6 +1,8 @@
 // Revectorization-based shadow mapping (Macedo and Apolinario, "Revectorization-Based Shadow
 // Mapping", Graphics Interface 2016; seed 000 sec. 2.2 survey, ref. [13]; docs/anti-aliased-edges.md).
-// The shadow map is plain (kit/depth_map.h, the same pass, bias and fit as `shadowmap`); the main
+// The shadow map is shadowmap's (the same pass, bias and fit, and its two-layer biases: with
+// `bias_method` midpoint or second-depth, seed 002 eq. 5.1, both layers are peeled and resolved
+// into the one map of depths every texel test below reads; kit::RawDepthTechnique); the main
 // pass rebuilds the jagged boundary of the binary depth test from the map's texel discontinuities
 // (rbsm.glsl): (1) the receiver is tested against its texel and the four neighbours, with its own
 // depth; a neighbour of the other class is a discontinuity. (2) Along every discontinuous side
@@ -12,7 +14,8 @@
 // revectorization) and conservative (only into lit texels: the shadow can grow, never shrink, so
 // revectorization cannot add light leaks). `filtered` replaces the binary side test by the
 // coverage of the pixel's footprint (RSMSS's smoothing of the revectorized boundary, in spirit).
-// Point lights: the kit's cube map with the plain test (revectorization is for 2D maps here).
+// Point lights: the kit's cube map with the plain test and the offset (revectorization and the
+// two layers are for 2D maps here).
 #include <shadowlab/kit/depth_maps.h>
 #include <shadowlab/kit/params.h>
 
@@ -40,7 +43,7 @@ constexpr ParamDesc kFiltered{"filtered", "filtered edge", ParamType::Bool, 0, 1
      nullptr};
 
 #define RBSM_PARAMS(X)                                  \
-    SHADOWLAB_DEPTH_MAP_PARAMS(X, 1024, 200000, 1)      \
+    SHADOWLAB_RAW_DEPTH_MAP_PARAMS(X)                   \
     X(int, variant, kVariant)                           \
     X(int, max_search, kMaxSearch)                      \
     X(bool, filtered, kFiltered)                        \

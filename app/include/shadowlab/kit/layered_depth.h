@@ -1,9 +1,9 @@
 // A depth map that can write its own depth: linear depth along the light, the bias applied in the
 // fragment stage, and the two-layer biases of seed 002 ch. 5 (a second layer by depth peeling,
 // sec. 5.2: the midpoint of eq. 5.1 and second-depth shadow mapping). The plumbing of every
-// single-map technique's `bias_method` (shadowmap, psm, lispsm, tsm; pcf, adaptive-pcf and pcss
-// through kit::FilteredDepthMaps and resolve()): with the offset method and neither linear depth
-// nor a fragment-stage bias it is a plain kit::DepthMap pass (glPolygonOffset).
+// single-map technique's `bias_method` (shadowmap, psm, lispsm, tsm; pcf, adaptive-pcf, pcss, rbsm
+// and edtsm through kit::LayeredDepthMaps and resolve()): with the offset method and neither
+// linear depth nor a fragment-stage bias it is a plain kit::DepthMap pass (glPolygonOffset).
 //
 // Why the bias in the fragment stage for warped maps: with depth clamp on, a warped caster's
 // unclamped window z can be far outside [0, 1], and a 32F depth buffer's offset unit is 2^(e - 23)
@@ -31,8 +31,9 @@ constexpr ParamDesc biasMethodParam() {
             "second-depth: the test against the second layer (Wang and Molnar). inverted-back-faces: back faces "
             "stored (cull front) with the offset reversed, towards the light. The two-layer methods draw every "
             "face, ignore the bias and cull parameters and cost a second depth pass (seed 002 ch. 5); pcf, "
-            "adaptive-pcf and pcss also resolve both layers into the map their kernels read (one more pass) and "
-            "keep their cone bias, a receiver-side bias. Point lights' cube maps: offset only.",
+            "adaptive-pcf, pcss, rbsm and edtsm also resolve both layers into the one map they read (one more "
+            "pass); the filtering ones keep their cone bias, a receiver-side bias. Point lights' cube maps: "
+            "offset only.",
             "offset|midpoint|second-depth|inverted-back-faces"};
 }
 constexpr ParamDesc zOffsetParam() {
@@ -207,8 +208,9 @@ public:
         glBindSampler(shared::layered_depth::kSecondDepthUnit, nearest);
     }
 
-    // The filtering techniques' path (kit::FilteredDepthMaps; create() with `resolvable`): after
-    // draw() with a two-layer method, both layers resolved into one more map of depths, the surface
+    // The path of the techniques that read a plain depth map (kit::LayeredDepthMaps: the filtering
+    // techniques and the raw-depth ones; create() with `resolvable`): after draw() with a
+    // two-layer method, both layers resolved into one more map of depths, the surface
     // eq. 5.1 tests against: z1 + min((z2 - z1) / 2, z_offset) (midpoint) or z2 (second depth), in
     // the first layer's light space. A comparison sampler, a gather, depth-range mips or a blocker
     // search on that map then read the biased surface as they read any depth map: every tap of a

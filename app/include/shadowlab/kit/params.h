@@ -99,6 +99,12 @@ consteval bool sameId(const ParamDesc& desc, std::string_view id) { return std::
     SHADOWLAB_BIAS_PARAMS(X, 64, 0)                     \
     SHADOWLAB_TWO_LAYER_PARAMS(X)                       \
     SHADOWLAB_FIT_PARAMS(X)
+// The map of the techniques that read its raw depths (rbsm, edtsm; kit::RawDepthTechnique in
+// kit/depth_maps.h, which includes kit/layered_depth.h): shadowmap's resolution, format, bias and
+// culling, and the two-layer biases.
+#define SHADOWLAB_RAW_DEPTH_MAP_PARAMS(X)               \
+    SHADOWLAB_DEPTH_MAP_PARAMS(X, 1024, 200000, 1)      \
+    SHADOWLAB_TWO_LAYER_PARAMS(X)
 
 namespace shadowlab::kit {
 
