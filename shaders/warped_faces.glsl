@@ -15,9 +15,11 @@ float warpedFacesShadow(vec3 worldPos) {
     vec4 clip = uFaceMatrix[face] * vec4(worldPos, 1.0);
     if (clip.w <= 0.0) return 1.0;
     vec3 coord = clip.xyz / clip.w * 0.5 + 0.5;
-    if (!insideShadowMap(coord)) return 1.0;
+    if (any(lessThan(coord.xy, vec2(0.0))) || any(greaterThan(coord.xy, vec2(1.0)))) return 1.0;
     vec2 uv = uFaceTile[face].xy + clamp(coord.xy, vec2(uFaceLight.w), vec2(1.0 - uFaceLight.w)) * uFaceTile[face].zw;
-    float reference = uLinearDepth == 1 ? min(dot(uFaceLinearPlane[face], vec4(worldPos, 1.0)), 1.0) : coord.z;
+    // The farthest receivers define B_f's far end (a floor under the light), so rounding puts half
+    // of them just beyond depth 1: compared as the far end, where depth clamp put their casters.
+    float reference = min(uLinearDepth == 1 ? dot(uFaceLinearPlane[face], vec4(worldPos, 1.0)) : coord.z, 1.0);
     if (uBiasMethod == 0) return texture(uShadowMap, vec3(uv, reference));
     float first = texture(uFirstLayer, uv).r, second = texture(uSecondLayer, uv).r;
     if (uBiasMethod == 1) return reference <= first + min(0.5 * (second - first), uZOffset) ? 1.0 : 0.0;   // eq. 5.1

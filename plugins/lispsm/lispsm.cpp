@@ -56,32 +56,71 @@ SHADOWLAB_PARAMS(Params, LISPSM_PARAMS);
 
 class LightSpacePerspectiveShadowMaps final : public kit::WarpedMapTechnique<Params> {
     bool linearDepth(const Params& p) const override { return p.depth == 1; }
+    bool warpsCubeFaces() const override { return true; }
+
+    // The options of sec. 9.2.5-9.2.6 for a map of `light` (the spot's frustum, or a point light's
+    // face): n's factor, n from the virtual frustum's body (only where it is nearer than the real
+    // one; with range = receivers the farthest receiver is one), the body vector of B's corners.
+    lispsm::WarpOptions options(const FrameContext& frame, const Params& p, const kit::ConvexBody& body,
+                                const kit::DepthRange& range, const LightSpace& light, bool face) {
+        const Bounds scene = host().bounds(DrawSet::All);
+        lispsm::WarpOptions options;
+        options.nFactor = p.n_factor;
+        float farForN = p.virtual_far > 0.0f ? p.virtual_far : frame.camera.farPlane;
+        if (p.range == 1) farForN = std::min(farForN, range.farDistance);
+        if (farForN < frame.camera.farPlane) {
+            const kit::ConvexBody virtualView = lispsm::virtualViewBody(frame.camera, farForN);
+            options.bodyForN = (face ? kit::faceFocusBody(virtualView, frame.light, scene, light)
+                                     : kit::focusBody(virtualView, frame.light, scene, light)).vertices();
+        }
+        if (p.body_vector)
+            options.axisSource = lispsm::bodyVector(body.corners(kit::focus_detail::toleranceFor(body)), frame.camera.position);
+        return options;
+    }
 
     // Sec. 9.2.1-9.2.6: the warp of a directional light, or of a spot light in its post-perspective
-    // space; none for point lights or where it would be uniform anyway.
+    // space; none for point lights (faceWarp()) or where it would be uniform anyway.
     std::optional<glm::mat4> warp(const FrameContext& frame, const Params& p, const kit::FocusedLightSpace& focused,
                                   const kit::DepthRange& range) override {
         if (frame.light.type == LightType::Point || focused.body.empty()) return std::nullopt;
-        const Bounds scene = host().bounds(DrawSet::All);
         kit::ConvexBody visible = kit::frustumBody(frame.camera.inverseViewProjection);
-        kit::clip(visible, scene);
-        lispsm::WarpOptions options;
-        options.nFactor = p.n_factor;
-        // Sec. 9.2.5: n from the body of the virtual frustum (only where it is nearer than the real one);
-        // with range = receivers the farthest receiver is one.
-        float farForN = p.virtual_far > 0.0f ? p.virtual_far : frame.camera.farPlane;
-        if (p.range == 1) farForN = std::min(farForN, range.farDistance);
-        if (farForN < frame.camera.farPlane)
-            options.bodyForN = kit::focusBody(lispsm::virtualViewBody(frame.camera, farForN), frame.light, scene,
-                                              focused.light).vertices();
-        // Sec. 9.2.6: the axis from the body vector of B's corners.
-        if (p.body_vector)
-            options.axisSource = lispsm::bodyVector(focused.body.corners(kit::focus_detail::toleranceFor(focused.body)),
-                                                     frame.camera.position);
+        kit::clip(visible, host().bounds(DrawSet::All));
+        const lispsm::WarpOptions o = options(frame, p, focused.body, range, focused.light, false);
         const float nearest = std::max(lispsm::nearestEyeDepth(frame.camera, visible.vertices()), range.nearDistance);
         const auto w = frame.light.type == LightType::Spot
-                           ? lispsm::spotWarp(focused.body.vertices(), focused.light.viewProjection, frame.camera, nearest, options)
-                           : lispsm::directionalWarp(focused.body.vertices(), frame.light.direction, frame.camera, nearest, options);
+                           ? lispsm::spotWarp(focused.body.vertices(), focused.light.viewProjection, frame.camera, nearest, o)
+                           : lispsm::directionalWarp(focused.body.vertices(), frame.light.direction, frame.camera, nearest, o);
+        return w ? std::optional(w->viewProjection) : std::nullopt;
+    }
+
+    // A point light's face as a spot light (sec. 8.2.4, 9.2.3): the warp in the face's
+    // post-perspective space, its orientation ray from e_world, the vertex of LVS (the view's part
+    // in the face) nearest the eye, moved along the view to range = receivers' near distance; the
+    // frame rooted there (sec. 9.2.4's C_start), since the eye is mostly outside the face.
+    std::optional<glm::mat4> faceWarp(const FrameContext& frame, const Params& p, const kit::CubeFaceFocus& face,
+                                      const kit::DepthRange& range) override {
+        if (getenv("LP_NOWARP")) return std::nullopt;
+        const std::vector<glm::vec3> visible = face.visible.vertices();
+        if (visible.empty()) return std::nullopt;
+        glm::vec3 start = visible.front();
+        float nearest = 1e30f;
+        for (const glm::vec3& v : visible) {
+            const float depth = -(frame.camera.view * glm::vec4(v, 1.0f)).z;
+            if (depth < nearest) {
+                nearest = depth;
+                start = v;
+            }
+        }
+        const glm::vec3 view = -glm::vec3(frame.camera.view[0][2], frame.camera.view[1][2], frame.camera.view[2][2]);
+        if (range.nearDistance > nearest) {
+            start += view * (range.nearDistance - nearest);
+            nearest = range.nearDistance;
+        }
+        const auto w = lispsm::spotWarpFrom(face.body.vertices(), face.light.viewProjection, frame.camera, start, nearest,
+                                            false, options(frame, p, face.body, range, face.light, true));
+        if (getenv("LP_DEBUG") && w) fprintf(stderr, "face %d n %g d %g sin %g start %g %g %g nearest %g\n", face.face, w->n, w->d, w->sinGamma, start.x, start.y, start.z, nearest);
+        if (getenv("LP_DEBUG") && !w) fprintf(stderr, "face %d none\n", face.face);
+        if (getenv("LP_ONLY") && atoi(getenv("LP_ONLY")) != face.face) return std::nullopt;
         return w ? std::optional(w->viewProjection) : std::nullopt;
     }
 };

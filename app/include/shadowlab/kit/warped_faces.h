@@ -85,6 +85,7 @@ inline std::array<CubeFaceFocus, 6> cubeFaceFocus(const CameraInfo& camera, cons
 struct FaceMap {
     int face = 0;
     LightSpace light;
+    glm::mat4 faceMatrix{1.0f};   // the face's own perspective (its w > 0: the light's side)
     std::vector<glm::vec4> cullPlanes;
     ConvexBody body;
     bool warped = false;
@@ -99,7 +100,8 @@ inline std::vector<FaceMap> faceMaps(const std::array<CubeFaceFocus, 6>& faces,
     const float margin = 1e-4f * std::max(glm::length(scene.max - scene.min), 1.0f);
     for (const CubeFaceFocus& f : faces) {
         if (f.body.empty()) continue;
-        FaceMap map{.face = f.face, .light = f.light, .cullPlanes = inwardPlanes(f.body, margin), .body = f.body};
+        FaceMap map{.face = f.face, .light = f.light, .faceMatrix = f.light.viewProjection,
+                    .cullPlanes = inwardPlanes(f.body, margin), .body = f.body};
         if (const std::optional<glm::mat4> w = warp(f)) {
             map.light.viewProjection = *w;
             map.light.projection = *w * glm::inverse(map.light.view);
@@ -125,7 +127,7 @@ public:
         GLint largest = 16384;
         glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
         largestTexture_ = int(largest);
-        return program_.build(host, {.vertexFile = "layered_depth.vert", .fragmentFile = "layered_depth.frag"}, error);
+        return program_.build(host, {.vertexFile = "warped_face_depth.vert", .fragmentFile = "layered_depth.frag"}, error);
     }
 
     // This frame is not a point light's: the main pass reads the single map.
@@ -158,6 +160,11 @@ public:
             shared::depth_map::DepthMapUniforms depth{};
             depth.uShadowMatrix = m.light.viewProjection;
             depthBlocks_[i].update(depth);
+            const auto wRow = [](const glm::mat4& m) { return glm::vec4(m[0][3], m[1][3], m[2][3], m[3][3]); };
+            shared::warped_faces::WarpedFacePassUniforms clipping{};
+            clipping.uFaceClipPlanes[0] = wRow(m.light.viewProjection);
+            clipping.uFaceClipPlanes[1] = wRow(m.faceMatrix);
+            passBlocks_[i].update(clipping);
         }
         u.uFaceLight = glm::vec4(lightPosition_, 0.5f / float(resolution_));
         u.uFaceInfo.x = 1;
@@ -210,6 +217,7 @@ private:
     void ensure(int resolution, GLenum format) {
         if (!first_.framebuffer) {
             for (auto& block : depthBlocks_) block.create(*host_, "warped face");
+            for (auto& block : passBlocks_) block.create(*host_, "warped face clipping");
             for (auto& block : layeredUniforms_) block.create(*host_, "warped face layers");
             first_.framebuffer = makeFramebuffer(*host_, "warped faces");
             second_.framebuffer = makeFramebuffer(*host_, "warped faces, second layer");
@@ -241,16 +249,21 @@ private:
         glDisable(GL_POLYGON_OFFSET_FILL);
         applyCull(config.cull);
         glEnable(GL_SCISSOR_TEST);
+        glEnable(GL_CLIP_DISTANCE0);
+        glEnable(GL_CLIP_DISTANCE1);
         for (const FaceMap& m : maps) {
             const size_t i = size_t(m.face);
             blocks[i].uPeel = peel ? 1 : 0;
             layeredUniforms_[i].set(blocks[i]);
             depthBlocks_[i].bind();
+            passBlocks_[i].bind();
             const int x = (m.face % 3) * resolution_, y = (m.face / 3) * resolution_;
             glViewport(x, y, resolution_, resolution_);
             glScissor(x, y, resolution_, resolution_);
             host_->drawScene(culledDraw(DrawSet::OpaqueCasters, m.cullPlanes), program_.use());
         }
+        glDisable(GL_CLIP_DISTANCE0);
+        glDisable(GL_CLIP_DISTANCE1);
         glDisable(GL_SCISSOR_TEST);
         glDisable(GL_CULL_FACE);
     }
@@ -284,6 +297,7 @@ private:
     Program program_;
     Atlas first_, second_;
     std::array<UniformBlock<shared::depth_map::DepthMapUniforms>, 6> depthBlocks_;
+    std::array<UniformBlock<shared::warped_faces::WarpedFacePassUniforms>, 6> passBlocks_;
     std::array<UniformBlock<shared::layered_depth::LayeredDepthUniforms>, 7> layeredUniforms_;   // 6: the main pass's
     shared::warped_faces::WarpedFacesUniforms faces_{};   // the block's last values
     UniformBlock<shared::warped_faces::WarpedFacesUniforms> uniforms_;
