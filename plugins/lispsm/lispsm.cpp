@@ -99,7 +99,6 @@ class LightSpacePerspectiveShadowMaps final : public kit::WarpedMapTechnique<Par
     // frame rooted there (sec. 9.2.4's C_start), since the eye is mostly outside the face.
     std::optional<glm::mat4> faceWarp(const FrameContext& frame, const Params& p, const kit::CubeFaceFocus& face,
                                       const kit::DepthRange& range) override {
-        if (getenv("LP_NOWARP")) return std::nullopt;
         const std::vector<glm::vec3> visible = face.visible.vertices();
         if (visible.empty()) return std::nullopt;
         glm::vec3 start = visible.front();
@@ -118,9 +117,6 @@ class LightSpacePerspectiveShadowMaps final : public kit::WarpedMapTechnique<Par
         }
         const auto w = lispsm::spotWarpFrom(face.body.vertices(), face.light.viewProjection, frame.camera, start, nearest,
                                             false, options(frame, p, face.body, range, face.light, true));
-        if (getenv("LP_DEBUG") && w) fprintf(stderr, "face %d n %g d %g sin %g start %g %g %g nearest %g\n", face.face, w->n, w->d, w->sinGamma, start.x, start.y, start.z, nearest);
-        if (getenv("LP_DEBUG") && !w) fprintf(stderr, "face %d none\n", face.face);
-        if (getenv("LP_ONLY") && atoi(getenv("LP_ONLY")) != face.face) return std::nullopt;
         return w ? std::optional(w->viewProjection) : std::nullopt;
     }
 };
