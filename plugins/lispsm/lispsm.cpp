@@ -10,8 +10,13 @@
 // blocky), too large under-warps (Fig. 8.4); depth is hyperbolic along the warp, so bias is in
 // uneven units: back faces in the map (cull = front, sec. 9.3) is the default.
 // Spot lights: the general case of sec. 8.2.4 / 9.2.3, the warp built in the spot's post-perspective
-// space, where its rays are parallel (lispsm_warp.h's spotWarp). Point lights: a focused uniform map.
-// Biasing (ch. 5) and linear depth: kit::LayeredDepthMap (bias_method, z_offset are the kit's).
+// space, where its rays are parallel (lispsm_warp.h's spotWarp). Point lights: up to six spot-like
+// frusta, the faces of the light's cube (kit/warped_faces.h): each face that sees a visible point
+// gets its own map focused on B_f (the view's part in the face, joined with the light) and warped
+// as a spot light from the nearest visible vertex in it (sec. 9.2.3's e_world), or focused
+// uniformly where the warp is uniform anyway; the lookup picks the face by (P - light)'s major
+// axis. Biasing (ch. 5) and linear depth: kit::LayeredDepthMap (bias_method, z_offset are the
+// kit's), per face under a point light.
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/warped_map.h>
 
@@ -132,10 +137,13 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "texels crowd towards the viewer: sharp shadows near the camera from the same map size, at "
                     "the cost of distant ones (seed 002 ch. 8-9). The warp distance n is n_opt times n_factor "
                     "(try 0.2 and 5); looking along the light the warp fades to a plain focused map (duelling "
-                    "frusta). Back faces are stored by default (cull = front), the seed's best bias. snap only "
-                    "affects that uniform fallback (point lights, near-parallel view and light). Debug "
-                    "views: footprint (the warp's texels per pixel, near against far), texel-grid and coverage "
-                    "(the warped map and its volume), focus-body (B, seed 002 eq. 4.2), and the depth image.",
+                    "frusta). A point light gets one warped map per cube face that sees the view (seed 002 "
+                    "sec. 8.2.4). Back faces are stored by default (cull = front), the seed's best bias. snap "
+                    "only affects the uniform fallback (near-parallel view and light, or a point light's face "
+                    "whose warp would be uniform). Debug views: footprint (the warp's texels per pixel, near "
+                    "against far), texel-grid and coverage (the warped map and its volume; under a point light "
+                    "each pixel's first reported face whose map holds it), focus-body (B, seed 002 eq. 4.2; per "
+                    "face under a point light), and the depth image (the six faces' atlas under a point light).",
      .shadowGlsl = "lispsm.glsl",
      .flags = kTechniqueNeedsCameraDepth,              // range = receivers reduces the pre-pass's depth
      .translucencyModel = TranslucencyModel::Ignore},  // its map holds opaque casters only
