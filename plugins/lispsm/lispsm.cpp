@@ -10,8 +10,13 @@
 // blocky), too large under-warps (Fig. 8.4); depth is hyperbolic along the warp, so bias is in
 // uneven units: back faces in the map (cull = front, sec. 9.3) is the default.
 // Spot lights: the general case of sec. 8.2.4 / 9.2.3, the warp built in the spot's post-perspective
-// space, where its rays are parallel (lispsm_warp.h's spotWarp). Point lights: a focused uniform map.
-// Biasing (ch. 5) and linear depth: kit::LayeredDepthMap (bias_method, z_offset are the kit's).
+// space, where its rays are parallel (lispsm_warp.h's spotWarp). Point lights: up to six spot-like
+// frusta, the faces of the light's cube (kit/warped_faces.h): each face that sees a visible point
+// gets its own map focused on B_f (the view's part in the face, joined with the light) and warped
+// as a spot light from the nearest visible vertex in it (sec. 9.2.3's e_world), or focused
+// uniformly where the warp is uniform anyway; the lookup picks the face by (P - light)'s major
+// axis. Biasing (ch. 5) and linear depth: kit::LayeredDepthMap (bias_method, z_offset are the
+// kit's), per face under a point light.
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/warped_map.h>
 
@@ -56,32 +61,67 @@ SHADOWLAB_PARAMS(Params, LISPSM_PARAMS);
 
 class LightSpacePerspectiveShadowMaps final : public kit::WarpedMapTechnique<Params> {
     bool linearDepth(const Params& p) const override { return p.depth == 1; }
+    bool warpsCubeFaces() const override { return true; }
+
+    // The options of sec. 9.2.5-9.2.6 for a map of `light` (the spot's frustum, or a point light's
+    // face): n's factor, n from the virtual frustum's body (only where it is nearer than the real
+    // one; with range = receivers the farthest receiver is one), the body vector of B's corners.
+    lispsm::WarpOptions options(const FrameContext& frame, const Params& p, const kit::ConvexBody& body,
+                                const kit::DepthRange& range, const LightSpace& light, bool face) {
+        const Bounds scene = host().bounds(DrawSet::All);
+        lispsm::WarpOptions options;
+        options.nFactor = p.n_factor;
+        float farForN = p.virtual_far > 0.0f ? p.virtual_far : frame.camera.farPlane;
+        if (p.range == 1) farForN = std::min(farForN, range.farDistance);
+        if (farForN < frame.camera.farPlane) {
+            const kit::ConvexBody virtualView = lispsm::virtualViewBody(frame.camera, farForN);
+            options.bodyForN = (face ? kit::faceFocusBody(virtualView, frame.light, scene, light)
+                                     : kit::focusBody(virtualView, frame.light, scene, light)).vertices();
+        }
+        if (p.body_vector)
+            options.axisSource = lispsm::bodyVector(body.corners(kit::focus_detail::toleranceFor(body)), frame.camera.position);
+        return options;
+    }
 
     // Sec. 9.2.1-9.2.6: the warp of a directional light, or of a spot light in its post-perspective
-    // space; none for point lights or where it would be uniform anyway.
+    // space; none for point lights (faceWarp()) or where it would be uniform anyway.
     std::optional<glm::mat4> warp(const FrameContext& frame, const Params& p, const kit::FocusedLightSpace& focused,
                                   const kit::DepthRange& range) override {
         if (frame.light.type == LightType::Point || focused.body.empty()) return std::nullopt;
-        const Bounds scene = host().bounds(DrawSet::All);
         kit::ConvexBody visible = kit::frustumBody(frame.camera.inverseViewProjection);
-        kit::clip(visible, scene);
-        lispsm::WarpOptions options;
-        options.nFactor = p.n_factor;
-        // Sec. 9.2.5: n from the body of the virtual frustum (only where it is nearer than the real one);
-        // with range = receivers the farthest receiver is one.
-        float farForN = p.virtual_far > 0.0f ? p.virtual_far : frame.camera.farPlane;
-        if (p.range == 1) farForN = std::min(farForN, range.farDistance);
-        if (farForN < frame.camera.farPlane)
-            options.bodyForN = kit::focusBody(lispsm::virtualViewBody(frame.camera, farForN), frame.light, scene,
-                                              focused.light).vertices();
-        // Sec. 9.2.6: the axis from the body vector of B's corners.
-        if (p.body_vector)
-            options.axisSource = lispsm::bodyVector(focused.body.corners(kit::focus_detail::toleranceFor(focused.body)),
-                                                     frame.camera.position);
+        kit::clip(visible, host().bounds(DrawSet::All));
+        const lispsm::WarpOptions o = options(frame, p, focused.body, range, focused.light, false);
         const float nearest = std::max(lispsm::nearestEyeDepth(frame.camera, visible.vertices()), range.nearDistance);
         const auto w = frame.light.type == LightType::Spot
-                           ? lispsm::spotWarp(focused.body.vertices(), focused.light.viewProjection, frame.camera, nearest, options)
-                           : lispsm::directionalWarp(focused.body.vertices(), frame.light.direction, frame.camera, nearest, options);
+                           ? lispsm::spotWarp(focused.body.vertices(), focused.light.viewProjection, frame.camera, nearest, o)
+                           : lispsm::directionalWarp(focused.body.vertices(), frame.light.direction, frame.camera, nearest, o);
+        return w ? std::optional(w->viewProjection) : std::nullopt;
+    }
+
+    // A point light's face as a spot light (sec. 8.2.4, 9.2.3): the warp in the face's
+    // post-perspective space, its orientation ray from e_world, the vertex of LVS (the view's part
+    // in the face) nearest the eye, moved along the view to range = receivers' near distance; the
+    // frame rooted there (sec. 9.2.4's C_start), since the eye is mostly outside the face.
+    std::optional<glm::mat4> faceWarp(const FrameContext& frame, const Params& p, const kit::CubeFaceFocus& face,
+                                      const kit::DepthRange& range) override {
+        const std::vector<glm::vec3> visible = face.visible.vertices();
+        if (visible.empty()) return std::nullopt;
+        glm::vec3 start = visible.front();
+        float nearest = 1e30f;
+        for (const glm::vec3& v : visible) {
+            const float depth = -(frame.camera.view * glm::vec4(v, 1.0f)).z;
+            if (depth < nearest) {
+                nearest = depth;
+                start = v;
+            }
+        }
+        const glm::vec3 view = -glm::vec3(frame.camera.view[0][2], frame.camera.view[1][2], frame.camera.view[2][2]);
+        if (range.nearDistance > nearest) {
+            start += view * (range.nearDistance - nearest);
+            nearest = range.nearDistance;
+        }
+        const auto w = lispsm::spotWarpFrom(face.body.vertices(), face.light.viewProjection, frame.camera, start, nearest,
+                                            false, options(frame, p, face.body, range, face.light, true));
         return w ? std::optional(w->viewProjection) : std::nullopt;
     }
 };
@@ -97,10 +137,13 @@ constexpr TechniqueDesc kDescriptor = kit::describe(
                     "texels crowd towards the viewer: sharp shadows near the camera from the same map size, at "
                     "the cost of distant ones (seed 002 ch. 8-9). The warp distance n is n_opt times n_factor "
                     "(try 0.2 and 5); looking along the light the warp fades to a plain focused map (duelling "
-                    "frusta). Back faces are stored by default (cull = front), the seed's best bias. snap only "
-                    "affects that uniform fallback (point lights, near-parallel view and light). Debug "
-                    "views: footprint (the warp's texels per pixel, near against far), texel-grid and coverage "
-                    "(the warped map and its volume), focus-body (B, seed 002 eq. 4.2), and the depth image.",
+                    "frusta). A point light gets one warped map per cube face that sees the view (seed 002 "
+                    "sec. 8.2.4). Back faces are stored by default (cull = front), the seed's best bias. snap "
+                    "only affects the uniform fallback (near-parallel view and light, or a point light's face "
+                    "whose warp would be uniform). Debug views: footprint (the warp's texels per pixel, near "
+                    "against far), texel-grid and coverage (the warped map and its volume; under a point light "
+                    "each pixel's first reported face whose map holds it), focus-body (B, seed 002 eq. 4.2; per "
+                    "face under a point light), and the depth image (the six faces' atlas under a point light).",
      .shadowGlsl = "lispsm.glsl",
      .flags = kTechniqueNeedsCameraDepth,              // range = receivers reduces the pre-pass's depth
      .translucencyModel = TranslucencyModel::Ignore},  // its map holds opaque casters only

@@ -30,12 +30,15 @@ using shared::cube_depth_map::kCubeDepthMapUnit;
 // The six faces' view-projections around `position` in GL's face order. The up vectors are the
 // ones GL's cube-map addressing implies (its faces are stored with t running down), so a face
 // drawn with them is the image a lookup along its directions reads.
-inline std::array<glm::mat4, 6> cubeFaceViewProjections(glm::vec3 position, float nearPlane, float farPlane) {
+inline glm::mat4 cubeFaceView(glm::vec3 position, int face) {
     static const glm::vec3 kForward[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     static const glm::vec3 kUp[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+    return glm::lookAt(position, position + kForward[face], kUp[face]);
+}
+inline std::array<glm::mat4, 6> cubeFaceViewProjections(glm::vec3 position, float nearPlane, float farPlane) {
     const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, nearPlane, farPlane);
     std::array<glm::mat4, 6> faces;
-    for (int i = 0; i < 6; ++i) faces[size_t(i)] = projection * glm::lookAt(position, position + kForward[i], kUp[i]);
+    for (int i = 0; i < 6; ++i) faces[size_t(i)] = projection * cubeFaceView(position, i);
     return faces;
 }
 

@@ -102,6 +102,42 @@ inline glm::vec4 linearDepthPlane(const LightSpace& lightSpace, const ConvexBody
     return linearDepthPlane(lightSpace, std::vector<glm::vec3>(corners, corners + 8));
 }
 
+inline bool usesTwoLayers(BiasMethod method) { return method == BiasMethod::Midpoint || method == BiasMethod::SecondDepth; }
+
+// One depth pass of `layered` (LayeredDepthMap::draw, kit::WarpedFaceMaps): `config` adjusted for
+// the method (inverted back faces: front faces culled, the offset reversed; two layers: every face,
+// no offset, the layers' gap being the bias) and the pass's block. Where the fragment stage writes
+// depth (two layers, linear depth, a fragment-stage bias) the offset moves into the block and
+// `config.program` becomes `program` (shaders/layered_depth.vert/.frag).
+inline shared::layered_depth::LayeredDepthUniforms layeredPass(DepthMapConfig& config, const LayeredDepthConfig& layered,
+                                                              const Program& program) {
+    const bool twoLayers = usesTwoLayers(layered.method);
+    if (layered.method == BiasMethod::InvertedBackFaces) {
+        config.cull = Cull::Front;
+        config.constantBias = -config.constantBias;
+        config.slopeBias = -config.slopeBias;
+    }
+    if (twoLayers) {
+        config.cull = Cull::None;
+        config.constantBias = config.slopeBias = 0.0f;
+    }
+    shared::layered_depth::LayeredDepthUniforms block{};
+    block.uLinearDepthPlane = layered.linearDepthPlane.value_or(glm::vec4(0.0f));
+    block.uLinearDepth = layered.linearDepthPlane ? 1 : 0;
+    block.uBiasMethod = twoLayers ? int(layered.method) : 0;
+    block.uZOffset = layered.zOffset;
+    block.uPeelTolerance = config.format == GL_DEPTH_COMPONENT16   ? 1.0f / 65535.0f
+                           : config.format == GL_DEPTH_COMPONENT24 ? 1.0f / 16777215.0f
+                                                                   : 0.0f;
+    if (twoLayers || layered.linearDepthPlane || layered.fragmentBias) {
+        block.uSlopeFactor = config.slopeBias;
+        block.uConstantUnits = config.constantBias;
+        config.program = &program;
+        config.constantBias = config.slopeBias = 0.0f;
+    }
+    return block;
+}
+
 class LayeredDepthMap {
 public:
     // `resolvable`: the map also builds resolve() (the filtering techniques' one compare map).
@@ -153,31 +189,8 @@ public:
     // `lightSpace` with the casters culled to `cullPlanes`. The caller owns depth clamp and the timer.
     void draw(const LightSpace& lightSpace, DepthMapConfig config, const LayeredDepthConfig& layered,
               const std::vector<glm::vec4>& cullPlanes = {}) {
-        twoLayers_ = layered.method == BiasMethod::Midpoint || layered.method == BiasMethod::SecondDepth;
-        if (layered.method == BiasMethod::InvertedBackFaces) {
-            config.cull = Cull::Front;
-            config.constantBias = -config.constantBias;
-            config.slopeBias = -config.slopeBias;
-        }
-        if (twoLayers_) {
-            // Both layers of every caster, no offset: the layers' gap is the bias.
-            config.cull = Cull::None;
-            config.constantBias = config.slopeBias = 0.0f;
-        }
-        shared::layered_depth::LayeredDepthUniforms block{};
-        block.uLinearDepthPlane = layered.linearDepthPlane.value_or(glm::vec4(0.0f));
-        block.uLinearDepth = layered.linearDepthPlane ? 1 : 0;
-        block.uBiasMethod = twoLayers_ ? int(layered.method) : 0;
-        block.uZOffset = layered.zOffset;
-        block.uPeelTolerance = config.format == GL_DEPTH_COMPONENT16   ? 1.0f / 65535.0f
-                               : config.format == GL_DEPTH_COMPONENT24 ? 1.0f / 16777215.0f
-                                                                       : 0.0f;
-        if (twoLayers_ || layered.linearDepthPlane || layered.fragmentBias) {
-            block.uSlopeFactor = config.slopeBias;
-            block.uConstantUnits = config.constantBias;
-            config.program = &program_;
-            config.constantBias = config.slopeBias = 0.0f;
-        }
+        twoLayers_ = usesTwoLayers(layered.method);
+        shared::layered_depth::LayeredDepthUniforms block = layeredPass(config, layered, program_);
         uniforms_.set(block);
         uniforms_.bind();
         format_ = config.format;

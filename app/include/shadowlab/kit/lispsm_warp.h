@@ -216,31 +216,41 @@ inline std::optional<Warp> directionalWarp(const std::vector<glm::vec3>& body, g
     return warpInSpace(space, body, camera, nearestDepth, options);
 }
 
-// A spot light's warp (sec. 8.2.4, 9.2.3): B and the view taken into the spot's post-perspective
-// space `lightViewProjection` (P_L V_L, cropped or not), where its rays run parallel along +z, and
-// warped there; the result's viewProjection is the whole W P_L V_L. B must lie in the light's
-// frustum (kit::focusBody clips it there). No warp where the nearest visible point on the view axis
-// is behind the light or the warp is ill-defined.
-inline std::optional<Warp> spotWarp(const std::vector<glm::vec3>& body, const glm::mat4& lightViewProjection,
-                                    const CameraInfo& camera, float nearestDepth, WarpOptions options) {
+// A spot light's warp (sec. 8.2.4, 9.2.3) from the orientation ray's start `p0` (eye depth
+// `nearestDepth`): B and the view taken into the spot's post-perspective space
+// `lightViewProjection` (P_L V_L, cropped or not), where its rays run parallel along +z, and warped
+// there; the result's viewProjection is the whole W P_L V_L. B must lie in the light's frustum
+// (kit::focusBody clips it there). The frame's origin is the eye where `eyeAsOrigin` and the eye is
+// in front of the light, else p0 (sec. 9.2.4's C_start from e_ls). No warp where p0 is behind the
+// light or the warp is ill-defined.
+inline std::optional<Warp> spotWarpFrom(const std::vector<glm::vec3>& body, const glm::mat4& lightViewProjection,
+                                        const CameraInfo& camera, glm::vec3 p0, float nearestDepth, bool eyeAsOrigin,
+                                        WarpOptions options) {
     const glm::vec3 view = -glm::normalize(glm::vec3(camera.view[0][2], camera.view[1][2], camera.view[2][2]));
     const float zNear = std::max(nearestDepth, 1e-4f);
-    const glm::vec3 p0 = camera.position + view * zNear;
     const glm::vec4 p0Clip = lightViewProjection * glm::vec4(p0, 1.0f);
     if (!(p0Clip.w > 1e-6f)) return std::nullopt;
     WarpSpace space{.toSpace = lightViewProjection, .light = glm::vec3(0, 0, 1)};
     space.nearest = glm::vec3(p0Clip) / p0Clip.w;
     // The view direction there: the image of a short step along v from p0 (the projection's Jacobian).
     space.view = toWarpSpace(space, p0 + view * (1e-3f * zNear)) - space.nearest;
-    // The eye as the origin where it is in front of the light, else p0 (both on the view axis).
     const glm::vec4 eyeClip = lightViewProjection * glm::vec4(camera.position, 1.0f);
-    space.eye = eyeClip.w > 1e-6f ? glm::vec3(eyeClip) / eyeClip.w : space.nearest;
+    space.eye = eyeAsOrigin && eyeClip.w > 1e-6f ? glm::vec3(eyeClip) / eyeClip.w : space.nearest;
     std::vector<glm::vec3> local;
     for (const glm::vec3& p : body) local.push_back(toWarpSpace(space, p));
     for (glm::vec3& p : options.bodyForN) p = toWarpSpace(space, p);
     if (glm::length(options.axisSource) > 0.0f)   // a direction: its image at p0, like v's
         options.axisSource = toWarpSpace(space, p0 + options.axisSource * (1e-3f * zNear)) - space.nearest;
     return warpInSpace(space, local, camera, nearestDepth, options);
+}
+
+// A spot light's warp with the ray starting on the view axis at `nearestDepth` (the nearest visible
+// point p0) and the eye as the frame's origin where it is in front of the light (both on the view axis).
+inline std::optional<Warp> spotWarp(const std::vector<glm::vec3>& body, const glm::mat4& lightViewProjection,
+                                    const CameraInfo& camera, float nearestDepth, WarpOptions options) {
+    const glm::vec3 view = -glm::normalize(glm::vec3(camera.view[0][2], camera.view[1][2], camera.view[2][2]));
+    const glm::vec3 p0 = camera.position + view * std::max(nearestDepth, 1e-4f);
+    return spotWarpFrom(body, lightViewProjection, camera, p0, nearestDepth, true, std::move(options));
 }
 
 // The view-direction warp with n = nFactor * n_opt from B itself (the recipe up to sec. 9.2.5).

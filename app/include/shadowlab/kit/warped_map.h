@@ -3,7 +3,9 @@
 // uniform fallback), the technique's warp, and the depth pass of kit::LayeredDepthMap (fragment
 // bias, linear depth, two layers). A technique derives from WarpedMapTechnique<Params> and gives
 // its warp; its Params hold resolution, SHADOWLAB_WARPED_MAP_PARAMS (range, the bias group,
-// hardware_filter, snap) and the two-layer group.
+// hardware_filter, snap) and the two-layer group. Under a point light a technique that gives
+// faceWarp() (lispsm) gets one map per cube face instead (kit/warped_faces.h), each warped or
+// focused on its face's body; its GLSL reads warpedOrFacesShadow() (shaders/warped_faces.glsl).
 #pragma once
 
 #include <optional>
@@ -12,6 +14,7 @@
 #include <shadowlab/kit/params.h>
 #include <shadowlab/kit/receiver_range.h>
 #include <shadowlab/kit/technique_base.h>
+#include <shadowlab/kit/warped_faces.h>
 
 // What the warped map reads besides resolution and the two layers: the view depths to warp for,
 // the bias (constant bias up to 65536 units; front faces culled, back faces stored by default:
@@ -33,9 +36,19 @@ protected:
                                           const DepthRange& range) = 0;
     // Whether the map stores linear depth along the light (else the matrix's own z).
     virtual bool linearDepth(const Params& p) const = 0;
+    // Whether point lights get one map per cube face (faceWarp()); else one focused map (the host's
+    // frustum, at most 160 degrees, as for a spot light).
+    virtual bool warpsCubeFaces() const { return false; }
+    // A point light's matrix for one face (world -> clip, projective), or none: the face's map
+    // focused on its body B_f.
+    virtual std::optional<glm::mat4> faceWarp(const FrameContext&, const Params&, const CubeFaceFocus&, const DepthRange&) {
+        return std::nullopt;
+    }
 
 private:
-    bool setup(std::string& error) override { return maps_.create(host(), error) && range_.create(host(), error); }
+    bool setup(std::string& error) override {
+        return maps_.create(host(), error) && range_.create(host(), error) && faces_.create(host(), error);
+    }
     void shutdown() override { range_.destroy(); }
 
     void renderShadows(const FrameContext& frame, const ParamValues& params) override {
@@ -44,15 +57,37 @@ private:
         // Before the map's timer scope: the receivers' reduction is a pass of its own.
         const DepthRange range = range_.range(frame, p.range == 1);
         GpuPass pass(host(), "shadow map");
+        pointFaces_ = frame.light.type == LightType::Point && warpsCubeFaces();
+        if (pointFaces_) {
+            renderFaces(frame, p, config, range);
+            return;
+        }
+        faces_.deactivate();
         const FocusedLightSpace focused = focusLightSpace(host(), frame, {Fit::FocusBody, bool(p.snap)}, config.resolution);
         maps_.drawWarped(focused, warp(frame, p, focused, range), config, layeredDepthConfig(p), linearDepth(p));
     }
 
+    // The faces that see a visible point, each warped by faceWarp() or focused on B_f.
+    void renderFaces(const FrameContext& frame, const Params& p, const DepthMapConfig& config, const DepthRange& range) {
+        const Bounds scene = host().bounds(DrawSet::All);
+        const auto warpOf = [&](const CubeFaceFocus& face) { return faceWarp(frame, p, face, range); };
+        const int resolution = faces_.faceResolution(config.resolution);
+        const std::vector<FaceMap> maps =
+            faceMaps(cubeFaceFocus(frame.camera, frame.light, scene), warpOf, scene, bool(p.snap), resolution);
+        faces_.setLight(frame.light.position);
+        faces_.draw(maps, config, layeredDepthConfig(p), linearDepth(p), scene);
+    }
+
     void bindMainPass(const FrameContext&, const ParamValues& params) override {
-        maps_.bindMainPass(Params::read(params).hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest);
+        const SamplerKind sampling = Params::read(params).hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
+        maps_.bindMainPass(sampling);
+        if (pointFaces_) faces_.bindMainPass(sampling);
+        else faces_.bindInactive();
     }
 
     LayeredDepthMap maps_;
+    WarpedFaceMaps faces_;
+    bool pointFaces_ = false;   // this frame's map is the faces
     ReceiverRange range_;
 };
 
