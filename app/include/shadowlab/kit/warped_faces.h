@@ -57,11 +57,18 @@ inline LightSpace cubeFaceLightSpace(glm::vec3 position, int face, const Bounds&
     return light;
 }
 
-// B_f of a view body (the camera's frustum, or sec. 9.2.5's virtual one) in the face `light`.
-inline ConvexBody faceFocusBody(ConvexBody view, const LightInfo& lightInfo, const Bounds& scene, const LightSpace& light) {
+// V n S n F: the part of a view body (the camera's frustum, or sec. 9.2.5's virtual one) inside
+// the scene and the face `light`.
+inline ConvexBody faceVisibleBody(ConvexBody view, const Bounds& scene, const LightSpace& light) {
     clip(view, scene);
     clip(view, frustumBody(glm::inverse(light.viewProjection)));
-    return view.empty() ? view : focusBody(view, lightInfo, scene, light);
+    return view;
+}
+
+// B_f of a view body in the face `light`.
+inline ConvexBody faceFocusBody(const ConvexBody& view, const LightInfo& lightInfo, const Bounds& scene, const LightSpace& light) {
+    const ConvexBody visible = faceVisibleBody(view, scene, light);
+    return visible.empty() ? visible : focusBody(visible, lightInfo, scene, light);
 }
 
 // The six faces' bodies for the camera's view (pure maths: tests/test_lispsm_faces.cpp).
@@ -72,9 +79,7 @@ inline std::array<CubeFaceFocus, 6> cubeFaceFocus(const CameraInfo& camera, cons
         CubeFaceFocus& f = faces[size_t(i)];
         f.face = i;
         f.light = cubeFaceLightSpace(light.position, i, scene, pad);
-        f.visible = frustumBody(camera.inverseViewProjection);
-        clip(f.visible, scene);
-        clip(f.visible, frustumBody(glm::inverse(f.light.viewProjection)));
+        f.visible = faceVisibleBody(frustumBody(camera.inverseViewProjection), scene, f.light);
         if (!f.visible.empty()) f.body = focusBody(f.visible, light, scene, f.light);
     }
     return faces;

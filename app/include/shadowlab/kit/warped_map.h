@@ -46,8 +46,9 @@ protected:
     }
 
 private:
+    // The faces' program and block only for a technique that draws them (tsm never does).
     bool setup(std::string& error) override {
-        return maps_.create(host(), error) && range_.create(host(), error) && faces_.create(host(), error);
+        return maps_.create(host(), error) && range_.create(host(), error) && (!warpsCubeFaces() || faces_.create(host(), error));
     }
     void shutdown() override { range_.destroy(); }
 
@@ -62,7 +63,7 @@ private:
             renderFaces(frame, p, config, range);
             return;
         }
-        faces_.deactivate();
+        if (warpsCubeFaces()) faces_.deactivate();
         const FocusedLightSpace focused = focusLightSpace(host(), frame, {Fit::FocusBody, bool(p.snap)}, config.resolution);
         maps_.drawWarped(focused, warp(frame, p, focused, range), config, layeredDepthConfig(p), linearDepth(p));
     }
@@ -82,7 +83,7 @@ private:
         const SamplerKind sampling = Params::read(params).hardware_filter ? SamplerKind::CompareLinear : SamplerKind::CompareNearest;
         maps_.bindMainPass(sampling);
         if (pointFaces_) faces_.bindMainPass(sampling);
-        else faces_.bindInactive();
+        else if (warpsCubeFaces()) faces_.bindInactive();
     }
 
     LayeredDepthMap maps_;
