@@ -57,6 +57,15 @@ expect 0 "wrote" -- bench --backend osmesa --size 64x48 --techniques shadowmap -
 grep -q '"depth_prepass_mode": "auto"' "$tmp/prepass.json" && grep -q '"depth_prepass": 0' "$tmp/prepass.json" ||
     { echo "FAIL: bench on cube by default: not auto, or auto chose the pre-pass"; failures=$((failures + 1)); }
 expect 2 "no such technique" -- render --backend osmesa -t nonexistent --out "$tmp/a.png"
+# --technique and --set are checked against the descriptors before a GL context exists: with a
+# backend that cannot start here (glfw, no display) the option is still what is named.
+for cmd in "render --out $tmp/a.png" "eval"; do
+    # shellcheck disable=SC2086
+    DISPLAY= WAYLAND_DISPLAY= expect 2 "resolution=10: parameter 'resolution': 10 is out of range" -- $cmd --backend glfw -t shadowmap --set resolution=10
+    # shellcheck disable=SC2086
+    DISPLAY= WAYLAND_DISPLAY= expect 2 "--technique 'nonesuch': no such technique" -- $cmd --backend glfw -t nonesuch
+done
+DISPLAY= WAYLAND_DISPLAY= expect 2 "--techniques: no technique 'nonesuch'" -- stress --backend glfw --techniques nonesuch --out "$tmp/stress-glfw"
 expect 2 "expected glfw, egl or osmesa" -- render --backend vulkan --out "$tmp/a.png"
 expect 2 "WIDTHxHEIGHT" -- render --backend osmesa --size 12by3 --out "$tmp/a.png"
 expect 2 "--view 'nope': shadowmap has no such view (views: lit, visibility, error, footprint, texel-grid, coverage, focus-body, kernel, reference, 'shadow map')" -- render --backend osmesa -t shadowmap --view nope --out "$tmp/a.png"
