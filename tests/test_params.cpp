@@ -103,7 +103,11 @@ TEST(Params, RemapKeepsValuesByIdAndClampsToNewRanges) {
 namespace {
 using namespace shadowlab;
 enum class Mode : int { A = 0, B = 1 };
-constexpr ParamDesc kModeParam{"mode", "mode", ParamType::Enum, 0, 1, 1, "", "", "a|b"};
+constexpr ParamDesc kModeParam = kit::enumParam("mode", "mode", 1, "a|b", "");
+// An enum's range is its options' indices: stated once, by the options.
+static_assert(kModeParam.type == ParamType::Enum && kModeParam.minValue == 0 && kModeParam.maxValue == 1);
+static_assert(kit::enumParam("m", "m", 0, "one", "").maxValue == 0);
+static_assert(kit::enumParam("m", "m", 0, "16|24|32F", "").maxValue == 2);
 #define KIT_PARAMS_TEST_LIST(X)                      \
     SHADOWLAB_DEPTH_MAP_PARAMS(X, 1024, 100, 2)      \
     X(Mode, mode, kModeParam)                        \

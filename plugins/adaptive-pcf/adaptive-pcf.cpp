@@ -39,15 +39,14 @@ constexpr ParamDesc kCoherent{"coherent", "early out per 2x2 quad", ParamType::B
      "shades quads (and warps) together, so a pixel that stops alone next to one that continues should save "
      "nothing; measured on an H200 it made no difference in speed and lowered the penumbra error slightly. "
      "Off gives seed 000's per-pixel decision.", nullptr};
-constexpr ParamDesc kClassify{"classify", "decide lit and shadowed by", ParamType::Enum, 0, 1, 0, "",
+constexpr ParamDesc kClassify = kit::enumParam("classify", "decide lit and shadowed by", 0, "ring|depth-range",
      "How a pixel outside any penumbra is recognised. ring: seed 000's test, the outer ring of taps all "
      "agreeing. depth-range: first the nearest and farthest depth stored under the whole disc (depth-range "
      "mips, one extra pass, four fetches): nearest at or behind the receiver means every tap is lit, "
      "farthest in front of it every tap shadowed, and the ring is not read; the other pixels take the ring "
      "test. Exactly the same image as ring (a pixel the bounds decide has a unanimous ring), fewer lookups "
      "where most of the view is plainly lit or shadowed; on forest (an H200, with the depth pre-pass) it was "
-     "9% slower than ring, whose default it is not.",
-     "ring|depth-range"};
+     "9% slower than ring, whose default it is not.");
 constexpr ParamDesc kCountEarlyOuts{"count_early_outs", "count early outs", ParamType::Bool, 0, 1, 0, "",
      "Count the calls and early outs with two atomic counters and report the early-out rate (statistics). "
      "Every fragment increments the same counters, which costs GPU time: leave it off when timing.",

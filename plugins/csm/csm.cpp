@@ -53,14 +53,13 @@ constexpr ParamDesc kLambda{"lambda", "split lambda", ParamType::Float, 0, 1, 0.
      "near cascade so thin it is wasted when the near plane is small); 0 uniform (far cascades too "
      "fine, the near one blocky).",
      nullptr};
-constexpr ParamDesc kFit{"fit", "fit", ParamType::Enum, 0, 2, 1, "",
+constexpr ParamDesc kFit = kit::enumParam("fit", "fit", 1, "frustum|focus-body|sdsm",
      "Depth range the splits divide and what each cascade is fitted around. frustum: the camera's near "
      "to far, each slice's 8 corners (the classic scheme). focus-body: the range where the view meets "
      "the scene's bounds, each slice clipped to them (a far plane beyond the scene wastes nothing). "
      "sdsm: sample distribution shadow maps (Lauritzen 2010): the nearest and farthest depth the "
      "camera actually sees, reduced on the GPU from the camera pre-pass and read back a few frames "
-     "late; the tightest, but a fast camera motion briefly leaves pixels beyond the range.",
-     "frustum|focus-body|sdsm"};
+     "late; the tightest, but a fast camera motion briefly leaves pixels beyond the range.");
 constexpr ParamDesc kSnap{"snap", "stabilise (sphere + snap)", ParamType::Bool, 0, 1, 1, "",
      "Stabilised cascades: each fitted as the square around its slice's bounding sphere (the same size "
      "whatever the camera's direction) moved in whole texels, so shadow edges stand still while the "

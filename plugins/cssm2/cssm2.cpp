@@ -36,16 +36,14 @@ constexpr ParamDesc kKernel{"kernel", "kernel size n", ParamType::Int, 1, 11, 5,
      "photons (every texel all or nothing per channel); seed 001 timed 9 x 9 and 3 x 3. Cost grows with "
      "n^2 and every edge blurs over n texels.",
      nullptr};
-constexpr ParamDesc kConstantBias{"constant_bias", "constant bias", ParamType::Float, 0, 64, 2, "units",
+constexpr ParamDesc kConstantBias = kit::withHelp(kit::constantBiasParam(64),
      "Added to every depth the colour map stores, in units of 2^-24 (what glPolygonOffset's units are "
      "for 32F depth near 1; a colour attachment gets no polygon offset, so the shader adds it). Zero "
-     "shows acne; large values detach shadows from their casters.",
-     nullptr};
-constexpr ParamDesc kSlopeBias{"slope_bias", "slope-scaled bias", ParamType::Float, 0, 16, 2, "",
+     "shows acne; large values detach shadows from their casters.");
+constexpr ParamDesc kSlopeBias = kit::withHelp(kit::slopeBiasParam(),
      "Added to every stored depth times its slope as seen from the light (glPolygonOffset's factor, "
      "applied in the shader). Zero leaves acne on tilted surfaces; large values push shadows off grazing "
-     "contacts.",
-     nullptr};
+     "contacts.");
 
 #define CSSM2_PARAMS(X)                      \
     X(int, resolution, kResolution)          \

@@ -44,11 +44,11 @@ constexpr ParamDesc kBodyVector{"body_vector", "body vector", ParamType::Bool, 0
      "frustum off-centre (looking out of the scene, down onto the ground). Off by default: on forest-002 "
      "it lowers the near third's error at 2048 texels but raises the far third's at 1024 and 2048 "
      "(docs/plugin-api.md).", nullptr};
-constexpr ParamDesc kDepth{"depth", "stored depth", ParamType::Enum, 0, 1, 0, "",
+constexpr ParamDesc kDepth = kit::enumParam("depth", "stored depth", 0, "hyperbolic|linear",
      "What the map stores (seed 002 sec. 5.3): the warp's own hyperbolic z, whose steps grow along the "
      "warp so that one bias is too small at one end and too large at the other, or linear depth along "
      "the light over the focus body (TSM's linear z), written per fragment with the slope-scaled bias "
-     "done in the shader.", "hyperbolic|linear"};
+     "done in the shader.");
 #define LISPSM_PARAMS(X)                                 \
     X(int, resolution, kit::resolutionParam())           \
     X(float, n_factor, kNFactor)                         \

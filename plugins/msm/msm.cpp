@@ -20,10 +20,10 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kStorage{"storage", "moment storage", ParamType::Enum, 0, 1, 0, "",
+constexpr ParamDesc kStorage = kit::enumParam("storage", "moment storage", 0, "rgba32f|rgba16",
      "How the four moments are stored: rgba32f, 32-bit floats (128 bits per texel), or rgba16, 16-bit unorm "
      "after the paper's optimised quantisation (half the memory and bandwidth; its rounding needs a moment "
-     "bias of about 3e-5 or more).", "rgba32f|rgba16"};
+     "bias of about 3e-5 or more).");
 constexpr ParamDesc kMomentBias{"moment_bias", "moment bias alpha", ParamType::Float, 1e-7, 0.01, 3e-5, "",
      "alpha in b' = (1 - alpha) b + alpha b*, the pull towards a fixed wide depth distribution that keeps "
      "the reconstruction stable against rounding (3e-5 suits both storages; with 32-bit floats 1e-6 still "

@@ -38,7 +38,7 @@ constexpr ParamDesc kOffsetScale{"offset_scale", "offset scale", ParamType::Floa
      "Spacing between neighbouring taps. Below 1 the taps overlap and the ramp is narrow but smooth; "
      "above 1 the penumbra widens without extra cost but breaks into visible bands and copies of the edge.",
      nullptr};
-constexpr ParamDesc kSampling{"sampling", "sampling", ParamType::Enum, 0, 2, 0, "",
+constexpr ParamDesc kSampling = kit::enumParam("sampling", "sampling", 0, "taps|gather|folded",
      "How the n x n taps are evaluated. taps: n^2 texture lookups. gather: the texels the taps read, "
      "fetched and compared four at a time with textureGather and weighted in the shader as the taps weight "
      "them, (n + 1)^2 / 4 lookups rounded up (36 instead of 121 at 11 x 11). folded: the same blocks of four "
@@ -46,9 +46,8 @@ constexpr ParamDesc kSampling{"sampling", "sampling", ParamType::Enum, 0, 2, 0, 
      "optimised PCF): as many lookups as gather, less arithmetic. Both give the taps' shadow without the cone "
      "bias; with it each 2 x 2 block compares against its farthest tap's reference, so contacts may be a "
      "little lighter (never darker) than with the taps. Both need offset scale 1 (neighbouring taps sharing "
-     "texels); at other spacings, and for point lights, the taps are used.",
-     "taps|gather|folded"};
-constexpr ParamDesc kClassify{"classify", "decide lit and shadowed by", ParamType::Enum, 0, 1, 0, "",
+     "texels); at other spacings, and for point lights, the taps are used.");
+constexpr ParamDesc kClassify = kit::enumParam("classify", "decide lit and shadowed by", 0, "none|depth-range",
      "none: every pixel in the map runs the kernel. depth-range: first the nearest and farthest depth "
      "stored anywhere the kernel reads (depth-range mips: one extra pass after the shadow map, then at most "
      "four fetches per pixel): nearest at or behind the receiver means every tap is lit, farthest in front "
@@ -59,8 +58,7 @@ constexpr ParamDesc kClassify{"classify", "decide lit and shadowed by", ParamTyp
      "region, rounded up to the mips' power-of-two blocks, spans more than the depth bias covers: at 11 x 11 "
      "that is nearly all of the lit ground in cube and contact, and penumbra-heavy views (forest's foliage) "
      "decide little at any size. Those pixels pay the mips and the test and still run the kernel. Point "
-     "lights ignore it.",
-     "none|depth-range"};
+     "lights ignore it.");
 
 #define PCF_PARAMS(X)                                  \
     X(int, resolution, kit::resolutionParam())         \

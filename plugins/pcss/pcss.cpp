@@ -55,15 +55,14 @@ constexpr ParamDesc kFilterGrid{"filter_grid", "filter samples n_f", ParamType::
 constexpr ParamDesc kBilinear{"bilinear", "bilinear taps", ParamType::Bool, 0, 1, 1, "",
      "Each filter tap compares the 2x2 nearest texels and blends them (what the texture unit's GL_LINEAR "
      "comparison does). Off: narrow penumbrae near contacts alias and the noise is coarser.", nullptr};
-constexpr ParamDesc kSearchBound{"search_bound", "blocker search bound", ParamType::Enum, 0, 2, 2, "",
+constexpr ParamDesc kSearchBound = kit::enumParam("search_bound", "blocker search bound", 2, "near plane|min-depth|depth-range",
      "Where the blocker search assumes the nearest blocker can be. 'near plane' is eq. 3.18 as printed: "
      "fine for a tight orthographic map, but a spot or point light whose map reaches close to the light "
      "searches half the map and misses small casters (missing or blotchy shadows). 'min-depth' narrows the "
      "search to the cone at the nearest depth stored in the region (depth-range mips, one extra pass). "
      "'depth-range' also stops, without searching, where the farthest depth stored in the region is in front "
      "of the receiver: every search and filter tap would be a blocker, so the pixel is fully shadowed (the "
-     "same image as 'min-depth', fewer lookups).",
-     "near plane|min-depth|depth-range"};
+     "same image as 'min-depth', fewer lookups).");
 
 #define PCSS_PARAMS(X)                         \
     X(int, resolution, kit::resolutionParam()) \

@@ -45,10 +45,10 @@ constexpr ParamDesc kTemporalParam = {"temporal", "temporal weight", ParamType::
      "Weight of the previous frame's result, reprojected to this frame's pixel (0: off). High weights average many "
      "frames of jitter into a smooth penumbra but lag behind moving shadows (ghosting); rejected where the "
      "reprojected pixel held another surface.", nullptr};
-constexpr ParamDesc kPassParam = {"pass", "where rays start", ParamType::Enum, 0, 1, 0, "",
+constexpr ParamDesc kPassParam = kit::enumParam("pass", "where rays start", 0, "compute|fragment",
      "compute: a compute pass over the host's camera pre-pass, once per pixel, into a screen image. fragment: the main "
      "pass's shadowTerm() traces itself (a ray query in the fragment stage): no pre-pass, but every shaded fragment "
-     "traces, overdraw included (use the host's depth pre-pass). Counters and temporal need compute.", "compute|fragment"};
+     "traces, overdraw included (use the host's depth pre-pass). Counters and temporal need compute.");
 constexpr ParamDesc kCountersParam = {"counters", "count rays and visits", ParamType::Bool, 0, 1, 0, "",
      "Counts rays, BVH node visits and triangle tests per pixel (statistics and the 'ray cost' heat map). Costs "
      "atomics and a second program variant; off for timing.", nullptr};

@@ -25,12 +25,11 @@ namespace {
 
 using namespace shadowlab;
 
-constexpr ParamDesc kVariant{"variant", "variant", ParamType::Enum, 0, 1, 1, "",
+constexpr ParamDesc kVariant = kit::enumParam("variant", "variant", 1, "conservative|non-conservative",
      "non-conservative: the revectorized boundary may cut into shadowed and lit texels alike (the paper's "
      "full revectorization; smallest edge error). conservative: it may only move into lit texels, so the shadow "
      "never shrinks and revectorization cannot open a light leak; about half of the staircase error remains "
-     "(the shadowed texels' corners).",
-     "conservative|non-conservative"};
+     "(the shadowed texels' corners).");
 constexpr ParamDesc kMaxSearch{"max_search", "max search", ParamType::Int, 1, 64, 16, "texels",
      "How far the walk along an edge goes on either side to find where the boundary steps. Edges nearly "
      "aligned with the map's axes have long runs: a run longer than this is treated as straight there. "

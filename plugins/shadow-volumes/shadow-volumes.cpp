@@ -49,25 +49,23 @@ namespace {
 using namespace shadowlab;
 using namespace shadowlab::shared::shadow_volumes;
 
-constexpr ParamDesc kCountingParam = {
-    "counting", "counting", ParamType::Enum, 0, 2, 0, "",
+constexpr ParamDesc kCountingParam = kit::enumParam(
+    "counting", "counting", 0, "auto|depth-pass|depth-fail",
     "How the stencil counts volume faces. depth-pass: the faces in front of the scene (fast, wrong with the camera "
     "inside a shadow: regions invert). depth-fail: the faces behind it (right everywhere, needs the caps). auto: "
-    "depth-fail only when the near plane, swept towards the light, touches a caster.",
-    "auto|depth-pass|depth-fail"};
+    "depth-fail only when the near plane, swept towards the light, touches a caster.");
 constexpr ParamDesc kDebugImagesParam = {
     "debug_images", "debug images", ParamType::Bool, 0, 1, 0, "",
     "Draw the 'volume overdraw' and 'silhouette edges' images every frame (two more passes over the volumes: leave "
     "off when timing).",
     nullptr};
-constexpr ParamDesc kExtractParam = {
-    "extract", "extract", ParamType::Enum, 0, 1, 1, "",
+constexpr ParamDesc kExtractParam = kit::enumParam(
+    "extract", "extract", 1, "geometry|compute",
     "Where the silhouettes are found. geometry: a geometry stage over the triangles with adjacency emits each "
     "triangle's sides and caps as it is drawn. compute: a compute pass writes them to a buffer, counted with atomics "
     "into indirect draw commands, drawn with glDrawArraysIndirect. The same volumes and image; compute holds a "
     "buffer for the worst case (72 bytes a caster triangle of a closed mesh, 108 of an open one) and falls back to "
-    "geometry, with a warning, where that does not fit. Default compute: on an H200 it was faster on dragon-like.",
-    "geometry|compute"};
+    "geometry, with a warning, where that does not fit. Default compute: on an H200 it was faster on dragon-like.");
 #define SHADOW_VOLUMES_PARAMS(X)         \
     X(int, counting, kCountingParam)     \
     X(int, extract, kExtractParam)       \

@@ -41,7 +41,7 @@ constexpr ParamDesc kHardwareFilter{"hardware_filter", "hardware 2x2 per tap", P
      "9 x 9 kernel): about (n + 1)^2 texels of noise averaged for n^2 lookups. Off: n^2 plain tests, "
      "noisier and with n^2 + 1 shades.",
      nullptr};
-constexpr ParamDesc kMsaa{"msaa", "MSAA samples", ParamType::Enum, 0, 3, 0, "",
+constexpr ParamDesc kMsaa = kit::enumParam("msaa", "MSAA samples", 0, "1|2|4|8",
      "Samples per texel of the map. 1: one coin flip per translucent texel (the single-sample map). "
      "2-8: a multisample map in which each covered sample is kept with probability alpha on its own "
      "(stochastic transparency's per-sample masks, Enderton et al. 2010), and every sample of the n x n "
@@ -49,8 +49,7 @@ constexpr ParamDesc kMsaa{"msaa", "MSAA samples", ParamType::Enum, 0, 3, 0, "",
      "without widening the kernel (a smaller kernel, sharper edges, for the same noise). The cost grows "
      "with the count: samples x the map's memory and fill, samples x n^2 fetches per pixel, and no "
      "hardware 2x2 filter (hardware_filter is ignored). A count the GPU lacks for 32F depth becomes the "
-     "next larger it has, else its largest (llvmpipe has only 4).",
-     "1|2|4|8"};
+     "next larger it has, else its largest (llvmpipe has only 4).");
 
 #define STOCHASTIC_SM_PARAMS(X)                       \
     X(int, resolution, kit::resolutionParam())        \

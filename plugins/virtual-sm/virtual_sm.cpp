@@ -52,10 +52,9 @@ constexpr ParamDesc kLevelBias{"level_bias", "level bias", ParamType::Float, -3,
      "default, gives texels of a half to one pixel, as UE5's directional lights (LOD bias -1.5); positive "
      "values read coarser pages (fewer pages, blurrier edges), negative ones finer (four times the pages a level).",
      nullptr};
-constexpr ParamDesc kFilter{"filter", "filter", ParamType::Enum, 0, 1, 0, "",
+constexpr ParamDesc kFilter = kit::enumParam("filter", "filter", 0, "hardware|pcf",
      "hardware: one 2x2 bilinear comparison by the texture unit; pcf: 3 x 3 of them, one texel apart (each tap "
-     "through the page table), a ramp about three texels wide.",
-     "hardware|pcf"};
+     "through the page table), a ramp about three texels wide.");
 constexpr ParamDesc kNormalOffset{"normal_offset", "normal offset", ParamType::Float, 0, 4, 0.5, "texels",
      "The lookup point moves along the surface normal by this many texels of its level: removes acne on "
      "surfaces lit at grazing angles, which constant and slope bias cannot reach at every level.",

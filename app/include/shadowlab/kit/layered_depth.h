@@ -19,13 +19,14 @@
 
 #include <shadowlab/kit/depth_map.h>
 #include <shadowlab/kit/layered_depth_shared.h>
+#include <shadowlab/kit/params.h>
 
 namespace shadowlab::kit {
 
 enum class BiasMethod : int { Offset = 0, Midpoint = 1, SecondDepth = 2, InvertedBackFaces = 3 };
 
 constexpr ParamDesc biasMethodParam() {
-    return {"bias_method", "bias method", ParamType::Enum, 0, 3, 0, "",
+    return enumParam("bias_method", "bias method", 0, "offset|midpoint|second-depth|inverted-back-faces",
             "offset: constant and slope-scaled offset (eq. 5.2). midpoint: a second layer by depth peeling and "
             "the test against min((z2 - z1) / 2, z_offset) past the first (eq. 5.1, dual shadow maps). "
             "second-depth: the test against the second layer (Wang and Molnar). inverted-back-faces: back faces "
@@ -33,8 +34,7 @@ constexpr ParamDesc biasMethodParam() {
             "face, ignore the bias and cull parameters and cost a second depth pass (seed 002 ch. 5); pcf, "
             "adaptive-pcf, pcss, rbsm and edtsm also resolve both layers into the one map they read (one more "
             "pass); the filtering ones keep their cone bias, a receiver-side bias. Point lights' cube maps: "
-            "offset only.",
-            "offset|midpoint|second-depth|inverted-back-faces"};
+            "offset only.");
 }
 constexpr ParamDesc zOffsetParam() {
     return {"z_offset", "midpoint z_offset", ParamType::Float, 0, 1, 0.05, "depth range",

@@ -66,10 +66,9 @@ constexpr ParamDesc momentKernelParam() {
             nullptr};
 }
 constexpr ParamDesc momentFilterParam() {
-    return {"filter", "blur filter", ParamType::Enum, 0, 1, 0, "",
+    return enumParam("filter", "blur filter", 0, "box|gaussian",
             "Weights of the blur: box (seed 000's choice, flat and cheapest) or Gaussian (sigma = kernel / 6: a "
-            "smoother penumbra, narrower for the same kernel).",
-            "box|gaussian"};
+            "smoother penumbra, narrower for the same kernel).");
 }
 constexpr ParamDesc momentMipmapsParam() {
     return {"mipmaps", "mipmaps", ParamType::Bool, 0, 1, 0, "",
@@ -79,14 +78,13 @@ constexpr ParamDesc momentMipmapsParam() {
             nullptr};
 }
 constexpr ParamDesc momentBlurParam() {
-    return {"blur", "blur pass", ParamType::Enum, 0, 1, 1, "",
+    return enumParam("blur", "blur pass", 1, "fragment|compute",
             "How the moments are made and blurred; both give the same map. fragment: the light renders the "
             "moments into a colour target (16 bytes a texel for evsm and msm) and two full-screen passes blur "
             "it, a texture lookup per tap. compute: the light renders depth only, one compute pass turns it into "
             "moments and blurs them along x in shared memory, a second blurs along y (vsm's derivative-based M2 "
             "still renders its moments, then blurs in compute). Compare the passes' times in the timing panel or "
-            "with --sweep.",
-            "fragment|compute"};
+            "with --sweep.");
 }
 
 // Two that vsm, evsm and msm share, with one meaning (esm has neither): vsm and evsm list both

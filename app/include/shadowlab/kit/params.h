@@ -115,6 +115,18 @@ constexpr ParamDesc withHelp(ParamDesc desc, const char* help) {
     return desc;
 }
 
+// An Enum parameter: its values are the indices of `options` ("a|b|c"), so the options alone
+// state its range (0 to their count - 1), which a written-out range could contradict.
+constexpr double enumOptionCount(std::string_view options) {
+    double count = 1;
+    for (const char c : options) count += c == '|' ? 1 : 0;
+    return count;
+}
+constexpr ParamDesc enumParam(const char* id, const char* label, double defaultValue, const char* options,
+                              const char* help) {
+    return {id, label, ParamType::Enum, 0, enumOptionCount(options) - 1, defaultValue, "", help, options};
+}
+
 // Shadow-map parameters shared by the depth-map techniques (kit/depth_map.h).
 constexpr ParamDesc resolutionParam(double defaultValue = 2048, double maxValue = 8192) {
     return {"resolution", "resolution", ParamType::Int, 256, maxValue, defaultValue, "texels",
@@ -124,8 +136,8 @@ constexpr ParamDesc resolutionParam(double defaultValue = 2048, double maxValue 
             nullptr};
 }
 constexpr ParamDesc depthFormatParam() {
-    return {"depth_format", "depth format", ParamType::Enum, 0, 2, 2, "",
-            "Precision of the stored depth. 16-bit depth quantises coarsely and needs more bias.", "16|24|32F"};
+    return enumParam("depth_format", "depth format", 2, "16|24|32F",
+            "Precision of the stored depth. 16-bit depth quantises coarsely and needs more bias.");
 }
 constexpr ParamDesc constantBiasParam(double maxValue = 64) {
     return {"constant_bias", "constant bias", ParamType::Float, 0, maxValue, 2, "units",
@@ -142,10 +154,9 @@ constexpr ParamDesc slopeBiasParam() {
             nullptr};
 }
 constexpr ParamDesc cullParam(double defaultValue = 1) {
-    return {"cull", "cull in shadow pass", ParamType::Enum, 0, 2, defaultValue, "",
+    return enumParam("cull", "cull in shadow pass", defaultValue, "none|back|front",
             "Faces culled while rendering the map. 'front' stores back faces only, which moves acne to the "
-            "dark side of closed objects but leaks light at thin or open geometry.",
-            "none|back|front"};
+            "dark side of closed objects but leaks light at thin or open geometry.");
 }
 constexpr ParamDesc hardwareFilterParam(const char* label = "hardware 2x2 filter") {
     return {"hardware_filter", label, ParamType::Bool, 0, 1, 0, "",
@@ -173,14 +184,13 @@ constexpr ParamDesc coneBiasParam() {
 
 // Fitting of a single map (kit/focus.h): the `fit` and `snap` parameters of every single-map technique.
 constexpr ParamDesc fitParam() {
-    return {"fit", "fit", ParamType::Enum, 0, 2, 0, "",
+    return enumParam("fit", "fit", 0, "scene|frustum|focus-body",
             "What the map covers. scene: the whole scene, the same map every frame; in a large scene most "
             "texels land where the camera never looks. frustum: cropped to the camera frustum's corners in "
             "the light's view, clamped to the scene (seed 000 eq. 3.9-3.10); much sharper near the viewer, "
             "but the map moves with the camera (edges crawl: see snap) and a long far plane gives little "
             "gain. focus-body: cropped to B = ((V n S) + l) n S n L, the visible part of the scene swept "
-            "towards the light (seed 002 eq. 4.2), usually the tightest; casters outside it are not drawn.",
-            "scene|frustum|focus-body"};
+            "towards the light (seed 002 eq. 4.2), usually the tightest; casters outside it are not drawn.");
 }
 constexpr ParamDesc snapParam() {
     return {"snap", "snap to texels", ParamType::Bool, 0, 1, 0, "",

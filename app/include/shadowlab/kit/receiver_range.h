@@ -7,17 +7,17 @@
 #pragma once
 
 #include <shadowlab/kit/cascade_maps.h>
+#include <shadowlab/kit/params.h>
 
 namespace shadowlab::kit {
 
 constexpr ParamDesc warpRangeParam() {
-    return {"range", "warp range", ParamType::Enum, 0, 1, 0, "",
+    return enumParam("range", "warp range", 0, "scene|receivers",
             "The view depths the warp is fitted to (its near distance z_n and the far end of eq. 8.13's d). "
             "scene: the camera frustum clipped to the scene's bounds. receivers: the nearest and farthest depth "
             "of what the camera really sees, measured from the camera pre-pass on the GPU (a few frames late, "
             "never waited for), so a view ending at a hillside or a wall warps for that distance instead of "
-            "the scene's far corner. Costs the pre-pass and a reduction.",
-            "scene|receivers"};
+            "the scene's far corner. Costs the pre-pass and a reduction.");
 }
 
 // The flag condition of a technique with warpRangeParam(): the depth-only pre-pass only when it is measured.

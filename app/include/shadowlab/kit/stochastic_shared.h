@@ -91,17 +91,17 @@ SHADOWLAB_STOCHASTIC_FN float stochasticSampleXi(uint frameSeed, uint texelX, ui
 SHADOWLAB_SHARED_END
 
 #ifdef __cplusplus
+#include <shadowlab/kit/params.h>
 #include <shadowlab/technique.h>
 namespace shadowlab::kit {
 // The `noise` parameter of the stochastic techniques: how xi is indexed (above).
 constexpr ParamDesc noiseParam() {
-    return {"noise", "noise", ParamType::Enum, 0, 1, shared::stochastic::kNoisePerSurface, "",
+    return enumParam("noise", "noise", shared::stochastic::kNoisePerSurface, "per-surface|per-texel",
             "How the random number deciding each translucent fragment is drawn. per-surface: hashed from "
             "the texel, the object and the triangle (and the frame), so every surface over a texel decides "
             "on its own and the map converges to the product over the surfaces. per-texel: one number per "
             "texel, as a noise texture indexed by texel alone gives, shared by every surface there: stacked "
-            "surfaces then let 1 - max p through instead of the product (wrong wherever two overlap).",
-            "per-surface|per-texel"};
+            "surfaces then let 1 - max p through instead of the product (wrong wherever two overlap).");
 }
 } // namespace shadowlab::kit
 #else

@@ -30,12 +30,11 @@ namespace shadowlab::kit {
 
 // What a translucent caster multiplies C by: the `variant` parameter of both techniques.
 constexpr ParamDesc translucentVariantParam() {
-    return {"variant", "variant", ParamType::Enum, 0, 1, shared::translucent_maps::kVariantModified, "",
+    return enumParam("variant", "variant", shared::translucent_maps::kVariantModified, "original|modified",
             "What a translucent caster multiplies the shadow colour by. original: its surface colour (StarCraft "
             "II); a surface then does not darken a receiver of its own colour, and there is no reference model "
             "for it (eval judges it against the modified one). modified: (1 - alpha) t, seed 001's correction "
-            "(the modified-translucent model M3), which still differs from the physical (1 - alpha) + alpha t.",
-            "original|modified"};
+            "(the modified-translucent model M3), which still differs from the physical (1 - alpha) + alpha t.");
 }
 // The texture unit's 2x2 comparison on D_o and D_t (seed 001 timed translucent shadows so).
 constexpr ParamDesc translucentHardwareFilterParam() {
