@@ -4,28 +4,32 @@
 #include <algorithm>
 #include <cstring>
 
+#include <shadowlab/kit/params.h>
+
 #include "gl/gl.h"
 #include "util/log.h"
 
 namespace shadowlab {
 namespace {
 
-enum Param : uint32_t { kMode, kSamples, kModel, kParamCount };
-
-const ParamDesc kParams[] = {
-    {"mode", "mode", ParamType::Enum, 0, 1, 0, "",
+constexpr ParamDesc kMode = kit::enumParam("mode", "mode", 0, "hard|soft",
      "hard: one shadow ray to the light's centre per pixel. soft: stratified rays over the light's area "
-     "(its size in the scene), the visible fraction of the emitter.", "hard|soft"},
-    {"samples", "samples per pixel", ParamType::Int, 1, 4096, 1024, "",
+     "(its size in the scene), the visible fraction of the emitter.");
+constexpr ParamDesc kSamples{"samples", "samples per pixel", ParamType::Int, 1, 4096, 1024, "",
      "Soft mode: rays per pixel over the light's area, traced adaptively (a first batch everywhere, all "
-     "of them only where a penumbra may be; docs/benchmarks.md). Fewer is faster and noisier.", nullptr},
-    {"model", "translucency model", ParamType::Enum, 0, 4, 2, "",
+     "of them only where a penumbra may be; docs/benchmarks.md). Fewer is faster and noisier.", nullptr};
+constexpr ParamDesc kModel = kit::enumParam("model", "translucency model", 2, "opaque|coverage|physical|modified|ignore",
      "What a translucent caster of alpha a and transmission t lets through, multiplied over every one a "
      "shadow ray crosses before the first opaque caster: opaque 0 (every caster blocks), coverage 1 - a "
      "(stochastic shadow maps), physical (1 - a) + a t (coloured), modified (1 - a) t (seed 001's "
-     "modified translucent shadows), ignore 1 (translucent casters cast nothing).",
-     "opaque|coverage|physical|modified|ignore"},
-};
+     "modified translucent shadows), ignore 1 (translucent casters cast nothing).");
+
+// One list, as the plugins declare theirs (kit/params.h).
+#define REFERENCE_PARAMS(X)   \
+    X(int, mode, kMode)       \
+    X(int, samples, kSamples) \
+    X(int, model, kModel)
+SHADOWLAB_PARAMS(Params, REFERENCE_PARAMS);
 
 const TechniqueDesc kDescriptor{
     sizeof(TechniqueDesc),
@@ -37,8 +41,8 @@ const TechniqueDesc kDescriptor{
     "integrates the light's area with stratified samples. Slow by design: it is traced again only "
     "when the view, the light or its parameters change.",
     "reference_visibility.glsl",
-    kParams,
-    kParamCount,
+    Params::table,
+    Params::Id::count,
     kTechniqueNeedsCameraPrepass,
     TranslucencyModel::Physical,
 };
@@ -49,10 +53,11 @@ const TechniqueDesc& referenceDescriptor() { return kDescriptor; }
 
 ReferenceOptions referenceOptions(const ParamValues& params) {
     ReferenceOptions options;
-    options.mode = params.asInt(kMode) == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
-    options.samplesPerPixel = std::max(params.asInt(kSamples), 1);
+    const Params p = Params::read(params);
+    options.mode = p.mode == 1 ? ReferenceOptions::Mode::Soft : ReferenceOptions::Mode::Hard;
+    options.samplesPerPixel = std::max(p.samples, 1);
     options.adaptive = true;
-    options.model = static_cast<TranslucencyModel>(std::clamp(params.asInt(kModel), 0, int(kTranslucencyModelCount) - 1));
+    options.model = static_cast<TranslucencyModel>(std::clamp(p.model, 0, int(kTranslucencyModelCount) - 1));
     return options;
 }
 
@@ -79,7 +84,7 @@ void ReferenceTechnique::renderShadows(const FrameContext& frame, const ParamVal
     std::vector<float> key(&camera.viewProjection[0][0], &camera.viewProjection[0][0] + 16);
     key.insert(key.end(), {light.position.x, light.position.y, light.position.z, light.direction.x, light.direction.y,
                            light.direction.z, light.size, light.spotOuterAngle, float(light.type),
-                           float(params[kMode]), float(params[kSamples]), float(params[kModel]),
+                           float(params[Params::Id::mode]), float(params[Params::Id::samples]), float(params[Params::Id::model]),
                            float(*sceneGeneration_), float(size_.x), float(size_.y)});
     if (key == cacheKey_) return;
 
